@@ -1,0 +1,40 @@
+#pragma once
+
+#include <sylva/platform/GlContext.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace sylva::app {
+
+/** Options shared by every command that creates a GL context. */
+struct ContextFlags {
+  std::string eglPlatform = "auto";
+  int eglDevice = -1;
+  void add(CLI::App& command);
+  platform::ContextOptions options() const;
+};
+
+/** Each register* adds one subcommand whose callback runs it; errors are thrown as sylva::Error. */
+void registerInfo(CLI::App& app);
+void registerRender(CLI::App& app);
+void registerView(CLI::App& app);
+void registerBench(CLI::App& app);
+void registerImgdiff(CLI::App& app);
+void registerTerrain(CLI::App& app);
+
+/** Host name, CPU model and core count, for benchmark reports. */
+struct MachineInfo {
+  std::string host;
+  std::string cpu;
+  unsigned cores = 0;
+};
+MachineInfo machineInfo();
+
+/** Exit code a command asks for (imgdiff: 1 when images differ); 0 by default. */
+int& exitCode();
+
+} // namespace sylva::app

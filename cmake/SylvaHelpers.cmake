@@ -1,0 +1,74 @@
+include_guard(GLOBAL)
+
+# Warnings for our own code only; third-party headers are included as SYSTEM.
+set(SYLVA_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wno-missing-field-initializers)
+
+# sylva_add_module(<name> DEPS <targets...> [PRIVATE_DEPS <targets...>])
+# Creates target sylva_<name> with alias sylva::<name> from engine/<name>/src/*.cpp, public headers under
+# engine/<name>/include (included as <sylva/<name>/X.hpp>), private headers under src/internal.
+function(sylva_add_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  if(NOT sources)
+    message(STATUS "Sylva module '${name}' has no sources yet; skipped")
+    return()
+  endif()
+  add_library(sylva_${name} STATIC ${sources})
+  add_library(sylva::${name} ALIAS sylva_${name})
+  target_include_directories(sylva_${name}
+    PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(sylva_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  target_compile_options(sylva_${name} PRIVATE ${SYLVA_WARNINGS})
+  set_target_properties(sylva_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endfunction()
+
+# sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...>)
+# One GoogleTest executable per (module, tier); every test case becomes a CTest test carrying the label.
+function(sylva_add_test name)
+  cmake_parse_arguments(ARG "" "LABEL" "SOURCES;DEPS" ${ARGN})
+  if(NOT ARG_SOURCES)
+    message(STATUS "Test ${name} has no sources yet; skipped")
+    return()
+  endif()
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock)
+  target_compile_options(${name} PRIVATE ${SYLVA_WARNINGS})
+  target_compile_definitions(${name} PRIVATE
+    SYLVA_SOURCE_DIR="${PROJECT_SOURCE_DIR}" SYLVA_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  gtest_discover_tests(${name}
+    DISCOVERY_MODE PRE_TEST
+    PROPERTIES LABELS ${ARG_LABEL} ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}"
+    DISCOVERY_TIMEOUT 60)
+  add_dependencies(sylva_tests_${ARG_LABEL} ${name})
+endfunction()
+
+# sylva_embed_directory(<target> <dir> <namespace-function>)
+# Generates a C++ source that holds every file under <dir> (shaders) as a byte array, keyed by its path relative
+# to <dir>, so the binary never depends on the working directory.
+function(sylva_embed_directory target dir)
+  file(GLOB_RECURSE files CONFIGURE_DEPENDS RELATIVE ${dir}
+    ${dir}/*.glsl ${dir}/*.h ${dir}/*.vert ${dir}/*.frag ${dir}/*.tesc ${dir}/*.tese ${dir}/*.geom ${dir}/*.comp)
+  list(SORT files)
+  set(abs_files)
+  foreach(f ${files})
+    list(APPEND abs_files ${dir}/${f})
+  endforeach()
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/EmbeddedShaders.cpp)
+  string(REPLACE ";" "|" files_arg "${files}")
+  add_custom_command(OUTPUT ${out}
+    COMMAND ${CMAKE_COMMAND} -DDIR=${dir} -DOUT=${out} "-DFILES=${files_arg}"
+            -P ${PROJECT_SOURCE_DIR}/cmake/EmbedFiles.cmake
+    DEPENDS ${abs_files} ${PROJECT_SOURCE_DIR}/cmake/EmbedFiles.cmake
+    COMMENT "Embedding shaders from ${dir}" VERBATIM)
+  target_sources(${target} PRIVATE ${out})
+endfunction()
+
+# sylva_module_enabled(<module> <out-var>): TRUE unless SYLVA_MODULES restricts the build to other modules.
+function(sylva_module_enabled module out)
+  if(NOT SYLVA_MODULES OR module IN_LIST SYLVA_MODULES OR module STREQUAL "support")
+    set(${out} TRUE PARENT_SCOPE)
+  else()
+    set(${out} FALSE PARENT_SCOPE)
+  endif()
+endfunction()

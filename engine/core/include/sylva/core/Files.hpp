@@ -1,0 +1,32 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace sylva {
+
+/**
+ * Writes a file atomically: `writer` fills a temporary file next to `path`, which is then renamed over
+ * `path`. If `writer` throws, the temporary is removed and the exception propagates, so no half-written
+ * output remains. Parent directories are created.
+ */
+void writeFileAtomically(const std::filesystem::path& path,
+                         const std::function<void(const std::filesystem::path& tmp)>& writer);
+
+/** Writes `text` to `path` atomically; throws sylva::Error naming the file. */
+void writeTextFile(const std::filesystem::path& path, std::string_view text);
+
+/** Reads a whole file; throws sylva::Error naming the file if it is missing or unreadable. */
+std::string readTextFile(const std::filesystem::path& path);
+
+/** Parses a JSON file; throws sylva::Error naming the file, line and column on syntax errors. */
+nlohmann::json loadJsonFile(const std::filesystem::path& path);
+
+/** Writes JSON (2-space indent, trailing newline) atomically. */
+void saveJsonFile(const std::filesystem::path& path, const nlohmann::json& json);
+
+} // namespace sylva

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+namespace sylva {
+
+/**
+ * Progress of long work (preprocessing, synthesis, batch renders). Prints a single updating line to stderr
+ * when it is a terminal (at most 10 times a second), and nothing otherwise. cancel() may be called from
+ * another thread (e.g. a SIGINT handler); the worker checks cancelled() and stops.
+ */
+class Progress {
+public:
+  Progress(std::string label, std::size_t total);
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  /** Adds `n` completed units. Thread-safe. */
+  void advance(std::size_t n = 1);
+  /** Requests cancellation. Thread-safe. */
+  void cancel() { mCancelled = true; }
+  bool cancelled() const { return mCancelled; }
+  std::size_t done() const { return mDone; }
+
+private:
+  void print(bool final);
+
+  std::string mLabel;
+  std::size_t mTotal;
+  std::atomic<std::size_t> mDone{0};
+  std::atomic<bool> mCancelled{false};
+  std::atomic<long long> mLastPrintNs{0};
+  std::chrono::steady_clock::time_point mStart;
+  bool mInteractive;
+};
+
+} // namespace sylva

@@ -1,0 +1,108 @@
+#include <sylva/core/Image.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace sylva {
+
+namespace {
+
+/** Channel names in our interleaved order for 1..4 channels. */
+std::vector<std::string> namesFor(int channels) {
+  switch (channels) {
+  case 1:
+    return {"Y"};
+  case 2:
+    return {"Y", "A"};
+  case 3:
+    return {"R", "G", "B"};
+  default:
+    return {"R", "G", "B", "A"};
+  }
+}
+
+} // namespace
+
+Image loadExr(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) {
+    fail("{}: cannot open file (missing)", path.string());
+  }
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const int width = window.max.x - window.min.x + 1;
+    const int height = window.max.y - window.min.y + 1;
+    const Imf::ChannelList& list = file.header().channels();
+    std::vector<std::string> names;
+    if (list.findChannel("R") && list.findChannel("G") && list.findChannel("B")) {
+      names = {"R", "G", "B"};
+    } else if (list.findChannel("Y")) {
+      names = {"Y"};
+    } else if (list.begin() != list.end()) {
+      names = {list.begin().name()};
+    } else {
+      fail("{}: EXR file has no channels", path.string());
+    }
+    if (list.findChannel("A")) {
+      names.push_back("A");
+    }
+    Image image(width, height, static_cast<int>(names.size()), PixelType::F32);
+    float* base = image.values<float>().data();
+    const std::size_t xStride = sizeof(float) * names.size();
+    const std::size_t yStride = xStride * static_cast<std::size_t>(width);
+    // OpenEXR addresses the buffer with absolute data-window coordinates.
+    char* origin = reinterpret_cast<char*>(base) - static_cast<std::ptrdiff_t>(window.min.x) * xStride -
+                   static_cast<std::ptrdiff_t>(window.min.y) * yStride;
+    Imf::FrameBuffer frame;
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xStride, yStride));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    return image;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail("{}: cannot read EXR: {}", path.string(), e.what());
+  }
+}
+
+void saveExr(const std::filesystem::path& path, const Image& image) {
+  if (image.empty()) {
+    fail("{}: cannot save an empty image", path.string());
+  }
+  const Image floats = image.converted(PixelType::F32);
+  const std::vector<std::string> names = namesFor(floats.channels());
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    try {
+      Imf::Header header(floats.width(), floats.height());
+      for (const std::string& name : names) {
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      }
+      Imf::OutputFile file(tmp.c_str(), header);
+      Imf::FrameBuffer frame;
+      const std::size_t xStride = sizeof(float) * names.size();
+      const char* base = reinterpret_cast<const char*>(floats.data());
+      for (std::size_t c = 0; c < names.size(); ++c) {
+        frame.insert(names[c], Imf::Slice(Imf::FLOAT, const_cast<char*>(base) + c * sizeof(float), xStride,
+                                          xStride * static_cast<std::size_t>(floats.width())));
+      }
+      file.setFrameBuffer(frame);
+      file.writePixels(floats.height());
+    } catch (const std::exception& e) {
+      fail("{}: cannot write EXR: {}", path.string(), e.what());
+    }
+  });
+}
+
+} // namespace sylva

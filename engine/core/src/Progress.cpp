@@ -1,0 +1,40 @@
+#include <sylva/core/Progress.hpp>
+
+#include <cstdio>
+#include <unistd.h>
+
+namespace sylva {
+
+Progress::Progress(std::string label, std::size_t total)
+    : mLabel(std::move(label)), mTotal(total), mStart(std::chrono::steady_clock::now()),
+      mInteractive(::isatty(STDERR_FILENO) != 0) {}
+
+Progress::~Progress() {
+  print(true);
+}
+
+void Progress::advance(std::size_t n) {
+  mDone += n;
+  print(false);
+}
+
+void Progress::print(bool final) {
+  if (!mInteractive) {
+    return;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  const long long ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - mStart).count();
+  long long last = mLastPrintNs.load();
+  if (!final && ns - last < 100'000'000LL) {
+    return;
+  }
+  if (!final && !mLastPrintNs.compare_exchange_strong(last, ns)) {
+    return;
+  }
+  const double fraction = mTotal == 0 ? 1.0 : static_cast<double>(mDone) / static_cast<double>(mTotal);
+  std::fprintf(stderr, "\r%s: %5.1f%% (%zu/%zu) %.1fs%s", mLabel.c_str(), 100.0 * fraction, mDone.load(),
+               mTotal, static_cast<double>(ns) * 1e-9, final ? (mCancelled ? " cancelled\n" : "\n") : "");
+  std::fflush(stderr);
+}
+
+} // namespace sylva

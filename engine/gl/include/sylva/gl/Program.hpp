@@ -1,0 +1,52 @@
+#pragma once
+
+#include <sylva/gl/Object.hpp>
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace sylva::gl {
+
+/** One shader stage's final source text, plus names that translate `#line N M` source numbers M in logs. */
+struct StageSource {
+  GLenum stage = GL_VERTEX_SHADER;
+  std::string source;
+  /** files[M] is the file name for `#line N M`; file 0 is the stage's main file. */
+  std::vector<std::string> files;
+};
+
+/**
+ * Linked program object. Construction compiles and links all stages and throws sylva::Error whose message
+ * names the failing file:line (translated through StageSource::files) and the driver's log. Move-only.
+ */
+class Program : public Object<detail::deleteProgram> {
+public:
+  explicit Program(NoCreateT) {}
+  Program(const std::vector<StageSource>& stages, const std::string& label);
+
+  void use() const;
+  /** Uniform location by name, cached; -1 when the uniform is absent or optimised out (setters ignore -1). */
+  GLint uniformLocation(const std::string& name) const;
+  void setUniform(const std::string& name, int value) const;
+  void setUniform(const std::string& name, unsigned value) const;
+  void setUniform(const std::string& name, float value) const;
+  void setUniform(const std::string& name, const glm::vec2& value) const;
+  void setUniform(const std::string& name, const glm::vec3& value) const;
+  void setUniform(const std::string& name, const glm::vec4& value) const;
+  void setUniform(const std::string& name, const glm::mat4& value) const;
+  /** Work-group size declared by a compute shader (local_size_x/y/z). */
+  glm::ivec3 computeWorkGroupSize() const;
+  const std::string& label() const { return mLabel; }
+
+private:
+  std::string mLabel;
+  mutable std::unordered_map<std::string, GLint> mLocations;
+};
+
+/** Translates `0(12)`-style or `0:12:`-style driver log positions into `file:line` using `files`. */
+std::string translateShaderLog(const std::string& log, const std::vector<std::string>& files);
+
+} // namespace sylva::gl

@@ -1,0 +1,86 @@
+#pragma once
+
+#include <sylva/gl/Query.hpp>
+
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sylva::render {
+
+/** Timing of one named pass in one frame, milliseconds. GPU time is -1 until its query result is known. */
+struct PassTiming {
+  std::string name;
+  double cpuMs = 0.0;
+  double gpuMs = -1.0;
+};
+
+/**
+ * Per-pass CPU and GPU timings. Each pass is bracketed by begin(name)/end(); GPU time comes from GL_TIMESTAMP
+ * queries kept in a ring of `latency` frames, so reading results never stalls the pipeline (except in
+ * `synchronous` mode, used by benchmarks and tests, which waits for each frame's results at endFrame()).
+ */
+class GpuTimers {
+public:
+  explicit GpuTimers(int latency = 3, bool synchronous = false);
+
+  void beginFrame();
+  void begin(const std::string& pass);
+  void end();
+  void endFrame();
+  /** The most recent frame whose GPU results are complete. */
+  const std::vector<PassTiming>& lastFrame() const { return mLast; }
+
+private:
+  struct Slot {
+    std::vector<gl::Query> queries; // 2 per pass
+    std::vector<PassTiming> timings;
+    bool pending = false;
+  };
+  void collect(Slot& slot, bool wait);
+
+  std::vector<Slot> mSlots;
+  std::size_t mCurrent = 0;
+  bool mSynchronous;
+  std::vector<PassTiming> mLast;
+  std::chrono::steady_clock::time_point mPassStart;
+  bool mInPass = false;
+};
+
+/** Median, spread (min, max, p10, p90) of samples; for `sylva bench` reports. */
+struct Stats {
+  double median = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  double p10 = 0.0;
+  double p90 = 0.0;
+  std::size_t count = 0;
+  static Stats of(std::vector<double> samples);
+  nlohmann::json toJson() const;
+};
+
+/**
+ * Frame clock: real time, or a fixed step (seconds per frame) so animation and simulation are deterministic
+ * in tests, goldens and benchmarks.
+ */
+class FrameClock {
+public:
+  /** `fixedStep` > 0 selects the fixed clock. */
+  explicit FrameClock(double fixedStep = 0.0);
+  /** Advances one frame; returns the frame's dt in seconds. */
+  double tick();
+  /** Seconds since start (fixed: frames × step). */
+  double time() const { return mTime; }
+  bool fixed() const { return mFixedStep > 0.0; }
+
+private:
+  double mFixedStep;
+  double mTime = 0.0;
+  std::chrono::steady_clock::time_point mLast;
+  bool mStarted = false;
+};
+
+} // namespace sylva::render

@@ -1,0 +1,24 @@
+#include <sylva/render/FrameUniforms.hpp>
+
+namespace sylva::render {
+
+FrameUniformBuffer::FrameUniformBuffer() : mBuffer(sizeof(gpu::FrameUniforms)) {}
+
+void FrameUniformBuffer::update(const Camera& camera, int width, int height, double time,
+                                const Environment& environment) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  mData.viewProj = camera.viewProjection(aspect);
+  mData.view = camera.view();
+  mData.cameraPos = glm::vec4(camera.position, static_cast<float>(time));
+  mData.sunDirection = glm::vec4(glm::normalize(environment.sunDirection), environment.sunIntensity);
+  mData.fogColor = glm::vec4(environment.fogColor, environment.fogDensity);
+  mData.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height),
+                             1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
+  mBuffer.setSubData(0, sizeof(mData), &mData);
+}
+
+void FrameUniformBuffer::bind() const {
+  mBuffer.bindBase(GL_UNIFORM_BUFFER, SYLVA_FRAME_BINDING);
+}
+
+} // namespace sylva::render

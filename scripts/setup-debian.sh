@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs exactly the Debian 12 packages Sylva needs to build, test and render. Idempotent and
+# non-interactive: packages already present are not touched, and nothing is fetched when all are there.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  g++ cmake make pkg-config
+  # engine libraries
+  libglm-dev libepoxy-dev libglfw3-dev libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
+  libfmt-dev libpng-dev libopenexr-dev libgdal-dev libzip-dev
+  # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests
+  libgtest-dev libgmock-dev libbenchmark-dev glslang-tools xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup-debian: all ${#packages[@]} packages present"
+  exit 0
+fi
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup-debian: run as root (missing: ${missing[*]})" >&2; exit 1; }
+  sudo="sudo"
+fi
+echo "setup-debian: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,93 @@
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Parallel.hpp>
+#include <sylva/core/Random.hpp>
+
+#include "TempDir.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <fstream>
+#include <vector>
+
+namespace sylva {
+namespace {
+
+TEST(Rng, SameSeedSameSequence) {
+  Rng a(42);
+  Rng b(42);
+  Rng c(43);
+  bool differs = false;
+  for (int i = 0; i < 1000; ++i) {
+    const std::uint32_t va = a.nextU32();
+    EXPECT_EQ(va, b.nextU32());
+    differs |= va != c.nextU32();
+  }
+  EXPECT_TRUE(differs);
+}
+
+TEST(Rng, UniformAndBelowStayInRange) {
+  Rng rng(7);
+  double sum = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const float u = rng.uniform();
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LT(u, 1.0f);
+    sum += u;
+    ASSERT_LT(rng.below(10), 10u);
+  }
+  EXPECT_NEAR(sum / 100000.0, 0.5, 0.01);
+}
+
+TEST(Parallel, CoversEveryIndexOnce) {
+  std::vector<std::atomic<int>> hits(10007);
+  parallelFor(hits.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      hits[i]++;
+    }
+  });
+  for (const auto& h : hits) {
+    ASSERT_EQ(h.load(), 1);
+  }
+}
+
+TEST(Parallel, PropagatesExceptions) {
+  EXPECT_THROW(parallelFor(
+                   1000,
+                   [](std::size_t b, std::size_t) {
+                     if (b > 0) {
+                       fail("chunk {}", b);
+                     }
+                   },
+                   1),
+               Error);
+}
+
+TEST(Files, JsonErrorsNameFileLineAndColumn) {
+  test::TempDir dir;
+  std::ofstream(dir / "scene.json") << "{\n  \"version\": 1,\n  \"oops\" 3\n}\n";
+  try {
+    loadJsonFile(dir / "scene.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.json:3:"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(loadJsonFile(dir / "missing.json"), Error);
+}
+
+TEST(Files, AtomicWriteCleansUpOnFailure) {
+  test::TempDir dir;
+  EXPECT_THROW(writeFileAtomically(dir / "out.bin",
+                                   [](const std::filesystem::path& tmp) {
+                                     std::ofstream(tmp) << "partial";
+                                     fail("writer failed");
+                                   }),
+               Error);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+  saveJsonFile(dir / "sub/ok.json", nlohmann::json{{"version", 1}});
+  EXPECT_EQ(loadJsonFile(dir / "sub/ok.json")["version"], 1);
+}
+
+} // namespace
+} // namespace sylva
