@@ -4,7 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include <regex>
+#include <cctype>
 
 namespace sylva::gl {
 
@@ -58,28 +58,50 @@ struct ShaderSet {
 } // namespace
 
 std::string translateShaderLog(const std::string& log, const std::vector<std::string>& files) {
-  auto name = [&](const std::string& number) {
-    const std::size_t index = std::stoul(number);
-    return index < files.size() ? files[index] : "source " + number;
+  auto name = [&](std::size_t index) {
+    return index < files.size() ? files[index] : "source " + std::to_string(index);
   };
-  // Mesa: "0:12(3): error: ..."; NVIDIA: "0(12) : error C1008: ...".
-  static const std::regex kMesa(R"((\d+):(\d+)\((\d+)\))");
-  static const std::regex kNvidia(R"((^|\n)(\d+)\((\d+)\))");
+  // Reads decimal digits at `i`; returns false (leaving `i`) when there are none.
+  auto digits = [&](std::size_t& i, std::size_t& value) {
+    std::size_t j = i;
+    value = 0;
+    while (j < log.size() && std::isdigit(static_cast<unsigned char>(log[j])) != 0) {
+      value = value * 10 + static_cast<std::size_t>(log[j] - '0');
+      ++j;
+    }
+    if (j == i) {
+      return false;
+    }
+    i = j;
+    return true;
+  };
+  // Mesa writes "0:12(3): error: ..."; NVIDIA writes "0(12) : error C1008: ..." at the start of a line.
   std::string out;
-  std::smatch match;
-  std::string rest = log;
-  while (std::regex_search(rest, match, kMesa)) {
-    out += match.prefix().str() + name(match[1].str()) + ":" + match[2].str() + "(" + match[3].str() + ")";
-    rest = match.suffix().str();
+  std::size_t i = 0;
+  while (i < log.size()) {
+    const bool lineStart = i == 0 || log[i - 1] == '\n';
+    std::size_t j = i;
+    std::size_t source = 0;
+    std::size_t line = 0;
+    std::size_t column = 0;
+    if (digits(j, source) && j < log.size()) {
+      std::size_t k = j;
+      if (log[k] == ':' && digits(++k, line) && k < log.size() && log[k] == '(' && digits(++k, column) &&
+          k < log.size() && log[k] == ')') {
+        out += name(source) + ":" + std::to_string(line) + "(" + std::to_string(column) + ")";
+        i = k + 1;
+        continue;
+      }
+      k = j;
+      if (lineStart && log[k] == '(' && digits(++k, line) && k < log.size() && log[k] == ')') {
+        out += name(source) + ":" + std::to_string(line);
+        i = k + 1;
+        continue;
+      }
+    }
+    out += log[i++];
   }
-  out += rest;
-  rest = out;
-  out.clear();
-  while (std::regex_search(rest, match, kNvidia)) {
-    out += match.prefix().str() + match[1].str() + name(match[2].str()) + ":" + match[3].str();
-    rest = match.suffix().str();
-  }
-  return out + rest;
+  return out;
 }
 
 Program::Program(const std::vector<StageSource>& stages, const std::string& label) : mLabel(label) {

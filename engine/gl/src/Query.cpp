@@ -6,7 +6,14 @@ namespace sylva::gl {
 
 Query::Query(GLenum target) : mTarget(target) {
   GLuint id = 0;
-  glCreateQueries(target, 1, &id);
+  if (target == GL_TIMESTAMP || target == GL_TIME_ELAPSED || target == GL_SAMPLES_PASSED ||
+      target == GL_ANY_SAMPLES_PASSED || target == GL_PRIMITIVES_GENERATED) {
+    glCreateQueries(target, 1, &id);
+  } else {
+    // Mesa rejects pipeline-statistics targets in glCreateQueries; a generated name becomes one at
+    // glBeginQuery.
+    glGenQueries(1, &id);
+  }
   static_cast<Object&>(*this) = Object(id);
 }
 
