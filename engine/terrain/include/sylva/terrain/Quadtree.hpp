@@ -1,0 +1,283 @@
+#pragma once
+
+#include <sylva/core/Geometry.hpp>
+#include <sylva/terrain/HeightField.hpp>
+#include <sylva/terrain/MinMax.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+/**
+ * Quadtree LOD for tessellated terrain patches: the CPU side (no OpenGL).
+ *
+ * Questions answered, once per view: which square patches (quadtree leaves) cover the visible terrain, how
+ * large is each, and which tessellation level does each patch edge get so that neighbouring patches of
+ * different size share exactly the same edge vertices (no cracks / T-junctions)? See docs/terrain-lod.md.
+ *
+ * Spaces: world metres, y up; the terrain covers [0, extentX] × [0, extentZ] in x and z. A node at depth d
+ * has size rootSize / 2^d metres and grid index (gridX, gridZ) in the depth-d grid of (rootsX·2^d) ×
+ * (rootsZ·2^d) nodes; its footprint is [gridX·size, (gridX+1)·size] × [gridZ·size, (gridZ+1)·size].
+ */
+namespace sylva::terrain {
+
+/** How edge tessellation levels are stitched between leaves of different depth. */
+enum class CrackMethod : std::uint8_t {
+  /** No stitching: every outer level is the base level. Leaves T-junctions; for tests and comparisons only.
+   */
+  None,
+  /**
+   * The paper's method: per leaf edge, find the same-depth neighbour square in the per-view tree (siblings in
+   * O(1) through the parent, cousins by a top-down search from the root, O(depth)); a split neighbour means a
+   * finer leaf across the edge and doubles that edge's level.
+   */
+  PaperSearch,
+  /**
+   * Ours: the same doubling rule, reading "was the same-depth neighbour square split?" from a per-view hash
+   * of split nodes keyed by (depth, gridX, gridZ): O(1) per edge, no tree. Exact because the selection is
+   * restricted (QuadtreeConfig::restrictSelection).
+   */
+  RestrictedLevelMap,
+};
+
+/** "none", "paper-search" or "restricted-level-map". */
+const char* crackMethodName(CrackMethod method);
+
+/**
+ * Patch edge indices, equal to the gl_TessLevelOuter index of a quad patch whose domain u runs along +x and v
+ * along +z (corner (u, v) = (0, 0) at world (x, z), (1, 1) at (x + size, z + size)).
+ */
+enum PatchEdge : int {
+  kEdgeWest = 0,  ///< u = 0: the x-min edge
+  kEdgeNorth = 1, ///< v = 0: the z-min edge
+  kEdgeEast = 2,  ///< u = 1: the x-max edge
+  kEdgeSouth = 3, ///< v = 1: the z-max edge
+};
+
+/** Highest base tessellation level: doubled edges reach 64, the minimum GL_MAX_TESS_GEN_LEVEL. */
+inline constexpr int kMaxPatchTessLevel = 32;
+/**
+ * Smallest lodDistanceFactor accepted with restrictSelection: the restriction proof needs factor ≥ 1; the
+ * extra 5 % keeps it robust to float rounding of distances.
+ */
+inline constexpr float kMinRestrictedLodFactor = 1.05f;
+/** Largest node grid at the deepest level (nodes), bounding the min/max memory. */
+inline constexpr long long kMaxQuadtreeLeafNodes = 1LL << 24;
+
+/** Layout and LOD policy of a terrain quadtree. */
+struct QuadtreeConfig {
+  /** Root nodes along x; 0 derives ⌈extentX / rootSize⌉. */
+  int rootsX = 0;
+  /** Root nodes along z; 0 derives ⌈extentZ / rootSize⌉. */
+  int rootsZ = 0;
+  /** World size of a root node (metres, square). */
+  float rootSize = 256.0f;
+  /** Deepest depth a node may reach (0 = roots only); leaves are at most rootSize / 2^maxDepth metres. */
+  int maxDepth = 5;
+  /**
+   * A node splits when the 3D distance (metres) from the camera to its LOD box is below factor × node size.
+   * The LOD box is the node footprint × a height range (see restrictSelection). ≥ kMinRestrictedLodFactor
+   * when restrictSelection, > 0 otherwise.
+   */
+  float lodDistanceFactor = 2.0f;
+  /** Base tessellation level of every patch edge and of the inner levels, 1..kMaxPatchTessLevel. */
+  int patchTessLevel = 16;
+  /** False: draw every present root at depth 0 regardless of distance (the paper's "LOD disabled" rows). */
+  bool lodEnabled = true;
+  /** How neighbour levels are found and edges stitched. */
+  CrackMethod method = CrackMethod::RestrictedLevelMap;
+  /** Drop nodes whose AABB is outside the frustum passed to select() (ignored when it passes none). */
+  bool frustumCull = true;
+  /**
+   * True: the LOD box height range is the union of the node's and its 8 same-depth neighbours' ranges, which
+   * guarantees that edge-adjacent leaves differ by at most one depth (docs/terrain-lod.md has the proof).
+   * False: the node's own range (plain CDLOD box distance); steep terrain can then give unrestricted
+   * selections on which no doubling rule is crack-free. Only for tests and comparisons.
+   */
+  bool restrictSelection = true;
+
+  /**
+   * A config with rootCount roots (e.g. the paper's 4, 16, 32, 64) for a terrain of extentX × extentZ metres:
+   * picks the factorisation rootsX·rootsZ = rootCount with the least area outside the terrain (32 over a
+   * square gives 8×4) and the smallest rootSize that covers the extent. Roots wholly outside the data are
+   * dropped by select(). Throws sylva::Error for rootCount < 1 or a non-positive extent.
+   */
+  static QuadtreeConfig forRootCount(int rootCount, float extentX, float extentZ);
+};
+
+/** One patch to draw: a selected quadtree leaf. */
+struct SelectedNode {
+  /** World x of the patch's min corner (metres). */
+  float x = 0.0f;
+  /** World z of the patch's min corner (metres). */
+  float z = 0.0f;
+  /** Edge length (metres); the patch spans (x, z) … (x + size, z + size). */
+  float size = 0.0f;
+  /** Lowest valid height inside the patch footprint (metres). */
+  float minY = 0.0f;
+  /** Highest valid height inside the patch footprint (metres). */
+  float maxY = 0.0f;
+  /** Depth in the quadtree (0 = root). */
+  int level = 0;
+  /** Index of the node in the depth-`level` grid along x. */
+  int gridX = 0;
+  /** Index of the node in the depth-`level` grid along z. */
+  int gridZ = 0;
+  /** Bit e (PatchEdge) set when the leaf across edge e is one depth finer and the edge level was doubled. */
+  std::uint32_t edgeFlags = 0;
+  /** gl_TessLevelOuter[0..3] in PatchEdge order: base level, or twice it on flagged edges. */
+  std::array<float, 4> tessOuter{};
+  /** gl_TessLevelInner[0] and [1]: the base level. */
+  float tessInner = 0.0f;
+};
+
+/** Identifies a quadtree node: depth and grid index. */
+struct NodeId {
+  /** Depth (0 = root). */
+  int level = 0;
+  /** Grid index along x at that depth. */
+  int gridX = 0;
+  /** Grid index along z at that depth. */
+  int gridZ = 0;
+  bool operator==(const NodeId&) const = default;
+};
+
+/** Counters of one select() call. */
+struct QuadtreeStats {
+  /** Nodes with data whose bounds were tested (roots and children of split nodes). */
+  int nodesVisited = 0;
+  /** Visited nodes dropped by the frustum test (their subtrees are not visited). */
+  int nodesCulled = 0;
+  /** Candidate nodes dropped because their footprint holds no valid sample (outside the data). */
+  int nodesAbsent = 0;
+  /** Nodes that split. */
+  int nodesSplit = 0;
+  /** Selected leaves (= nodes.size()). */
+  int leaves = 0;
+  /** Leaf edges whose level was doubled. */
+  int doubledEdges = 0;
+  /** Work spent finding neighbours: tree nodes stepped through (PaperSearch) or hash probes (level map). */
+  long long neighbourSteps = 0;
+  /** Patch control points submitted: 4 per leaf. */
+  std::uint64_t controlPoints = 0;
+  /**
+   * Processed vertex estimate: Σ over leaves of (tessInner + 1)², the vertices of a quad domain tessellated
+   * at the base level (doubled edges add at most base level vertices per edge). This is what the tessellation
+   * evaluation stage runs per view; the paper's "processed vertices (CPU)" column is not reproducible.
+   */
+  std::uint64_t processedVertices = 0;
+};
+
+/** Result of one select() call. */
+struct QuadtreeSelection {
+  /** Patches to draw, in traversal order (deterministic). */
+  std::vector<SelectedNode> nodes;
+  /** Nodes dropped by the frustum test. */
+  std::vector<NodeId> culled;
+  /** Counters. */
+  QuadtreeStats stats;
+};
+
+/**
+ * Terrain quadtree over a grid of root nodes covering [0, extentX] × [0, extentZ] (metres). Owns per-node
+ * min/max heights (a MinMaxPyramid whose leaf blocks are the deepest nodes) and per-view scratch buffers.
+ * select() is not thread-safe (it reuses the scratch buffers); use one Quadtree per thread.
+ */
+class Quadtree {
+public:
+  /**
+   * Builds the node min/max pyramid from `field` (sample (i, j) at x = i·spacingX, z = j·spacingZ). A node's
+   * range covers the samples [⌊x0/spacingX⌋, ⌈x1/spacingX⌉] × [⌊z0/spacingZ⌋, ⌈z1/spacingZ⌉] that the
+   * bilinear surface over its footprint depends on; nodes with no valid sample, or starting at or beyond the
+   * extent, are absent. Throws sylva::Error for invalid configs, fields smaller than 2×2 samples, roots that
+   * do not cover the extent, or more than kMaxQuadtreeLeafNodes deepest nodes.
+   */
+  Quadtree(const QuadtreeConfig& config, const HeightField& field);
+  /**
+   * Uses `nodeRanges`, a pyramid whose level 0 is the (rootsX·2^maxDepth) × (rootsZ·2^maxDepth) grid of
+   * deepest nodes (e.g. built with MinMaxPyramid::fromLeaves from a coarse source or an analytic bound, for
+   * terrains too large to hold as floats). config.rootsX/Z must be given or derivable from the extent. Throws
+   * sylva::Error on a shape mismatch or invalid config.
+   */
+  Quadtree(const QuadtreeConfig& config, float extentX, float extentZ, MinMaxPyramid nodeRanges);
+
+  /** The config in use, with rootsX/rootsZ resolved. */
+  const QuadtreeConfig& config() const { return mConfig; }
+  /**
+   * Changes the per-view policy (lodDistanceFactor, patchTessLevel, lodEnabled, method, frustumCull,
+   * restrictSelection). Throws sylva::Error if the layout (rootsX, rootsZ, rootSize, maxDepth) differs (0 for
+   * rootsX/Z means "keep") or a value is invalid.
+   */
+  void setConfig(const QuadtreeConfig& config);
+
+  /** Terrain extent along x, metres. */
+  float extentX() const { return mExtentX; }
+  /** Terrain extent along z, metres. */
+  float extentZ() const { return mExtentZ; }
+  /** Node edge length at `level`, metres. */
+  float nodeSize(int level) const;
+  /** Nodes along x at `level`. */
+  int gridWidth(int level) const { return mConfig.rootsX << level; }
+  /** Nodes along z at `level`. */
+  int gridHeight(int level) const { return mConfig.rootsZ << level; }
+  /** Height range of a node (metres); absent outside the grid or the data. O(1). */
+  HeightRange nodeRange(const NodeId& node) const;
+  /** World AABB of a node: footprint × nodeRange (y is NaN when absent). */
+  Aabb nodeBounds(const NodeId& node) const;
+
+  /**
+   * Selects the leaves to draw for a camera at `cameraPos` (world metres), culling against `frustum` when it
+   * is not null and config().frustumCull is set, and computes edge tessellation levels with config().method.
+   */
+  QuadtreeSelection select(const glm::vec3& cameraPos, const Frustum* frustum);
+  /** As above, reusing the vectors in `out` (no allocation once they are large enough). */
+  void select(const glm::vec3& cameraPos, const Frustum* frustum, QuadtreeSelection& out);
+
+  /** Bytes of the per-node min/max data (node pyramid + LOD height ranges); excludes per-view scratch. */
+  std::size_t memoryBytes() const;
+
+private:
+  struct TreeNode {
+    std::int32_t gridX;
+    std::int32_t gridZ;
+    std::int32_t parent;
+    std::int32_t level;
+    std::array<std::int32_t, 4> child; // index (childZ&1)·2 + (childX&1); -1 absent or culled
+    bool split;
+  };
+  struct StackItem {
+    std::int32_t level;
+    std::int32_t gridX;
+    std::int32_t gridZ;
+    std::int32_t parent;
+    std::int32_t slot;
+  };
+
+  void init(const QuadtreeConfig& config, float extentX, float extentZ, bool needRoots);
+  void buildLodRanges();
+  HeightRange lodRange(int level, int gridX, int gridZ) const;
+  bool paperFinerNeighbour(std::int32_t treeIndex, int edge, long long& steps) const;
+  void buildSplitHash(std::size_t count);
+  bool splitHashContains(std::uint64_t key, long long& steps) const;
+
+  QuadtreeConfig mConfig;
+  float mExtentX = 0.0f;
+  float mExtentZ = 0.0f;
+  std::vector<float> mSizes;                   // node size per depth, metres
+  MinMaxPyramid mRanges;                       // level k = depth maxDepth − k
+  std::vector<std::vector<HeightRange>> mLodY; // per depth: union over the 3×3 same-depth neighbourhood
+
+  // Per-view scratch.
+  std::vector<StackItem> mStack;
+  std::vector<TreeNode> mTree;
+  std::vector<std::int32_t> mRootNode;
+  std::vector<std::int32_t> mLeafTree;
+  std::vector<std::uint64_t> mSplitKeys;
+  std::vector<std::uint64_t> mHash;
+  int mHashShift = 64;
+};
+
+} // namespace sylva::terrain

@@ -1,0 +1,437 @@
+#include <sylva/terrain/HeightSources.hpp>
+
+#include "internal/HeightSourcesInternal.hpp"
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/core/Log.hpp>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace sylva::terrain {
+
+namespace detail {
+
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height) {
+  if (width > kMaxHeightFieldSide || height > kMaxHeightFieldSide) {
+    fail("{}: absurd size {}x{} samples (at most {} per side)", path.string(), width, height,
+         kMaxHeightFieldSide);
+  }
+  if (width < 2 || height < 2) {
+    fail("{}: {}x{} samples; a height field needs at least 2x2", path.string(), width, height);
+  }
+  if (static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > kMaxHeightFieldSamples) {
+    fail("{}: absurd size {}x{} samples (at most {} in all)", path.string(), width, height,
+         kMaxHeightFieldSamples);
+  }
+}
+
+void finishHeightField(const std::filesystem::path& path, HeightField& field, const LoadOptions& options) {
+  checkHeightFieldSize(path, field.width(), field.height());
+  if (options.spacing > 0.0f) {
+    field.setSpacing(options.spacing, options.spacing);
+  }
+  const auto usable = [](float s) { return std::isfinite(s) && s > 0.0f; };
+  if (!usable(field.spacingX()) || !usable(field.spacingZ())) {
+    fail("{}: absurd spacing {} x {} m from the file (must be finite and > 0; set LoadOptions::spacing)",
+         path.string(), field.spacingX(), field.spacingZ());
+  }
+  std::size_t valid = 0;
+  for (float& h : field.samples()) {
+    if (!std::isfinite(h)) {
+      h = std::numeric_limits<float>::quiet_NaN();
+    } else {
+      ++valid;
+    }
+  }
+  if (valid == 0) {
+    fail("{}: all {} samples are absent (nodata, NaN or masked)", path.string(), field.samples().size());
+  }
+}
+
+} // namespace detail
+
+namespace {
+
+constexpr int kSidecarVersion = 1;
+constexpr const char* kSidecarFormat = "sylva-heightfield";
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+std::filesystem::path sidecarPath(const std::filesystem::path& path) {
+  std::filesystem::path sidecar = path;
+  sidecar += ".json";
+  return sidecar;
+}
+
+void requireFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    fail("{}: file not found", path.string());
+  }
+}
+
+void validateOptions(const std::filesystem::path& path, const LoadOptions& options) {
+  if (!std::isfinite(options.heightScale) || options.heightScale <= 0.0f) {
+    fail("{}: absurd heightScale {} (must be finite and > 0 metres)", path.string(), options.heightScale);
+  }
+  if (!std::isfinite(options.spacing) || options.spacing < 0.0f) {
+    fail("{}: absurd spacing {} (must be finite and >= 0 metres; 0 = from the file)", path.string(),
+         options.spacing);
+  }
+}
+
+/** What a `<file>.json` sidecar written by saveHeightField records. */
+struct Sidecar {
+  float minHeight = 0.0f;
+  float maxHeight = 0.0f;
+  float spacingX = 1.0f;
+  float spacingZ = 1.0f;
+};
+
+std::optional<Sidecar> readSidecar(const std::filesystem::path& image) {
+  const std::filesystem::path path = sidecarPath(image);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    return std::nullopt;
+  }
+  const nlohmann::json json = loadJsonFile(path);
+  const std::string name = path.string();
+  if (!json.is_object()) {
+    fail("{}: expected a JSON object", name);
+  }
+  const auto field = [&](const char* key) -> const nlohmann::json& {
+    if (!json.contains(key)) {
+      fail("{}: missing field '{}'", name, key);
+    }
+    return json.at(key);
+  };
+  if (!field("version").is_number_integer() || field("version").get<int>() != kSidecarVersion) {
+    fail("{}: field 'version' must be {}", name, kSidecarVersion);
+  }
+  if (!field("format").is_string() || field("format").get<std::string>() != kSidecarFormat) {
+    fail("{}: field 'format' must be \"{}\"", name, kSidecarFormat);
+  }
+  const auto number = [&](const char* key, bool positive) {
+    const nlohmann::json& value = field(key);
+    if (!value.is_number()) {
+      fail("{}: field '{}' must be a number", name, key);
+    }
+    const auto v = value.get<double>();
+    if (!std::isfinite(v) || (positive && v <= 0.0) || std::abs(v) > std::numeric_limits<float>::max()) {
+      fail("{}: field '{}' is {} (must be finite{})", name, key, v, positive ? " and > 0" : "");
+    }
+    return static_cast<float>(v);
+  };
+  Sidecar sidecar{number("minHeight", false), number("maxHeight", false), number("spacingX", true),
+                  number("spacingZ", true)};
+  if (sidecar.maxHeight < sidecar.minHeight) {
+    fail("{}: field 'maxHeight' ({}) is below 'minHeight' ({})", name, sidecar.maxHeight, sidecar.minHeight);
+  }
+  return sidecar;
+}
+
+/** PNG or EXR: channel 0 heights, optional alpha (channel 1; 0 = absent). */
+HeightField loadImageHeights(const std::filesystem::path& path, const LoadOptions& options, bool png) {
+  requireFile(path);
+  const Image image = loadImage(path);
+  if (image.channels() > 2) {
+    fail("{}: height images must be grey (or grey+alpha), got {} channels", path.string(), image.channels());
+  }
+  detail::checkHeightFieldSize(path, image.width(), image.height());
+  const std::optional<Sidecar> sidecar = readSidecar(path);
+  HeightField field(image.width(), image.height());
+  if (sidecar) {
+    field.setSpacing(sidecar->spacingX, sidecar->spacingZ);
+  }
+  const double base = png && sidecar ? sidecar->minHeight : 0.0;
+  const double scale = png ? (sidecar ? static_cast<double>(sidecar->maxHeight) - sidecar->minHeight
+                                      : static_cast<double>(options.heightScale))
+                           : 1.0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      const bool absent = image.channels() == 2 && image.get(x, y, 1) == 0.0f;
+      field.at(x, y) = absent ? kNaN : static_cast<float>(base + scale * image.get(x, y, 0));
+    }
+  }
+  detail::finishHeightField(path, field, options);
+  return field;
+}
+
+// ---- GDAL ----
+
+void registerGdal() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/** Silences GDAL's stderr printing for the current thread and collects the last message instead. */
+class QuietGdal {
+public:
+  QuietGdal() {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+  QuietGdal(const QuietGdal&) = delete;
+  QuietGdal& operator=(const QuietGdal&) = delete;
+
+  static std::string lastMessage(const char* fallback) {
+    std::string message = CPLGetLastErrorMsg();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    return message.empty() ? fallback : message;
+  }
+};
+
+struct DatasetCloser {
+  void operator()(GDALDatasetH ds) const { GDALClose(ds); }
+};
+using DatasetPtr = std::unique_ptr<std::remove_pointer_t<GDALDatasetH>, DatasetCloser>;
+
+/** Metres per unit of the band's elevation unit ("" and metres: 1). */
+double elevationUnitToMetres(const std::filesystem::path& path, std::string unit) {
+  std::transform(unit.begin(), unit.end(), unit.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "metres" || unit == "meter" ||
+      unit == "meters") {
+    return 1.0;
+  }
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") {
+    return 0.3048;
+  }
+  if (unit == "us-ft" || unit == "us survey foot" || unit == "ftus") {
+    return 1200.0 / 3937.0;
+  }
+  log::warn("{}: unknown elevation unit '{}'; heights are taken as metres", path.string(), unit);
+  return 1.0;
+}
+
+HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& options) {
+  requireFile(path);
+  registerGdal();
+  const QuietGdal quiet;
+  const std::string name = path.string();
+  DatasetPtr dataset(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR,
+                                nullptr, nullptr, nullptr));
+  if (!dataset) {
+    fail("{}: {}", name, QuietGdal::lastMessage("not a raster format GDAL can read"));
+  }
+  if (GDALGetRasterCount(dataset.get()) < 1) {
+    fail("{}: raster has no band", name);
+  }
+  const int width = GDALGetRasterXSize(dataset.get());
+  const int height = GDALGetRasterYSize(dataset.get());
+  detail::checkHeightFieldSize(path, width, height);
+  GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
+  if (GDALDataTypeIsComplex(GDALGetRasterDataType(band))) {
+    fail("{}: band 1 holds complex numbers, not heights", name);
+  }
+  int hasScale = 0;
+  int hasOffset = 0;
+  const double unit = elevationUnitToMetres(path, GDALGetRasterUnitType(band));
+  const double scale = GDALGetRasterScale(band, &hasScale) * unit;
+  const double offset = GDALGetRasterOffset(band, &hasOffset) * unit;
+  // The mask band covers nodata values, alpha bands and per-dataset masks alike; 0 = invalid.
+  const bool allValid = (GDALGetMaskFlags(band) & GMF_ALL_VALID) != 0;
+  GDALRasterBandH mask = allValid ? nullptr : GDALGetMaskBand(band);
+
+  double gt[6] = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+  const bool haveTransform = GDALGetGeoTransform(dataset.get(), gt) == CE_None;
+  CPLErrorReset();
+  const bool axisAligned = gt[2] == 0.0 && gt[4] == 0.0;
+  const bool flipX = haveTransform && axisAligned && gt[1] < 0.0;
+  const bool flipZ = haveTransform && axisAligned && gt[5] > 0.0;
+
+  HeightField field(width, height);
+  std::vector<double> row(static_cast<std::size_t>(width));
+  std::vector<unsigned char> maskRow(static_cast<std::size_t>(width), 1);
+  for (int y = 0; y < height; ++y) {
+    if (GDALRasterIO(band, GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_Float64, 0, 0) != CE_None) {
+      fail("{}: cannot read row {}: {}", name, y,
+           QuietGdal::lastMessage("read failed (truncated or corrupt?)"));
+    }
+    if (mask != nullptr &&
+        GDALRasterIO(mask, GF_Read, 0, y, width, 1, maskRow.data(), width, 1, GDT_Byte, 0, 0) != CE_None) {
+      fail("{}: cannot read the nodata mask of row {}: {}", name, y, QuietGdal::lastMessage("read failed"));
+    }
+    const int j = flipZ ? height - 1 - y : y;
+    for (int x = 0; x < width; ++x) {
+      const int i = flipX ? width - 1 - x : x;
+      const auto s = static_cast<std::size_t>(x);
+      field.at(i, j) = maskRow[s] == 0 ? kNaN : detail::toHeight(row[s] * scale + offset);
+    }
+  }
+
+  if (haveTransform) {
+    double pixelX = std::hypot(gt[1], gt[4]);
+    double pixelZ = std::hypot(gt[2], gt[5]);
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(dataset.get());
+    if (srs != nullptr && OSRIsGeographic(srs)) {
+      // Degrees → metres on a sphere-ish Earth at the raster's centre latitude (see docs/terrain-data.md).
+      const double degreesPerUnit = OSRGetAngularUnits(srs, nullptr) * 180.0 / std::numbers::pi;
+      const double centreLat = (gt[3] + gt[4] * width * 0.5 + gt[5] * height * 0.5) * degreesPerUnit;
+      const double cosLat = std::cos(std::clamp(centreLat, -90.0, 90.0) * std::numbers::pi / 180.0);
+      pixelX *= degreesPerUnit * detail::kMetresPerDegree * cosLat;
+      pixelZ *= degreesPerUnit * detail::kMetresPerDegree;
+    } else if (srs != nullptr && OSRIsProjected(srs)) {
+      const double metresPerUnit = OSRGetLinearUnits(srs, nullptr);
+      pixelX *= metresPerUnit;
+      pixelZ *= metresPerUnit;
+    }
+    field.setSpacing(static_cast<float>(pixelX), static_cast<float>(pixelZ));
+  }
+  detail::finishHeightField(path, field, options);
+  return field;
+}
+
+void saveGeoTiff(const std::filesystem::path& path, const HeightField& field) {
+  registerGdal();
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    const QuietGdal quiet;
+    GDALDriverH driver = GDALGetDriverByName("GTiff");
+    if (driver == nullptr) {
+      fail("{}: GDAL has no GTiff driver", path.string());
+    }
+    const char* createOptions[] = {"COMPRESS=DEFLATE", nullptr};
+    DatasetPtr dataset(GDALCreate(driver, tmp.string().c_str(), field.width(), field.height(), 1, GDT_Float32,
+                                  const_cast<char**>(createOptions)));
+    if (!dataset) {
+      fail("{}: {}", path.string(), QuietGdal::lastMessage("cannot create GeoTIFF"));
+    }
+    double gt[6] = {0.0, field.spacingX(), 0.0, 0.0, 0.0, -static_cast<double>(field.spacingZ())};
+    GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
+    auto& samples = const_cast<std::vector<float>&>(field.samples()); // GF_Write only reads the buffer
+    if (GDALSetGeoTransform(dataset.get(), gt) != CE_None ||
+        GDALSetRasterNoDataValue(band, std::numeric_limits<double>::quiet_NaN()) != CE_None ||
+        GDALRasterIO(band, GF_Write, 0, 0, field.width(), field.height(), samples.data(), field.width(),
+                     field.height(), GDT_Float32, 0, 0) != CE_None) {
+      fail("{}: {}", path.string(), QuietGdal::lastMessage("cannot write GeoTIFF"));
+    }
+    dataset.reset();
+    if (CPLGetLastErrorType() >= CE_Failure) {
+      fail("{}: {}", path.string(), QuietGdal::lastMessage("cannot write GeoTIFF"));
+    }
+  });
+}
+
+void saveSidecar(const std::filesystem::path& path, const HeightField& field, const HeightFieldInfo& info) {
+  nlohmann::json json;
+  json["version"] = kSidecarVersion;
+  json["format"] = kSidecarFormat;
+  json["minHeight"] = info.minHeight;
+  json["maxHeight"] = info.maxHeight;
+  json["spacingX"] = field.spacingX();
+  json["spacingZ"] = field.spacingZ();
+  saveJsonFile(sidecarPath(path), json);
+}
+
+} // namespace
+
+HeightFieldInfo heightFieldInfo(const HeightField& field) {
+  HeightFieldInfo info;
+  info.minHeight = std::numeric_limits<float>::infinity();
+  info.maxHeight = -std::numeric_limits<float>::infinity();
+  for (const float h : field.samples()) {
+    if (std::isnan(h)) {
+      ++info.absentCount;
+    } else {
+      ++info.validCount;
+      info.minHeight = std::min(info.minHeight, h);
+      info.maxHeight = std::max(info.maxHeight, h);
+    }
+  }
+  if (info.validCount == 0) {
+    info.minHeight = kNaN;
+    info.maxHeight = kNaN;
+  }
+  return info;
+}
+
+HeightField loadHeightField(const std::filesystem::path& path, const LoadOptions& options) {
+  validateOptions(path, options);
+  const std::string ext = detail::lowerExtension(path);
+  if (ext == ".png") {
+    return loadImageHeights(path, options, true);
+  }
+  if (ext == ".exr") {
+    return loadImageHeights(path, options, false);
+  }
+  if (ext == ".npy") {
+    return detail::loadNpy(path, options);
+  }
+  if (ext == ".npz") {
+    return detail::loadNpz(path, options);
+  }
+  return loadGdal(path, options);
+}
+
+void saveHeightField(const std::filesystem::path& path, const HeightField& field) {
+  if (field.width() < 1 || field.height() < 1 ||
+      field.samples().size() !=
+          static_cast<std::size_t>(field.width()) * static_cast<std::size_t>(field.height())) {
+    fail("{}: cannot save an empty height field", path.string());
+  }
+  const HeightFieldInfo info = heightFieldInfo(field);
+  if (info.validCount == 0) {
+    fail("{}: cannot save a height field without valid samples", path.string());
+  }
+  if (std::isinf(info.minHeight) || std::isinf(info.maxHeight)) {
+    fail("{}: cannot save infinite heights", path.string());
+  }
+  const std::string ext = detail::lowerExtension(path);
+  if (ext == ".png") {
+    const bool alpha = info.absentCount > 0;
+    Image image(field.width(), field.height(), alpha ? 2 : 1, PixelType::U16);
+    auto values = image.values<std::uint16_t>();
+    const double range = static_cast<double>(info.maxHeight) - info.minHeight;
+    const int channels = image.channels();
+    for (int j = 0; j < field.height(); ++j) {
+      for (int i = 0; i < field.width(); ++i) {
+        const float h = field.at(i, j);
+        const std::size_t p = (static_cast<std::size_t>(j) * field.width() + i) * channels;
+        const double t = std::isnan(h) || range <= 0.0 ? 0.0 : (h - info.minHeight) / range;
+        values[p] = static_cast<std::uint16_t>(std::clamp(std::lround(t * 65535.0), 0L, 65535L));
+        if (alpha) {
+          values[p + 1] = std::isnan(h) ? 0 : 65535;
+        }
+      }
+    }
+    saveImage(path, image);
+    saveSidecar(path, field, info);
+  } else if (ext == ".exr") {
+    Image image(field.width(), field.height(), 1, PixelType::F32);
+    std::copy(field.samples().begin(), field.samples().end(), image.values<float>().begin());
+    saveImage(path, image);
+    saveSidecar(path, field, info);
+  } else if (ext == ".npy") {
+    detail::saveNpy(path, field);
+  } else if (ext == ".tif" || ext == ".tiff") {
+    saveGeoTiff(path, field);
+  } else {
+    fail("{}: cannot save heights as '{}' (use .png, .exr, .npy, .tif)", path.string(), ext);
+  }
+}
+
+} // namespace sylva::terrain

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Fetches the real third-party sample data the tests use (see docs/terrain-data.md and the data spec) from Debian
+# packages, without installing them: `apt-get download` + `dpkg-deb --fsys-tarfile | tar -x` of single files.
+# Files land in data/external/ (git-ignored). Idempotent: files already present are kept and not fetched again.
+#
+# Usage: scripts/fetch-sample-data.sh          (from anywhere; paths are relative to the repository root)
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+dest="${repo_root}/data/external"
+mkdir -p "${dest}"
+
+# package | path inside the package | file name under data/external/
+entries=(
+  "r-cran-terra|usr/lib/R/site-library/terra/ex/elev.tif|elev.tif"
+  "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz|jacksboro_fault_dem.npz"
+)
+
+work="$(mktemp -d)"
+chmod 755 "${work}"
+trap 'rm -rf "${work}"' EXIT
+
+apt_updated=0
+# Reads the whole policy output first: `apt-cache ... | grep -q` would die of SIGPIPE under pipefail.
+has_candidate() {
+  local policy
+  policy="$(apt-cache policy "$1" 2>/dev/null || true)"
+  [[ "${policy}" =~ Candidate:\ [^\(] ]]
+}
+
+ensure_candidate() {
+  local pkg="$1"
+  if has_candidate "${pkg}"; then
+    return 0
+  fi
+  if [[ ${apt_updated} -eq 0 ]]; then
+    echo "fetch-sample-data: no apt candidate for ${pkg}; running apt-get update" >&2
+    if [[ $(id -u) -eq 0 ]]; then apt-get update -qq; else sudo apt-get update -qq; fi
+    apt_updated=1
+  fi
+  if ! has_candidate "${pkg}"; then
+    echo "fetch-sample-data: package ${pkg} is not available from the configured apt sources" >&2
+    exit 1
+  fi
+}
+
+for entry in "${entries[@]}"; do
+  IFS='|' read -r pkg inner name <<<"${entry}"
+  target="${dest}/${name}"
+  if [[ -s "${target}" ]]; then
+    echo "present  ${target}"
+    continue
+  fi
+  ensure_candidate "${pkg}"
+  pkgdir="${work}/${pkg}"
+  mkdir -p "${pkgdir}/root"
+  # apt-get download (as root) writes through the unprivileged _apt user; let it into this throw-away dir.
+  chmod 777 "${pkgdir}"
+  (cd "${pkgdir}" && apt-get download -q "${pkg}" >/dev/null)
+  deb="$(find "${pkgdir}" -maxdepth 1 -name "${pkg}_*.deb" | head -n 1)"
+  if [[ -z "${deb}" ]]; then
+    echo "fetch-sample-data: apt-get download ${pkg} produced no .deb" >&2
+    exit 1
+  fi
+  dpkg-deb --fsys-tarfile "${deb}" | tar -x -C "${pkgdir}/root" "./${inner}"
+  # Copy under a temporary name, then rename, so an interrupted run never leaves a partial file behind.
+  cp "${pkgdir}/root/${inner}" "${target}.part"
+  mv "${target}.part" "${target}"
+  echo "fetched  ${target}  (from $(basename "${deb}"))"
+done
+
+echo "sample data in ${dest}:"
+for entry in "${entries[@]}"; do
+  IFS='|' read -r _ _ name <<<"${entry}"
+  printf '  %-28s %10s bytes\n' "${name}" "$(stat -c %s "${dest}/${name}")"
+done
