@@ -5,15 +5,21 @@
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/RenderTarget.hpp>
 
+#include "TerrainFlags.hpp"
+
 #include <cstdio>
 
 namespace sylva::app {
 
 void registerRender(CLI::App& app) {
-  auto* command = app.add_subcommand("render", "Render a scene headless into a PNG image");
+  auto* command =
+      app.add_subcommand("render", "Render a scene (terrain by default) headless into a PNG image");
   struct Options {
     ContextFlags context;
-    std::string out = "out/demo.png";
+    std::string scene = "terrain";
+    TerrainFlags terrain;
+    std::string view = "shaded";
+    std::string out = "out/terrain.png";
     int width = 1280;
     int height = 720;
     double time = 1.0;
@@ -23,6 +29,13 @@ void registerRender(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   o->context.add(*command);
+  command->add_option("--scene", o->scene, "terrain, or demo (the small built-in pipeline test scene)")
+      ->check(CLI::IsMember({"terrain", "demo"}))
+      ->capture_default_str();
+  o->terrain.add(*command);
+  command->add_option("--view", o->view, "Terrain view: shaded, lod (LOD colours), normals or splat")
+      ->check(CLI::IsMember({"shaded", "lod", "normals", "splat"}))
+      ->capture_default_str();
   command->add_option("-o,--out", o->out, "Output PNG path (directories are created)")->capture_default_str();
   command->add_option("--width", o->width, "Image width in pixels")
       ->check(CLI::Range(16, 16384))
@@ -31,9 +44,6 @@ void registerRender(CLI::App& app) {
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
   command->add_option("--time", o->time, "Scene time in seconds (fixed clock: same time, same image)")
-      ->capture_default_str();
-  command->add_option("--tess", o->demo.tessLevel, "Base tessellation level (1..64)")
-      ->check(CLI::Range(1.0f, 64.0f))
       ->capture_default_str();
   command->add_option("--patches", o->demo.patches, "Demo patches per side")
       ->check(CLI::Range(1, 1024))
@@ -46,10 +56,22 @@ void registerRender(CLI::App& app) {
   command->callback([o] {
     auto context = platform::createHeadlessContext(o->context.options());
     shader::Library library(o->shaderDir);
-    render::DemoScene scene(library, o->demo);
     render::RenderTarget target(o->width, o->height);
-    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-    scene.render(scene.defaultCamera(), o->width, o->height, o->time, nullptr, o->wireframe);
+    const render::Environment environment;
+    target.begin(glm::vec4(environment.fogColor, 1.0f));
+    if (o->scene == "demo") {
+      render::DemoScene scene(library, o->demo);
+      scene.render(scene.defaultCamera(), o->width, o->height, o->time, nullptr, o->wireframe);
+    } else {
+      auto scene = o->terrain.build(library);
+      const render::Camera camera = scene->defaultCamera();
+      scene->update(camera, target.aspect());
+      terrain::TerrainDrawOptions options;
+      options.view = parseTerrainView(o->view);
+      options.wireframe = o->wireframe;
+      options.environment = scene->environment();
+      scene->draw(camera, o->width, o->height, o->time, nullptr, options);
+    }
     saveImage(o->out, target.readColor());
     std::printf("%s\n", o->out.c_str());
   });

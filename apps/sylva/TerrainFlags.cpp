@@ -1,0 +1,123 @@
+#include "TerrainFlags.hpp"
+
+#include <sylva/core/Error.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::app {
+
+terrain::QuadtreeConfig TerrainFlags::defaultQuadtree() {
+  terrain::QuadtreeConfig config;
+  config.rootSize = 512.0f;
+  config.maxDepth = 5;
+  config.lodDistanceFactor = 2.0f;
+  config.patchTessLevel = 16;
+  return config;
+}
+
+terrain::CrackMethod parseCrackMethod(const std::string& name) {
+  if (name == "paper") {
+    return terrain::CrackMethod::PaperSearch;
+  }
+  if (name == "ours") {
+    return terrain::CrackMethod::RestrictedLevelMap;
+  }
+  if (name == "none") {
+    return terrain::CrackMethod::None;
+  }
+  fail("--method: unknown crack method '{}' (expected paper, ours or none)", name);
+}
+
+terrain::TerrainView parseTerrainView(const std::string& name) {
+  if (name == "shaded") {
+    return terrain::TerrainView::Shaded;
+  }
+  if (name == "lod") {
+    return terrain::TerrainView::LodColours;
+  }
+  if (name == "normals") {
+    return terrain::TerrainView::Normals;
+  }
+  if (name == "splat") {
+    return terrain::TerrainView::Splat;
+  }
+  fail("--view: unknown view '{}' (expected shaded, lod, normals or splat)", name);
+}
+
+void TerrainFlags::add(CLI::App& command) {
+  command
+      .add_option("--dem", source.dem, "Height file: PNG (8/16-bit), GeoTIFF/netCDF/... (GDAL), .npy/.npz")
+      ->check(CLI::ExistingFile);
+  command.add_option("--png-scale", source.load.heightScale, "Metres of a PNG value of 1.0 (the paper's N)")
+      ->capture_default_str();
+  command.add_option("--npz-array", source.load.npzArray,
+                     "Array name inside an .npz (default: first 2D array)");
+  command.add_option("--seed", source.procedural.seed, "Procedural terrain seed (when no --dem)")
+      ->capture_default_str();
+  command.add_option("--type", type, "Procedural type: fbm, ridged or warped")
+      ->check(CLI::IsMember({"fbm", "ridged", "warped"}))
+      ->capture_default_str();
+  command.add_option("--size", source.proceduralSize, "Procedural samples per side")
+      ->check(CLI::Range(2, 16385))
+      ->capture_default_str();
+  command.add_option("--spacing", source.proceduralSpacing, "Procedural metres between samples")
+      ->check(CLI::Range(0.01f, 10000.0f))
+      ->capture_default_str();
+  command.add_option("--height-scale", source.procedural.heightScale, "Procedural relief, metres")
+      ->check(CLI::Range(0.01f, 100000.0f))
+      ->capture_default_str();
+  command
+      .add_option("--layers", layers,
+                  "Splat layer rules (JSON); default: sand/grass/snow/rock by height and slope")
+      ->check(CLI::ExistingFile);
+  command
+      .add_option("--method", method,
+                  "Crack removal: paper (quadtree search), ours (restricted level map), none")
+      ->check(CLI::IsMember({"paper", "ours", "none"}))
+      ->capture_default_str();
+  command.add_option("--tess", quadtree.patchTessLevel, "Base tessellation level per patch edge (1..32)")
+      ->check(CLI::Range(1, terrain::kMaxPatchTessLevel))
+      ->capture_default_str();
+  command
+      .add_option("--roots", rootCount, "Number of quadtree roots (e.g. 4, 16, 32, 64; default: 512 m roots)")
+      ->check(CLI::Range(1, 4096));
+  command.add_option("--max-depth", quadtree.maxDepth, "Deepest quadtree level")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
+  command.add_option("--lod-factor", quadtree.lodDistanceFactor, "Split when distance < factor x node size")
+      ->check(CLI::Range(1.05f, 64.0f))
+      ->capture_default_str();
+}
+
+terrain::QuadtreeConfig TerrainFlags::configFor(const terrain::HeightField& field) const {
+  terrain::QuadtreeConfig config = quadtree;
+  if (rootCount > 0) {
+    const terrain::QuadtreeConfig layout =
+        terrain::QuadtreeConfig::forRootCount(rootCount, field.extentX(), field.extentZ());
+    config.rootsX = layout.rootsX;
+    config.rootsZ = layout.rootsZ;
+    config.rootSize = layout.rootSize;
+  } else {
+    // Keep 512 m roots on big terrains; small DEMs get roots no larger than their extent.
+    config.rootSize = std::min(quadtree.rootSize, std::max(field.extentX(), field.extentZ()));
+  }
+  config.method = parseCrackMethod(method);
+  return config;
+}
+
+std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library& library) const {
+  terrain::TerrainSource src = source;
+  src.procedural.type = type == "fbm"      ? terrain::ProceduralSpec::Type::Fbm
+                        : type == "ridged" ? terrain::ProceduralSpec::Type::Ridged
+                                           : terrain::ProceduralSpec::Type::Warped;
+  terrain::HeightField field = terrain::loadTerrainSource(src);
+  std::vector<terrain::SplatLayer> rules;
+  if (!layers.empty()) {
+    rules = terrain::loadSplatLayers(layers);
+  }
+  const terrain::QuadtreeConfig config = configFor(field);
+  return std::make_unique<terrain::TerrainScene>(library, std::move(field), config, std::move(rules));
+}
+
+} // namespace sylva::app

@@ -1,0 +1,276 @@
+#include <sylva/terrain/TerrainRenderer.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Log.hpp>
+#include <sylva/shader/Compiler.hpp>
+#include <sylva/terrain/HeightSources.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <deque>
+
+namespace sylva::terrain {
+
+namespace {
+
+/** Heights with every absent sample replaced by its nearest valid sample (breadth-first), for geometry. */
+std::vector<float> filledHeights(const HeightField& field, std::vector<std::uint8_t>& valid) {
+  const int w = field.width();
+  const int h = field.height();
+  std::vector<float> out = field.samples();
+  valid.assign(out.size(), 0);
+  std::deque<int> queue;
+  for (int i = 0; i < w * h; ++i) {
+    if (!std::isnan(out[static_cast<std::size_t>(i)])) {
+      valid[static_cast<std::size_t>(i)] = 255;
+      queue.push_back(i);
+    }
+  }
+  std::vector<std::uint8_t> seen(valid);
+  while (!queue.empty()) {
+    const int i = queue.front();
+    queue.pop_front();
+    const int x = i % w;
+    const int y = i / w;
+    const int neighbours[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+    for (const auto& n : neighbours) {
+      if (n[0] < 0 || n[1] < 0 || n[0] >= w || n[1] >= h) {
+        continue;
+      }
+      const int j = n[1] * w + n[0];
+      if (seen[static_cast<std::size_t>(j)] == 0) {
+        seen[static_cast<std::size_t>(j)] = 1;
+        out[static_cast<std::size_t>(j)] = out[static_cast<std::size_t>(i)];
+        queue.push_back(j);
+      }
+    }
+  }
+  return out;
+}
+
+constexpr GLuint kGroup = SYLVA_TERRAIN_GROUP_SIZE;
+
+GLuint groups(int n) {
+  return static_cast<GLuint>((n + static_cast<int>(kGroup) - 1) / static_cast<int>(kGroup));
+}
+
+} // namespace
+
+std::vector<gpu::TerrainNode> packTerrainNodes(const QuadtreeSelection& selection, float extentX,
+                                               float extentZ, bool skirts) {
+  std::vector<gpu::TerrainNode> out;
+  out.reserve(selection.nodes.size() * (skirts ? 5 : 1));
+  for (const SelectedNode& n : selection.nodes) {
+    gpu::TerrainNode node{};
+    node.rect = glm::vec4(n.x, n.size, n.z, n.minY);
+    node.tessOuter = glm::vec4(n.tessOuter[0], n.tessOuter[1], n.tessOuter[2], n.tessOuter[3]);
+    node.tessInner = glm::vec4(n.tessInner, n.maxY, static_cast<float>(n.edgeFlags), 0.0f);
+    node.grid = glm::ivec4(n.gridX, n.level, n.gridZ, -1);
+    out.push_back(node);
+  }
+  if (skirts) {
+    const std::size_t surfaces = out.size();
+    for (std::size_t i = 0; i < surfaces; ++i) {
+      const SelectedNode& n = selection.nodes[i];
+      // Only edges with terrain on the other side: the outer border has nothing to stitch.
+      const bool interior[4] = {n.x > 0.0f, n.z > 0.0f, n.x + n.size < extentX, n.z + n.size < extentZ};
+      for (int e = 0; e < 4; ++e) {
+        if (interior[e]) {
+          gpu::TerrainNode skirt = out[i];
+          skirt.grid.w = e;
+          out.push_back(skirt);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+TerrainRenderer::TerrainRenderer(const shader::Library& library, const HeightField& field,
+                                 std::vector<SplatLayer> layers, const SobelOptions& sobel)
+    : mField(field), mSobel(sobel),
+      mHeights(gl::Texture::create2D(GL_R32F, std::max(field.width(), 1), std::max(field.height(), 1))),
+      mValid(gl::Texture::create2D(GL_R8, std::max(field.width(), 1), std::max(field.height(), 1))),
+      mNormalMap(gl::Texture::create2D(GL_RGBA32F, std::max(field.width(), 1), std::max(field.height(), 1))),
+      mUniforms(sizeof(gpu::TerrainUniforms)), mRules(sizeof(gpu::SplatRuleGpu) * SYLVA_TERRAIN_MAX_LAYERS) {
+  if (field.width() < 2 || field.height() < 2) {
+    fail("terrain: a height field needs at least 2x2 samples (got {}x{})", field.width(), field.height());
+  }
+  const HeightFieldInfo info = heightFieldInfo(field);
+  if (info.validCount == 0) {
+    fail("terrain: the height field has no valid sample");
+  }
+  mMinHeight = info.minHeight;
+  mMaxHeight = info.maxHeight;
+  std::vector<std::uint8_t> valid;
+  const std::vector<float> heights = filledHeights(field, valid);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(mHeights.id(), 0, 0, 0, field.width(), field.height(), GL_RED, GL_FLOAT,
+                      heights.data());
+  glTextureSubImage2D(mValid.id(), 0, 0, 0, field.width(), field.height(), GL_RED, GL_UNSIGNED_BYTE,
+                      valid.data());
+  mHeights.setSampler({GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE});
+  mValid.setSampler({GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE});
+  mNormalMap.setSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
+  gl::setLabel(GL_TEXTURE, mHeights.id(), "terrain heights");
+  gl::setLabel(GL_TEXTURE, mNormalMap.id(), "terrain normals");
+  if (epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query")) {
+    mInvocations = gl::Query(GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB);
+  }
+  reloadShaders(library);
+  computeMaps(std::move(layers));
+}
+
+void TerrainRenderer::reloadShaders(const shader::Library& library) {
+  gl::Program surface = shader::compileProgram(
+      library, {"terrain surface",
+                {"terrain/patch.vert", "terrain/patch.tesc", "terrain/patch.tese", "terrain/patch.frag"},
+                {}});
+  gl::Program normals = shader::compileProgram(library, {"terrain normals", {"terrain/normals.comp"}, {}});
+  gl::Program splat = shader::compileProgram(library, {"terrain splat", {"terrain/splat.comp"}, {}});
+  mSurface = std::move(surface);
+  mNormals = std::move(normals);
+  mSplat = std::move(splat);
+}
+
+void TerrainRenderer::computeMaps(std::vector<SplatLayer> layers) {
+  if (layers.empty() || layers.size() > static_cast<std::size_t>(kMaxSplatLayers)) {
+    fail("terrain: {} splat layers (expected 1..{})", layers.size(), kMaxSplatLayers);
+  }
+  mLayers = std::move(layers);
+  const int w = mField.width();
+  const int h = mField.height();
+  gpu::TerrainMapsUniforms u{};
+  u.field = glm::ivec4(w, h, static_cast<int>(mLayers.size()), mSobel.border == BorderMode::Constant ? 1 : 0);
+  u.spacing = glm::vec4(mField.spacingX(), mField.spacingZ(), mSobel.constantHeight, 0.0f);
+  gl::Buffer mapsUniforms(sizeof(u), &u);
+  mapsUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
+  mHeights.bind(0);
+  mValid.bind(1);
+
+  mNormals.use();
+  mNormalMap.bindImage(0, GL_WRITE_ONLY);
+  glDispatchCompute(groups(w), groups(h), 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+  std::vector<gpu::SplatRuleGpu> rules(SYLVA_TERRAIN_MAX_LAYERS);
+  for (std::size_t i = 0; i < mLayers.size(); ++i) {
+    const SplatLayer& l = mLayers[i];
+    rules[i].height = glm::vec4(l.minHeight, l.maxHeight, l.heightBlend, 0.0f);
+    rules[i].slope = glm::vec4(l.minSlope, l.maxSlope, l.slopeBlend, 0.0f);
+  }
+  mRules.setSubData(std::span<const gpu::SplatRuleGpu>(rules));
+  mRules.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_LAYER_BINDING);
+  const int pages = (static_cast<int>(mLayers.size()) + 3) / 4;
+  mSplatMap = gl::Texture::create2DArray(GL_RGBA32F, w, h, pages);
+  mSplatMap.setSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
+  mSplat.use();
+  mNormalMap.bind(2);
+  mSplatMap.bindImage(0, GL_WRITE_ONLY);
+  glDispatchCompute(groups(w), groups(h), 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  uploadLayerTextures();
+}
+
+void TerrainRenderer::uploadLayerTextures() {
+  constexpr int kSize = 256;
+  const int levels = std::bit_width(static_cast<unsigned>(kSize));
+  mLayerAlbedo = gl::Texture::create2DArray(GL_RGBA8, kSize, kSize, static_cast<int>(mLayers.size()), levels);
+  for (std::size_t i = 0; i < mLayers.size(); ++i) {
+    mLayerAlbedo.upload(proceduralLayerTexture(mLayers[i], static_cast<int>(i), kSize), 0,
+                        static_cast<int>(i));
+  }
+  mLayerAlbedo.generateMipmaps();
+  mLayerAlbedo.setSampler({GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT});
+}
+
+void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Camera& camera, int width,
+                           int height, double time, render::GpuTimers* timers,
+                           const TerrainDrawOptions& options) {
+  const std::vector<gpu::TerrainNode> nodes =
+      packTerrainNodes(selection, mField.extentX(), mField.extentZ(), options.skirts);
+  if (timers != nullptr) {
+    timers->begin("terrain");
+  }
+  if (!nodes.empty()) {
+    const std::size_t bytes = nodes.size() * sizeof(gpu::TerrainNode);
+    if (!mNodes || mNodes.size() < bytes) {
+      mNodes = gl::Buffer(std::bit_ceil(bytes));
+    }
+    mNodes.setSubData(0, bytes, nodes.data());
+    mNodes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TERRAIN_NODE_BINDING);
+
+    gpu::TerrainUniforms u{};
+    u.field =
+        glm::ivec4(mField.width(), mField.height(), mSplatMap.layers(), static_cast<int>(mLayers.size()));
+    u.spacing = glm::vec4(mField.spacingX(), mField.spacingZ(), options.textureTiling, options.skirtDepth);
+    u.extent = glm::vec4(mField.extentX(), mField.extentZ(), static_cast<float>(options.view), 0.0f);
+    u.heightRange = glm::vec4(mMinHeight, mMaxHeight, 0.0f, 0.0f);
+    mUniforms.setSubData(0, sizeof(u), &u);
+    mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
+    mFrame.update(camera, width, height, time, options.environment);
+    mFrame.bind();
+    mHeights.bind(0);
+    mValid.bind(1);
+    mNormalMap.bind(2);
+    mSplatMap.bind(3);
+    mLayerAlbedo.bind(4);
+    mSurface.use();
+    mVao.bind();
+    glPatchParameteri(GL_PATCH_VERTICES, 4);
+    glPolygonMode(GL_FRONT_AND_BACK, options.wireframe ? GL_LINE : GL_FILL);
+    const bool count = options.countVertices && mInvocations;
+    if (count) {
+      mInvocations.begin();
+    }
+    const auto surfaces = static_cast<GLsizei>(selection.nodes.size());
+    mSurface.setUniform("uNodeOffset", 0);
+    glDrawArraysInstanced(GL_PATCHES, 0, 4, surfaces);
+    if (count) {
+      mInvocations.end();
+      mLastInvocations = static_cast<std::int64_t>(*mInvocations.result(true));
+    }
+    if (options.skirts) {
+      // Skirts lose depth ties against the surface they hang from (exactly shared edge points).
+      if (!mCrackSamples) {
+        mCrackSamples = gl::Query(GL_SAMPLES_PASSED);
+      }
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(1.0f, 4.0f);
+      mSurface.setUniform("uNodeOffset", static_cast<int>(surfaces));
+      mCrackSamples.begin();
+      glDrawArraysInstanced(GL_PATCHES, 0, 4, static_cast<GLsizei>(nodes.size()) - surfaces);
+      mCrackSamples.end();
+      glDisable(GL_POLYGON_OFFSET_FILL);
+      mLastCrackSamples = static_cast<std::int64_t>(*mCrackSamples.result(true));
+    }
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+  if (timers != nullptr) {
+    timers->end();
+  }
+}
+
+Image TerrainRenderer::downloadNormals() const {
+  const Image rgba = mNormalMap.download(4, PixelType::F32);
+  Image rgb(rgba.width(), rgba.height(), 3, PixelType::F32);
+  for (int y = 0; y < rgba.height(); ++y) {
+    for (int x = 0; x < rgba.width(); ++x) {
+      for (int c = 0; c < 3; ++c) {
+        rgb.set(x, y, c, rgba.get(x, y, c));
+      }
+    }
+  }
+  return rgb;
+}
+
+std::vector<Image> TerrainRenderer::downloadSplat() const {
+  std::vector<Image> pages;
+  for (int page = 0; page < mSplatMap.layers(); ++page) {
+    pages.push_back(mSplatMap.download(4, PixelType::F32, 0, page));
+  }
+  return pages;
+}
+
+} // namespace sylva::terrain

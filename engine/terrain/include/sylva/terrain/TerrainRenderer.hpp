@@ -1,0 +1,123 @@
+#pragma once
+
+#include <sylva/gl/Buffer.hpp>
+#include <sylva/gl/Program.hpp>
+#include <sylva/gl/Query.hpp>
+#include <sylva/gl/Texture.hpp>
+#include <sylva/gl/VertexArray.hpp>
+#include <sylva/render/Camera.hpp>
+#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/GpuTimers.hpp>
+#include <sylva/shader/Library.hpp>
+#include <sylva/terrain/HeightField.hpp>
+#include <sylva/terrain/Quadtree.hpp>
+#include <sylva/terrain/TerrainMaps.hpp>
+
+#include <shared/Terrain.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace sylva::terrain {
+
+/** What the terrain fragment shader shows. */
+enum class TerrainView : int {
+  Shaded = 0,
+  LodColours = 1,
+  Normals = 2,
+  Splat = 3,
+  /** World position (metres) in RGB, for float targets: what is drawn, to compare with CPU queries. */
+  WorldPosition = 4,
+};
+
+/** Per-draw options of TerrainRenderer::draw. */
+struct TerrainDrawOptions {
+  TerrainView view = TerrainView::Shaded;
+  bool wireframe = false;
+  /**
+   * Crack check: after the surface, draw skirts (vertical curtains under every patch edge shared with other
+   * terrain, magenta, pushed back by polygon offset) inside a GL_SAMPLES_PASSED query. Surface ∪ skirts is
+   * the terrain's footprint; a skirt sample passes the depth test only where the surface in front of it has a
+   * hole, i.e. where the background would show through. lastCrackSamples() is that count (0 = watertight).
+   * Valid for cameras above the terrain whose view rays enter it from above (see docs/terrain-lod.md).
+   */
+  bool skirts = false;
+  /** Skirt depth below the node's lowest height, metres. */
+  float skirtDepth = 1000.0f;
+  /** World metres per repeat of the layer textures. */
+  float textureTiling = 24.0f;
+  /** Count tessellation-evaluation invocations (GL_ARB_pipeline_statistics_query) when available. */
+  bool countVertices = false;
+  render::Environment environment{};
+};
+
+/**
+ * Packs a selection into the GPU node array: one surface patch per leaf, then (with `skirts`) one skirt patch
+ * per leaf edge that borders terrain inside [0, extentX] × [0, extentZ] (never the outer border). Pure CPU.
+ */
+std::vector<gpu::TerrainNode> packTerrainNodes(const QuadtreeSelection& selection, float extentX,
+                                               float extentZ, bool skirts);
+
+/** A tileable procedural albedo texture (RGBA8, size² texels) for a splat layer, chosen by its name. */
+Image proceduralLayerTexture(const SplatLayer& layer, int index, int size = 256);
+
+/**
+ * The terrain on the GPU. Construction uploads the heights (absent samples filled from valid neighbours for
+ * geometry, plus a validity mask), then runs the Sobel normal-map and splat-map compute passes (CPU
+ * references: sobelNormalMap, splatMap). draw() renders a Quadtree selection in one instanced draw of 4-point
+ * patches with hardware tessellation; vertex heights are evaluated exactly as heightAt (bilinear) does, and
+ * edge vertices lie on an integer lattice so that neighbours match bit for bit. Needs a current GL context.
+ */
+class TerrainRenderer {
+public:
+  TerrainRenderer(const shader::Library& library, const HeightField& field, std::vector<SplatLayer> layers,
+                  const SobelOptions& sobel = {});
+
+  /** Recompiles all programs (viewer hot reload); keeps the old ones and throws on error. */
+  void reloadShaders(const shader::Library& library);
+  /** Re-runs the normal and splat compute passes (e.g. after changing the layer rules). */
+  void computeMaps(std::vector<SplatLayer> layers);
+  /** Draws `selection` into the bound framebuffer (passes "terrain" and, with skirts, the skirts within it).
+   */
+  void draw(const QuadtreeSelection& selection, const render::Camera& camera, int width, int height,
+            double time, render::GpuTimers* timers = nullptr, const TerrainDrawOptions& options = {});
+
+  /** Skirt samples that passed the depth test in the last draw with skirts (crack pixels), else -1. */
+  std::int64_t lastCrackSamples() const { return mLastCrackSamples; }
+  /** Tessellation-evaluation invocations of the last draw with countVertices (-1 when not supported). */
+  std::int64_t lastVertexInvocations() const { return mLastInvocations; }
+  /** The GPU normal map as an RGB F32 image (pixel (i, j) = sample (i, j)), for tests and exports. */
+  Image downloadNormals() const;
+  /** The GPU splat pages as RGBA F32 images (page k = layers 4k..4k+3). */
+  std::vector<Image> downloadSplat() const;
+  const std::vector<SplatLayer>& layers() const { return mLayers; }
+  const HeightField& field() const { return mField; }
+
+private:
+  void uploadLayerTextures();
+
+  HeightField mField;
+  std::vector<SplatLayer> mLayers;
+  SobelOptions mSobel;
+  float mMinHeight = 0.0f;
+  float mMaxHeight = 0.0f;
+  gl::Program mSurface{gl::NoCreate};
+  gl::Program mNormals{gl::NoCreate};
+  gl::Program mSplat{gl::NoCreate};
+  gl::Texture mHeights;
+  gl::Texture mValid;
+  gl::Texture mNormalMap;
+  gl::Texture mSplatMap{gl::NoCreate};
+  gl::Texture mLayerAlbedo{gl::NoCreate};
+  gl::Buffer mUniforms;
+  gl::Buffer mRules;
+  gl::Buffer mNodes{gl::NoCreate};
+  gl::VertexArray mVao;
+  gl::Query mInvocations{gl::NoCreate};
+  gl::Query mCrackSamples{gl::NoCreate};
+  std::int64_t mLastCrackSamples = -1;
+  render::FrameUniformBuffer mFrame;
+  std::int64_t mLastInvocations = -1;
+};
+
+} // namespace sylva::terrain

@@ -1,0 +1,67 @@
+#version 450 core
+// Places tessellated vertices on an integer lattice so that neighbouring patches produce bit-identical edge
+// vertices: along an edge with level L on a node of size S and grid index g, vertex k sits at
+// (g·L + k) · (S / L). A coarse edge (size 2S, level 2L) and the finer edge beside it compute the same integer
+// and the same step S/L (halving is exact in binary floating point), hence the same float, the same height and,
+// with `invariant gl_Position`, the same clip position: no cracks, not even sub-pixel ones.
+#include "terrain.glsl"
+
+layout(quads, equal_spacing, ccw) in;
+patch in int tcNode;
+
+invariant gl_Position;
+out vec3 teWorldPos;
+flat out int teLevel;
+flat out int teSkirt;
+
+// Coordinate along one axis of a vertex at parameter t (0..1) on a node at grid index g of size S. Corners and
+// the constant coordinate of an edge are exact products; a vertex inside an edge of level L sits on the lattice
+// (g·L + k)·(S/L). Interior vertices are shared with no other patch and are placed directly (the tessellator may
+// round an inner level of 1 up to 2, so their parameters are not on the inner-level lattice).
+float axisCoord(int g, float t, float size, bool onEdge, float edgeLevel) {
+  if (t == 0.0) {
+    return float(g) * size;
+  }
+  if (t == 1.0) {
+    return float(g + 1) * size;
+  }
+  if (!onEdge) {
+    return (float(g) + t) * size;
+  }
+  int l = int(edgeLevel + 0.5);
+  int k = clamp(int(floor(t * edgeLevel + 0.5)), 1, l - 1);
+  return float(g * l + k) * (size / float(l));
+}
+
+void main() {
+  TerrainNode node = nodes[tcNode];
+  float size = node.rect.y;
+  ivec2 g = node.grid.xz;
+  vec2 uv = gl_TessCoord.xy;
+  vec2 xz;
+  float y;
+  if (node.grid.w < 0) {
+    // u along +x, v along +z. A vertex on the north/south edge (v = 0/1) takes that edge's level for x; one on
+    // the west/east edge (u = 0/1) takes that edge's level for z.
+    bool northSouth = uv.y == 0.0 || uv.y == 1.0;
+    bool westEast = uv.x == 0.0 || uv.x == 1.0;
+    xz.x = axisCoord(g.x, uv.x, size, northSouth, uv.y == 0.0 ? node.tessOuter[1] : node.tessOuter[3]);
+    xz.y = axisCoord(g.y, uv.y, size, westEast, uv.x == 0.0 ? node.tessOuter[0] : node.tessOuter[2]);
+    y = terrainHeight(xz);
+  } else {
+    // Skirt under edge e: top vertices are that edge's surface vertices, bottom ones hang below the node.
+    int e = node.grid.w;
+    float level = node.tessOuter[e];
+    float along = axisCoord(e == 0 || e == 2 ? g.y : g.x, uv.x, size, true, level);
+    if (e == 0 || e == 2) {
+      xz = vec2(float(g.x + (e == 2 ? 1 : 0)) * size, along);
+    } else {
+      xz = vec2(along, float(g.y + (e == 3 ? 1 : 0)) * size);
+    }
+    y = uv.y == 0.0 ? terrainHeight(xz) : node.rect.w - terrain.spacing.w;
+  }
+  teWorldPos = vec3(xz.x, y, xz.y);
+  teLevel = node.grid.y;
+  teSkirt = node.grid.w >= 0 ? 1 : 0;
+  gl_Position = frame.viewProj * vec4(teWorldPos, 1.0);
+}

@@ -1,0 +1,43 @@
+// Terrain bindings and the height function shared by every terrain stage. Heights must be evaluated exactly as
+// the CPU query does (sylva::terrain::heightAt, bilinear): sample (i, j) sits at world (i·spacingX, j·spacingZ),
+// i.e. texel centre (i + 0.5) / width, and interpolation is done here in full float precision from texelFetch,
+// not by the texture unit (whose filtering weights have only 8 fractional bits).
+#pragma once
+#include "../shared/Terrain.h"
+#include "../common/frame.glsl"
+
+layout(std140, binding = SYLVA_TERRAIN_BINDING) uniform TerrainBlock {
+  TerrainUniforms terrain;
+};
+
+layout(std430, binding = SYLVA_TERRAIN_NODE_BINDING) readonly buffer TerrainNodes {
+  TerrainNode nodes[];
+};
+
+layout(binding = 0) uniform sampler2D heightMap;  // r32f metres, absent samples filled from valid neighbours
+layout(binding = 1) uniform sampler2D validMask;  // r8: 1 where the source sample exists
+layout(binding = 2) uniform sampler2D normalMap;  // rgba16f/32f world normal (xyz)
+layout(binding = 3) uniform sampler2DArray splatMap; // page k holds layers 4k..4k+3
+layout(binding = 4) uniform sampler2DArray layerAlbedo; // one tileable albedo texture per splat layer
+
+float heightSample(ivec2 p) {
+  p = clamp(p, ivec2(0), terrain.field.xy - 1);
+  return texelFetch(heightMap, p, 0).r;
+}
+
+// Bilinear height in metres at world xz (clamped to the field's edge samples).
+float terrainHeight(vec2 xz) {
+  vec2 g = clamp(xz / terrain.spacing.xy, vec2(0.0), vec2(terrain.field.xy - 1));
+  ivec2 i0 = min(ivec2(floor(g)), terrain.field.xy - 2);
+  vec2 f = g - vec2(i0);
+  float h00 = heightSample(i0);
+  float h10 = heightSample(i0 + ivec2(1, 0));
+  float h01 = heightSample(i0 + ivec2(0, 1));
+  float h11 = heightSample(i0 + ivec2(1, 1));
+  return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+}
+
+// Texture coordinate of world xz for the sampled maps (normals, splat): texel centres at sample positions.
+vec2 terrainUv(vec2 xz) {
+  return (xz / terrain.spacing.xy + 0.5) / vec2(terrain.field.xy);
+}
