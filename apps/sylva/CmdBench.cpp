@@ -1,4 +1,5 @@
 #include "Commands.hpp"
+#include "TerrainFlags.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -8,6 +9,7 @@
 #include <sylva/render/RenderTarget.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -17,78 +19,207 @@ namespace {
 
 struct BenchOptions {
   ContextFlags context;
-  int frames = 120;
-  int warmup = 10;
+  TerrainFlags terrain;
+  int frames = 60;
+  int warmup = 5;
   int width = 1280;
   int height = 720;
-  std::string out = "out/bench-demo.json";
+  std::string out;
   std::string area = "demo";
 };
 
-/** Runs `frame` warmup + frames times with synchronous GPU timers; returns the report JSON and prints a
- * table. */
-nlohmann::json runFrames(const BenchOptions& o, const std::string& name,
-                         const std::function<void(render::GpuTimers&, double time)>& frame) {
-  render::GpuTimers timers(1, true);
+/** Samples of one measured run: per-pass CPU/GPU milliseconds, wall time per frame, extra per-frame series.
+ */
+struct Samples {
+  std::vector<std::string> order;
   std::map<std::string, std::vector<double>> cpu;
   std::map<std::string, std::vector<double>> gpu;
-  std::vector<double> total;
-  std::vector<std::string> order;
+  std::vector<double> frame;
+  std::map<std::string, std::vector<double>> extra;
+
+  nlohmann::json passesJson() const {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const std::string& pass : order) {
+      passes.push_back({{"name", pass},
+                        {"cpu_ms", render::Stats::of(cpu.at(pass)).toJson()},
+                        {"gpu_ms", render::Stats::of(gpu.at(pass)).toJson()}});
+    }
+    return passes;
+  }
+};
+
+/** Runs `frame(timers, index)` warmup + frames times with synchronous GPU timers and collects samples. */
+Samples measure(const BenchOptions& o, const std::function<void(render::GpuTimers&, int, Samples&)>& frame) {
+  render::GpuTimers timers(1, true);
+  Samples s;
   for (int i = 0; i < o.warmup + o.frames; ++i) {
     const auto start = std::chrono::steady_clock::now();
     timers.beginFrame();
-    frame(timers, 1.0 + i / 60.0);
+    Samples scratch;
+    frame(timers, i, scratch);
     timers.endFrame(); // synchronous: waits for this frame's GPU results
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (i < o.warmup) {
       continue;
     }
-    total.push_back(ms);
+    s.frame.push_back(ms);
     for (const render::PassTiming& t : timers.lastFrame()) {
-      if (cpu.find(t.name) == cpu.end()) {
-        order.push_back(t.name);
+      if (s.cpu.find(t.name) == s.cpu.end()) {
+        s.order.push_back(t.name);
       }
-      cpu[t.name].push_back(t.cpuMs);
-      gpu[t.name].push_back(t.gpuMs);
+      s.cpu[t.name].push_back(t.cpuMs);
+      s.gpu[t.name].push_back(t.gpuMs);
+    }
+    for (auto& [name, values] : scratch.extra) {
+      s.extra[name].insert(s.extra[name].end(), values.begin(), values.end());
     }
   }
+  return s;
+}
+
+nlohmann::json header(const BenchOptions& o, const std::string& name, const platform::GlContext& context) {
   const gl::ContextInfo info = gl::queryContextInfo();
   const MachineInfo machine = machineInfo();
-  nlohmann::json passes = nlohmann::json::array();
-  std::printf("%s: %d frames after %d warm-up, %dx%d, %s\n", name.c_str(), o.frames, o.warmup, o.width,
-              o.height, info.renderer.c_str());
-  std::printf("  %-20s %12s %12s %12s %12s\n", "pass", "cpu median", "gpu median", "gpu p10", "gpu p90");
-  for (const std::string& pass : order) {
-    const render::Stats c = render::Stats::of(cpu[pass]);
-    const render::Stats g = render::Stats::of(gpu[pass]);
-    std::printf("  %-20s %9.3f ms %9.3f ms %9.3f ms %9.3f ms\n", pass.c_str(), c.median, g.median, g.p10,
-                g.p90);
-    passes.push_back({{"name", pass}, {"cpu_ms", c.toJson()}, {"gpu_ms", g.toJson()}});
-  }
-  const render::Stats f = render::Stats::of(total);
-  std::printf("  %-20s %9.3f ms   (%.1f frames/s at the median)\n", "frame (wall)", f.median,
-              1000.0 / f.median);
   return {{"benchmark", name},
           {"machine", {{"host", machine.host}, {"cpu", machine.cpu}, {"cores", machine.cores}}},
           {"renderer", {{"vendor", info.vendor}, {"renderer", info.renderer}, {"version", info.version}}},
+          {"context", context.description()},
           {"frames", o.frames},
           {"warmup", o.warmup},
-          {"resolution", {o.width, o.height}},
-          {"frame_ms", f.toJson()},
-          {"passes", passes}};
+          {"resolution", {o.width, o.height}}};
+}
+
+void benchDemo(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
+  shader::Library library;
+  render::RenderTarget target(o.width, o.height);
+  render::DemoScene scene(library);
+  const render::Camera camera = scene.defaultCamera();
+  const Samples s = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
+    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+    scene.render(camera, o.width, o.height, 1.0 + i / 60.0, &timers);
+  });
+  std::printf("demo: %d frames after %d warm-up, %dx%d, %s\n", o.frames, o.warmup, o.width, o.height,
+              gl::queryContextInfo().renderer.c_str());
+  std::printf("  %-14s %12s %12s %12s %12s\n", "pass", "cpu median", "gpu median", "gpu p10", "gpu p90");
+  for (const std::string& pass : s.order) {
+    const render::Stats c = render::Stats::of(s.cpu.at(pass));
+    const render::Stats g = render::Stats::of(s.gpu.at(pass));
+    std::printf("  %-14s %9.3f ms %9.3f ms %9.3f ms %9.3f ms\n", pass.c_str(), c.median, g.median, g.p10,
+                g.p90);
+  }
+  const render::Stats f = render::Stats::of(s.frame);
+  std::printf("  %-14s %9.3f ms (%.1f frames/s at the median)\n", "frame (wall)", f.median,
+              1000.0 / f.median);
+  report = header(o, "demo", context);
+  report["frame_ms"] = f.toJson();
+  report["passes"] = s.passesJson();
+}
+
+/** The paper's Table 8 rows: roots, LOD enabled, tessellation level (their 64-root category has a 4th test).
+ */
+struct Table8Row {
+  int roots;
+  bool lod;
+  int tess;
+};
+constexpr Table8Row kTable8[] = {{4, false, 1},   {4, false, 32}, {4, true, 32},   {16, false, 1},
+                                 {16, false, 32}, {16, true, 32}, {32, false, 1},  {32, false, 32},
+                                 {32, true, 32},  {64, false, 1}, {64, false, 32}, {64, true, 1},
+                                 {64, true, 32}};
+
+void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
+  shader::Library library;
+  render::RenderTarget target(o.width, o.height);
+  auto scene = o.terrain.build(library);
+  const terrain::HeightField& field = scene->field();
+  const render::Camera base = scene->defaultCamera();
+  const glm::vec3 centre(0.5f * field.extentX(), base.target.y, 0.5f * field.extentZ());
+  report = header(o, "terrain", context);
+  report["terrain"] = {{"samples", {field.width(), field.height()}},
+                       {"extent_m", {field.extentX(), field.extentZ()}},
+                       {"source", o.terrain.source.describe()}};
+  nlohmann::json rows = nlohmann::json::array();
+  std::printf("terrain (Table 8): %dx%d samples, %.0fx%.0f m, %d frames after %d warm-up, %dx%d, %s\n",
+              field.width(), field.height(), field.extentX(), field.extentZ(), o.frames, o.warmup, o.width,
+              o.height, gl::queryContextInfo().renderer.c_str());
+  std::printf("  %5s %4s %4s %-6s %7s %13s %10s %11s %11s %9s\n", "roots", "LOD", "tess", "method", "nodes",
+              "vertices", "LOD ms", "GPU ms", "frame ms", "frames/s");
+  for (const Table8Row& row : kTable8) {
+    for (const std::string method : {"paper", "ours"}) {
+      terrain::QuadtreeConfig config =
+          terrain::QuadtreeConfig::forRootCount(row.roots, field.extentX(), field.extentZ());
+      config.maxDepth = std::max(0, static_cast<int>(std::round(std::log2(config.rootSize / 16.0f))));
+      config.lodDistanceFactor = o.terrain.quadtree.lodDistanceFactor;
+      config.patchTessLevel = row.tess;
+      config.lodEnabled = row.lod;
+      config.method = parseCrackMethod(method);
+      terrain::Quadtree quadtree(config, field);
+      terrain::QuadtreeSelection selection;
+      terrain::TerrainDrawOptions draw;
+      draw.countVertices = true;
+      draw.environment = scene->environment();
+      const Samples s = measure(o, [&](render::GpuTimers& timers, int i, Samples& out) {
+        // A slow orbit around the centre: the selection changes every frame, as in a fly-through.
+        const float angle = 0.02f * static_cast<float>(i);
+        render::Camera camera = base;
+        const glm::vec3 offset = base.position - centre;
+        camera.position =
+            centre + glm::vec3(std::cos(angle) * offset.x - std::sin(angle) * offset.z, offset.y,
+                               std::sin(angle) * offset.x + std::cos(angle) * offset.z);
+        camera.target = centre;
+        const Frustum frustum = camera.frustum(target.aspect());
+        const auto start = std::chrono::steady_clock::now();
+        quadtree.select(camera.position, &frustum, selection);
+        out.extra["lod_ms"].push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        target.begin(glm::vec4(draw.environment.fogColor, 1.0f));
+        scene->renderer().draw(selection, camera, o.width, o.height, 0.0, &timers, draw);
+        out.extra["nodes"].push_back(static_cast<double>(selection.nodes.size()));
+        const std::int64_t measured = scene->renderer().lastVertexInvocations();
+        out.extra["vertices"].push_back(measured >= 0
+                                            ? static_cast<double>(measured)
+                                            : static_cast<double>(selection.stats.processedVertices));
+      });
+      const render::Stats lod = render::Stats::of(s.extra.at("lod_ms"));
+      const render::Stats gpu = render::Stats::of(s.gpu.at("terrain"));
+      const render::Stats frame = render::Stats::of(s.frame);
+      const render::Stats nodes = render::Stats::of(s.extra.at("nodes"));
+      const render::Stats vertices = render::Stats::of(s.extra.at("vertices"));
+      std::printf("  %5d %4s %4d %-6s %7.0f %13.0f %10.4f %11.3f %11.3f %9.1f\n", row.roots,
+                  row.lod ? "on" : "off", row.tess, method.c_str(), nodes.median, vertices.median, lod.median,
+                  gpu.median, frame.median, 1000.0 / frame.median);
+      rows.push_back({{"roots", row.roots},
+                      {"roots_layout", {config.rootsX, config.rootsZ}},
+                      {"lod", row.lod},
+                      {"tess", row.tess},
+                      {"method", method},
+                      {"max_depth", config.maxDepth},
+                      {"nodes", nodes.toJson()},
+                      {"processed_vertices", vertices.toJson()},
+                      {"vertices_measured_on_gpu", scene->renderer().lastVertexInvocations() >= 0},
+                      {"lod_update_ms", lod.toJson()},
+                      {"gpu_terrain_ms", gpu.toJson()},
+                      {"frame_ms", frame.toJson()}});
+    }
+  }
+  report["rows"] = rows;
 }
 
 } // namespace
 
 void registerBench(CLI::App& app) {
-  auto* command = app.add_subcommand("bench", "Measure CPU and GPU time per pass over N frames; writes JSON");
+  auto* command = app.add_subcommand(
+      "bench", "Measure CPU and GPU time per pass over N frames; prints a table and writes JSON");
   auto o = std::make_shared<BenchOptions>();
-  command->add_option("area", o->area, "What to measure: demo")
-      ->check(CLI::IsMember({"demo"}))
+  command
+      ->add_option("area", o->area,
+                   "demo (pipeline scene) or terrain (the paper's Table 8, both crack methods)")
+      ->check(CLI::IsMember({"demo", "terrain"}))
       ->capture_default_str();
   o->context.add(*command);
-  command->add_option("--frames", o->frames, "Measured frames")
+  o->terrain.add(*command);
+  command->add_option("--frames", o->frames, "Measured frames (per configuration)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   command->add_option("--warmup", o->warmup, "Frames run before measuring")
@@ -100,20 +231,18 @@ void registerBench(CLI::App& app) {
   command->add_option("--height", o->height, "Target height in pixels")
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
-  command->add_option("-o,--out", o->out, "JSON report path")->capture_default_str();
+  command->add_option("-o,--out", o->out, "JSON report path (default: out/bench-<area>.json)");
   command->callback([o] {
     auto context = platform::createHeadlessContext(o->context.options());
-    shader::Library library;
-    render::RenderTarget target(o->width, o->height);
-    render::DemoScene scene(library);
-    const render::Camera camera = scene.defaultCamera();
-    nlohmann::json report = runFrames(*o, o->area, [&](render::GpuTimers& timers, double time) {
-      target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-      scene.render(camera, o->width, o->height, time, &timers);
-    });
-    report["context"] = context->description();
-    saveJsonFile(o->out, report);
-    std::printf("%s\n", o->out.c_str());
+    nlohmann::json report;
+    if (o->area == "terrain") {
+      benchTerrain(*o, *context, report);
+    } else {
+      benchDemo(*o, *context, report);
+    }
+    const std::string out = o->out.empty() ? "out/bench-" + o->area + ".json" : o->out;
+    saveJsonFile(out, report);
+    std::printf("%s\n", out.c_str());
   });
 }
 

@@ -46,27 +46,7 @@ terrain::TerrainView parseTerrainView(const std::string& name) {
 }
 
 void TerrainFlags::add(CLI::App& command) {
-  command
-      .add_option("--dem", source.dem, "Height file: PNG (8/16-bit), GeoTIFF/netCDF/... (GDAL), .npy/.npz")
-      ->check(CLI::ExistingFile);
-  command.add_option("--png-scale", source.load.heightScale, "Metres of a PNG value of 1.0 (the paper's N)")
-      ->capture_default_str();
-  command.add_option("--npz-array", source.load.npzArray,
-                     "Array name inside an .npz (default: first 2D array)");
-  command.add_option("--seed", source.procedural.seed, "Procedural terrain seed (when no --dem)")
-      ->capture_default_str();
-  command.add_option("--type", type, "Procedural type: fbm, ridged or warped")
-      ->check(CLI::IsMember({"fbm", "ridged", "warped"}))
-      ->capture_default_str();
-  command.add_option("--size", source.proceduralSize, "Procedural samples per side")
-      ->check(CLI::Range(2, 16385))
-      ->capture_default_str();
-  command.add_option("--spacing", source.proceduralSpacing, "Procedural metres between samples")
-      ->check(CLI::Range(0.01f, 10000.0f))
-      ->capture_default_str();
-  command.add_option("--height-scale", source.procedural.heightScale, "Procedural relief, metres")
-      ->check(CLI::Range(0.01f, 100000.0f))
-      ->capture_default_str();
+  source.add(command);
   command
       .add_option("--layers", layers,
                   "Splat layer rules (JSON); default: sand/grass/snow/rock by height and slope")
@@ -107,11 +87,7 @@ terrain::QuadtreeConfig TerrainFlags::configFor(const terrain::HeightField& fiel
 }
 
 std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library& library) const {
-  terrain::TerrainSource src = source;
-  src.procedural.type = type == "fbm"      ? terrain::ProceduralSpec::Type::Fbm
-                        : type == "ridged" ? terrain::ProceduralSpec::Type::Ridged
-                                           : terrain::ProceduralSpec::Type::Warped;
-  terrain::HeightField field = terrain::loadTerrainSource(src);
+  terrain::HeightField field = source.load();
   std::vector<terrain::SplatLayer> rules;
   if (!layers.empty()) {
     rules = terrain::loadSplatLayers(layers);

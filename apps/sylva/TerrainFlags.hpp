@@ -2,6 +2,8 @@
 
 #include <sylva/terrain/TerrainScene.hpp>
 
+#include "SourceOptions.hpp"
+
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -10,13 +12,15 @@ namespace sylva::app {
 
 /** Command-line options that describe a terrain scene to render, view or benchmark. */
 struct TerrainFlags {
-  terrain::TerrainSource source;
-  std::string type = "warped";
+  /** Heights: --dem or --seed/--spec; without either, the demo landscape (TerrainSource::defaultProcedural).
+   */
+  SourceOptions source{terrain::TerrainSource::defaultProcedural(), 1025, 2.0f};
   std::string method = "ours";
   std::string layers;
   terrain::QuadtreeConfig quadtree = defaultQuadtree();
 
-  /** Adds --dem, --seed, --type, --size, --spacing, --height-scale, --layers, --method, --tess, ... */
+  /** Adds the source options (SourceOptions) and --layers, --method, --tess, --roots, --max-depth,
+   * --lod-factor. */
   void add(CLI::App& command);
   /** Loads the heights and builds the scene (needs a GL context); errors name the file or option. */
   std::unique_ptr<terrain::TerrainScene> build(const shader::Library& library) const;

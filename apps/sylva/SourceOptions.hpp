@@ -1,0 +1,236 @@
+#pragma once
+
+// Height-source options shared by every command that needs a terrain (`sylva terrain ...`, render, view,
+// bench): one parser, one set of checks, one loader.
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Progress.hpp>
+#include <sylva/terrain/HeightSources.hpp>
+#include <sylva/terrain/Noise.hpp>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+
+namespace sylva::app {
+
+/** Largest side of a procedural field: kMaxHeightFieldSamples (2^30) samples in a square. */
+constexpr int kMaxProceduralSize = 32768;
+/** Largest accepted sample spacing, metres (100 km per sample is already far beyond any DEM). */
+constexpr double kMaxSpacing = 1.0e5;
+/** Smallest accepted sample spacing, metres. */
+constexpr double kMinSpacing = 1.0e-6;
+/** Largest accepted height scale (procedural or PNG), metres. */
+constexpr double kMaxHeightScale = 1.0e5;
+/** Procedural fields with more samples than this are generated in strips with a progress line. */
+constexpr std::size_t kProgressSamples = std::size_t{1} << 20;
+
+/** A CLI11 check: a finite number in [lo, hi]; CLI11 prefixes the message with the option name. */
+inline CLI::Validator finiteRange(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end == nullptr || *end != '\0' || !std::isfinite(value) || value < lo ||
+            value > hi) {
+          return fmt::format("'{}' is not a finite number in [{:g}, {:g}]", text, lo, hi);
+        }
+        return {};
+      },
+      fmt::format("FLOAT in [{:g}, {:g}]", lo, hi));
+}
+
+/** A CLI11 check: a whole number ≥ 0 written with digits only (no sign, which would wrap for uint64). */
+inline CLI::Validator unsignedInteger() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty() || text.size() > 20 ||
+            !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c) != 0; })) {
+          return fmt::format("'{}' is not a whole number >= 0", text);
+        }
+        return {};
+      },
+      "UINT");
+}
+
+/**
+ * --dem FILE or --seed N / --spec FILE, with the procedural parameters (--type, --size, --spacing,
+ * --height-scale) and DEM reading options (--png-scale, --npz-array). load() checks the combination and
+ * throws sylva::Error naming the option or file.
+ */
+struct SourceOptions {
+  /** CLI defaults for the procedural source (the `terrain` subcommands' plain fBm). */
+  SourceOptions() = default;
+  /** Defaults from `spec` and a size × size field at `spacing` metres (render/view/bench use the demo). */
+  SourceOptions(const terrain::ProceduralSpec& spec, int size, float spacing);
+
+  std::string dem;
+  std::uint64_t seed = 1;
+  std::string type = "fbm";
+  int size = 1025;
+  float spacing = 1.0f;
+  float heightScale = 200.0f;
+  /** When neither --dem nor --seed/--spec is given: true = use the defaults above; false = an error. */
+  bool defaultToProcedural = false;
+  /** Procedural parameters not exposed as options (octaves, frequency, ...), from the defaults' spec. */
+  terrain::ProceduralSpec base;
+  std::string spec;
+  float pngScale = 100.0f;
+  std::string npzArray;
+
+  CLI::Option* demOption = nullptr;
+  CLI::Option* seedOption = nullptr;
+  CLI::Option* typeOption = nullptr;
+  CLI::Option* sizeOption = nullptr;
+  CLI::Option* spacingOption = nullptr;
+  CLI::Option* heightScaleOption = nullptr;
+  CLI::Option* specOption = nullptr;
+  CLI::Option* pngScaleOption = nullptr;
+  CLI::Option* npzArrayOption = nullptr;
+
+  void add(CLI::App& command) {
+    demOption = command.add_option("--dem", dem,
+                                   "Height source: a DEM file (.png/.exr with optional .json sidecar, .npy, "
+                                   ".npz, or any GDAL raster such as GeoTIFF)");
+    seedOption = command.add_option("--seed", seed, "Height source: procedural noise with this seed")
+                     ->check(unsignedInteger());
+    specOption = command.add_option("--spec", spec,
+                                    "Procedural spec JSON (version 1: seed, type, octaves, frequency, "
+                                    "lacunarity, gain, warpStrength, heightScale); --seed, --type and "
+                                    "--height-scale override its fields");
+    typeOption = command.add_option("--type", type, "Procedural noise: fbm, ridged or warped")
+                     ->check(CLI::IsMember({"fbm", "ridged", "warped"}))
+                     ->capture_default_str();
+    sizeOption = command.add_option("--size", size, "Procedural field side, samples")
+                     ->check(CLI::Range(2, kMaxProceduralSize))
+                     ->capture_default_str();
+    spacingOption = command
+                        .add_option("--spacing", spacing,
+                                    "Metres between samples (procedural; with --dem it overrides the "
+                                    "file's spacing)")
+                        ->check(finiteRange(kMinSpacing, kMaxSpacing))
+                        ->capture_default_str();
+    heightScaleOption =
+        command
+            .add_option("--height-scale", heightScale,
+                        "Procedural height of noise value 1, metres (heights lie in [0, scale])")
+            ->check(finiteRange(kMinSpacing, kMaxHeightScale))
+            ->capture_default_str();
+    pngScaleOption =
+        command
+            .add_option("--png-scale", pngScale, "Metres of the value 1.0 of a PNG DEM without .json sidecar")
+            ->check(finiteRange(kMinSpacing, kMaxHeightScale))
+            ->capture_default_str();
+    npzArrayOption =
+        command.add_option("--npz-array", npzArray, "Array inside an .npz DEM (default: the first 2D array)");
+  }
+
+  /** True when the heights come from the generator (--seed/--spec, or no --dem with defaultToProcedural). */
+  bool procedural() const {
+    return seedOption->count() > 0 || specOption->count() > 0 ||
+           (defaultToProcedural && demOption->count() == 0);
+  }
+
+  /** Throws sylva::Error naming the option when the combination of source options is wrong. */
+  void check() const {
+    if (demOption->count() > 0 && procedural()) {
+      fail("--dem and {}: give one height source, not both", seedOption->count() > 0 ? "--seed" : "--spec");
+    }
+    if (demOption->count() == 0 && !procedural()) {
+      fail("no height source: give --dem FILE or --seed N (see --help)");
+    }
+    if (demOption->count() > 0) {
+      for (const CLI::Option* option : {typeOption, sizeOption, heightScaleOption}) {
+        if (option->count() > 0) {
+          fail("{}: applies to procedural sources (--seed/--spec) only, not to --dem", option->get_name());
+        }
+      }
+      if (dem.empty()) {
+        fail("--dem: empty file name");
+      }
+    } else {
+      for (const CLI::Option* option : {pngScaleOption, npzArrayOption}) {
+        if (option->count() > 0) {
+          fail("{}: applies to --dem only", option->get_name());
+        }
+      }
+    }
+  }
+
+  /** The procedural spec: --spec file (if any) with --seed/--type/--height-scale overrides. */
+  terrain::ProceduralSpec proceduralSpec() const {
+    terrain::ProceduralSpec result = base;
+    if (specOption->count() > 0) {
+      result = terrain::loadProceduralSpec(spec);
+    }
+    if (seedOption->count() > 0 || specOption->count() == 0) {
+      result.seed = seed;
+    }
+    if (typeOption->count() > 0 || specOption->count() == 0) {
+      result.type = type == "ridged"   ? terrain::ProceduralSpec::Type::Ridged
+                    : type == "warped" ? terrain::ProceduralSpec::Type::Warped
+                                       : terrain::ProceduralSpec::Type::Fbm;
+    }
+    if (heightScaleOption->count() > 0 || specOption->count() == 0) {
+      result.heightScale = heightScale;
+    }
+    terrain::validate(result, specOption->count() > 0 ? spec : std::string("procedural spec"));
+    return result;
+  }
+
+  /** One line naming the source, for summaries. */
+  std::string describe() const {
+    if (!procedural()) {
+      return dem;
+    }
+    const terrain::ProceduralSpec s = proceduralSpec();
+    return fmt::format("procedural {} seed {} ({}x{} samples, {:g} m spacing, height scale {:g} m)",
+                       terrain::procedureTypeName(s.type), s.seed, size, size, spacing, s.heightScale);
+  }
+
+  /** Loads or generates the height field; throws sylva::Error naming the file or option. */
+  terrain::HeightField load() const {
+    check();
+    if (!procedural()) {
+      terrain::LoadOptions options;
+      options.heightScale = pngScale;
+      options.spacing = spacingOption->count() > 0 ? spacing : 0.0f;
+      options.npzArray = npzArray;
+      return terrain::loadHeightField(dem, options);
+    }
+    const terrain::ProceduralSpec s = proceduralSpec();
+    const std::size_t samples = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
+    if (samples <= kProgressSamples) {
+      return terrain::generate(s, 0.0, 0.0, size, size, spacing);
+    }
+    // Strips whose origin lies on the sample lattice give bit-identical heights to one generate() call (see
+    // terrain::generate), so a large field can report progress without changing a single sample.
+    terrain::HeightField field(size, size, spacing, spacing);
+    const int strip = std::max(1, static_cast<int>(kProgressSamples / 4 / static_cast<std::size_t>(size)));
+    Progress progress("generating heights", static_cast<std::size_t>(size));
+    for (int row = 0; row < size; row += strip) {
+      if (progress.cancelled()) {
+        fail("generating heights: cancelled");
+      }
+      const int rows = std::min(strip, size - row);
+      const terrain::HeightField part = terrain::generate(
+          s, 0.0, static_cast<double>(row) * static_cast<double>(spacing), size, rows, spacing);
+      std::copy(part.samples().begin(), part.samples().end(),
+                field.samples().begin() + static_cast<std::ptrdiff_t>(row) * size);
+      progress.advance(static_cast<std::size_t>(rows));
+    }
+    return field;
+  }
+};
+
+inline SourceOptions::SourceOptions(const terrain::ProceduralSpec& spec, int fieldSize, float fieldSpacing)
+    : seed(spec.seed), type(terrain::procedureTypeName(spec.type)), size(fieldSize), spacing(fieldSpacing),
+      heightScale(spec.heightScale), defaultToProcedural(true), base(spec) {}
+
+} // namespace sylva::app
