@@ -9,6 +9,9 @@
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
+
+#include "TerrainFlags.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -16,6 +19,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include <cstdio>
+#include <cmath>
 #include <deque>
 
 namespace sylva::app {
@@ -23,6 +27,8 @@ namespace sylva::app {
 namespace {
 
 struct ViewOptions {
+  std::string scene = "terrain";
+  TerrainFlags terrain;
   int width = 1280;
   int height = 720;
   std::string shaderDir;
@@ -61,20 +67,98 @@ public:
   }
 };
 
+/** What the viewer draws: the terrain (with its LOD panel) or the built-in demo scene. */
+struct ViewerScene {
+  std::unique_ptr<terrain::TerrainScene> terrain;
+  std::unique_ptr<render::DemoScene> demo;
+  terrain::TerrainDrawOptions draw;
+  terrain::QuadtreeConfig lod;
+  int method = 1; // 0 paper, 1 ours, 2 none
+  int view = 0;
+  bool freeze = false;
+  bool walk = false;
+};
+
+/** The terrain section of the panel: LOD parameters, crack method, debug views, frozen frustum and counts. */
+void terrainPanel(ViewerScene& v, const render::Camera& camera, float aspect) {
+  terrain::TerrainScene& scene = *v.terrain;
+  const terrain::QuadtreeSelection& sel = scene.selection();
+  if (ImGui::CollapsingHeader("Terrain LOD", ImGuiTreeNodeFlags_DefaultOpen)) {
+    bool changed = false;
+    const char* methods[] = {"paper (quadtree search)", "ours (restricted level map)", "none (shows cracks)"};
+    changed |= ImGui::Combo("crack method", &v.method, methods, 3);
+    changed |= ImGui::SliderInt("tessellation", &v.lod.patchTessLevel, 1, terrain::kMaxPatchTessLevel);
+    changed |= ImGui::SliderFloat("LOD distance factor", &v.lod.lodDistanceFactor,
+                                  terrain::kMinRestrictedLodFactor, 8.0f);
+    changed |= ImGui::SliderInt("max depth", &v.lod.maxDepth, 0, 8);
+    changed |= ImGui::Checkbox("LOD enabled", &v.lod.lodEnabled);
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("frustum culling", &v.lod.frustumCull);
+    if (changed) {
+      v.lod.method = v.method == 0   ? terrain::CrackMethod::PaperSearch
+                     : v.method == 1 ? terrain::CrackMethod::RestrictedLevelMap
+                                     : terrain::CrackMethod::None;
+      scene.setQuadtreeConfig(v.lod);
+    }
+    const char* views[] = {"shaded", "LOD colours", "normals", "splat layers"};
+    ImGui::Combo("view", &v.view, views, 4);
+    v.draw.view = static_cast<terrain::TerrainView>(v.view);
+    ImGui::Checkbox("wireframe", &v.draw.wireframe);
+    ImGui::SameLine();
+    ImGui::Checkbox("skirts (crack check)", &v.draw.skirts);
+    if (ImGui::Checkbox("freeze frustum", &v.freeze)) {
+      scene.setFrozenFrustum(v.freeze ? std::optional<Frustum>(camera.frustum(aspect)) : std::nullopt);
+    }
+    ImGui::Checkbox("walk on the ground (G)", &v.walk);
+  }
+  if (ImGui::CollapsingHeader("Counts", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Text("nodes drawn       %d", sel.stats.leaves);
+    ImGui::Text("nodes culled      %d", sel.stats.nodesCulled);
+    ImGui::Text("edges doubled     %d", sel.stats.doubledEdges);
+    const std::int64_t measured = scene.renderer().lastVertexInvocations();
+    ImGui::Text("vertices (GPU)    %lld", static_cast<long long>(measured));
+    ImGui::Text("vertices (CPU est) %llu", static_cast<unsigned long long>(sel.stats.processedVertices));
+    ImGui::Text("LOD update        %.3f ms", scene.lastUpdateMs());
+    if (v.draw.skirts) {
+      ImGui::Text("crack pixels      %lld", static_cast<long long>(scene.renderer().lastCrackSamples()));
+    }
+    const float ground = terrain::heightAt(scene.field(), camera.position.x, camera.position.z);
+    ImGui::Text("camera %.0f, %.0f m, %.1f m above ground", camera.position.x, camera.position.z,
+                camera.position.y - ground);
+  }
+}
+
 void runViewer(const ViewOptions& o) {
   platform::GlfwWindow window(o.width, o.height, "Sylva viewer");
   window.setVsync(o.frames == 0);
   const gl::ContextInfo info = gl::queryContextInfo();
   shader::Library library(o.shaderDir);
-  render::DemoSettings settings;
-  render::DemoScene scene(library, settings);
+  ViewerScene v;
+  render::Camera start;
+  if (o.scene == "terrain") {
+    v.terrain = o.terrain.build(library);
+    v.lod = v.terrain->quadtree().config();
+    v.method = v.lod.method == terrain::CrackMethod::PaperSearch ? 0
+               : v.lod.method == terrain::CrackMethod::None      ? 2
+                                                                 : 1;
+    v.draw.environment = v.terrain->environment();
+    v.draw.countVertices = true;
+    start = v.terrain->defaultCamera();
+  } else {
+    v.demo = std::make_unique<render::DemoScene>(library);
+    start = v.demo->defaultCamera();
+  }
   render::OrbitController orbit;
-  orbit.distance = 0.55f * settings.worldSize;
+  orbit.target = start.target;
+  orbit.distance = glm::length(start.position - start.target);
+  const glm::vec3 dir = glm::normalize(start.position - start.target);
+  orbit.yaw = std::atan2(dir.x, dir.z);
+  orbit.pitch = std::asin(dir.y);
   render::FlyController fly;
+  fly.speed = std::max(10.0f, 0.05f * orbit.distance);
   bool flyMode = false;
-  bool wireframe = false;
   bool paused = false;
-  std::string status = "F5: reload shaders  F: fly/orbit  Tab: hide panel";
+  std::string status = "F5: reload shaders  F: fly/orbit  G: walk  Tab: hide panel";
   bool showUi = !o.noUi;
   render::GpuTimers timers;
   render::FrameClock clock(o.fixedStep);
@@ -86,7 +170,11 @@ void runViewer(const ViewOptions& o) {
     shader::Library disk(o.shaderDir.empty() ? shader::Library::sourceDirectory()
                                              : std::filesystem::path(o.shaderDir));
     try {
-      scene.reloadShaders(disk);
+      if (v.terrain) {
+        v.terrain->renderer().reloadShaders(disk);
+      } else {
+        v.demo->reloadShaders(disk);
+      }
       status = "shaders reloaded from " + disk.directory().string();
     } catch (const Error& e) {
       status = e.what();
@@ -101,6 +189,9 @@ void runViewer(const ViewOptions& o) {
       reload();
     } else if (key == GLFW_KEY_F) {
       flyMode = !flyMode;
+    } else if (key == GLFW_KEY_G) {
+      v.walk = !v.walk;
+      flyMode = flyMode || v.walk;
     } else if (key == GLFW_KEY_TAB) {
       showUi = !showUi;
     } else if (key == GLFW_KEY_ESCAPE) {
@@ -110,6 +201,7 @@ void runViewer(const ViewOptions& o) {
 
   ImGuiLayer ui(window);
   int frame = 0;
+  render::Camera camera = start;
   while (window.pollEvents()) {
     const double dt = clock.tick();
     if (!paused) {
@@ -119,9 +211,9 @@ void runViewer(const ViewOptions& o) {
     if (size.x == 0 || size.y == 0) {
       continue;
     }
+    const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
     const platform::InputState& in = window.input();
     const bool mouseFree = !ImGui::GetIO().WantCaptureMouse;
-    render::Camera camera = scene.defaultCamera();
     if (flyMode) {
       glm::vec3 move(0.0f);
       move.z += window.keyDown(GLFW_KEY_W) ? 1.0f : 0.0f;
@@ -133,6 +225,13 @@ void runViewer(const ViewOptions& o) {
       const bool look = mouseFree && in.mouseLeft;
       fly.update(move, look ? static_cast<float>(in.cursorDelta.x) : 0.0f,
                  look ? static_cast<float>(in.cursorDelta.y) : 0.0f, static_cast<float>(dt));
+      if (v.walk && v.terrain) {
+        // Ground query: eyes 1.8 m above the interpolated surface, the height the terrain pass draws.
+        const float ground = terrain::heightAt(v.terrain->field(), fly.position.x, fly.position.z);
+        if (!std::isnan(ground)) {
+          fly.position.y = ground + 1.8f;
+        }
+      }
       fly.apply(camera);
     } else {
       if (mouseFree && in.mouseLeft) {
@@ -145,15 +244,29 @@ void runViewer(const ViewOptions& o) {
         orbit.zoom(static_cast<float>(in.scrollDelta));
       }
       orbit.apply(camera);
+      camera.nearPlane = start.nearPlane;
+      camera.farPlane = start.farPlane;
+      camera.fovY = start.fovY;
       fly.position = camera.position; // switching to fly mode starts where the orbit camera is
+      const glm::vec3 d = glm::normalize(camera.target - camera.position);
+      fly.yaw = std::atan2(d.x, d.z);
+      fly.pitch = std::asin(d.y);
     }
 
     timers.beginFrame();
     gl::bindDefaultFramebuffer(size.x, size.y);
     glEnable(GL_DEPTH_TEST);
-    glClearColor(0.62f, 0.72f, 0.85f, 1.0f);
+    const glm::vec3 sky = v.terrain ? v.draw.environment.fogColor : glm::vec3(0.62f, 0.72f, 0.85f);
+    glClearColor(sky.r, sky.g, sky.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    scene.render(camera, size.x, size.y, sceneTime, &timers, wireframe);
+    if (v.terrain) {
+      timers.begin("lod (cpu)");
+      v.terrain->update(camera, aspect);
+      timers.end();
+      v.terrain->draw(camera, size.x, size.y, sceneTime, &timers, v.draw);
+    } else {
+      v.demo->render(camera, size.x, size.y, sceneTime, &timers, v.draw.wireframe);
+    }
     if (showUi) {
       timers.begin("ui");
       ui.begin();
@@ -186,9 +299,14 @@ void runViewer(const ViewOptions& o) {
         }
         ImGui::EndTable();
       }
+      if (v.terrain) {
+        terrainPanel(v, camera, aspect);
+      } else {
+        ImGui::Checkbox("wireframe", &v.draw.wireframe);
+      }
       ImGui::Separator();
-      ImGui::Checkbox("wireframe", &wireframe);
       ImGui::Checkbox("pause time", &paused);
+      ImGui::SameLine();
       ImGui::Checkbox("fly camera (F)", &flyMode);
       if (ImGui::Button("reload shaders (F5)")) {
         reload();
@@ -219,10 +337,14 @@ void runViewer(const ViewOptions& o) {
 } // namespace
 
 void registerView(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "view",
-      "Open the interactive viewer (orbit: drag/right-drag/wheel; F: fly with WASD/QE; F5: reload shaders)");
+  auto* command = app.add_subcommand("view", "Open the interactive viewer (orbit: drag/right-drag/wheel; F: "
+                                             "fly with WASD/QE; G: walk on the ground; "
+                                             "F5: reload shaders)");
   auto o = std::make_shared<ViewOptions>();
+  command->add_option("--scene", o->scene, "terrain, or demo (the small built-in pipeline test scene)")
+      ->check(CLI::IsMember({"terrain", "demo"}))
+      ->capture_default_str();
+  o->terrain.add(*command);
   command->add_option("--width", o->width, "Window width")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();

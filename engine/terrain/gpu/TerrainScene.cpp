@@ -48,6 +48,18 @@ void TerrainScene::draw(const render::Camera& camera, int width, int height, dou
   mRenderer->draw(mSelection, camera, width, height, time, timers, options);
 }
 
+void TerrainScene::setQuadtreeConfig(const QuadtreeConfig& config) {
+  const QuadtreeConfig& current = mQuadtree.config();
+  const bool sameLayout = (config.rootsX == 0 || config.rootsX == current.rootsX) &&
+                          (config.rootsZ == 0 || config.rootsZ == current.rootsZ) &&
+                          config.rootSize == current.rootSize && config.maxDepth == current.maxDepth;
+  if (sameLayout) {
+    mQuadtree.setConfig(config);
+  } else {
+    mQuadtree = Quadtree(config, mField);
+  }
+}
+
 render::Camera TerrainScene::defaultCamera() const {
   const float ex = mField.extentX();
   const float ez = mField.extentZ();

@@ -47,6 +47,8 @@ public:
   void draw(const render::Camera& camera, int width, int height, double time,
             render::GpuTimers* timers = nullptr, const TerrainDrawOptions& options = {});
 
+  /** Applies a new LOD policy; rebuilds the quadtree when the layout (roots, root size, depth) changes. */
+  void setQuadtreeConfig(const QuadtreeConfig& config);
   /** Culls against this frustum instead of the camera's (viewer "freeze frustum"); nullopt = follow camera.
    */
   void setFrozenFrustum(std::optional<Frustum> frustum) { mFrozen = frustum; }
