@@ -1,8 +1,15 @@
 #!/usr/bin/env bash
-# Quick start, command 1: installs what is missing, builds, and renders the demo image(s) headless into out/.
+# Quick start, command 1: installs what is missing, builds, and renders the demo images headless into out/:
+#   out/terrain.png       the procedural demo landscape, shaded (multi-textured, lit, fogged)
+#   out/terrain-lod.png   the same view in wireframe with quadtree LOD colours
+#   out/jacksboro.png     a real DEM (Jacksboro fault, Tennessee) fetched from a Debian package
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup-debian.sh
+scripts/fetch-sample-data.sh
 scripts/build.sh release sylva
+sylva=./build/release/bin/sylva
 mkdir -p out
-./build/release/bin/sylva render --out out/demo.png
+"$sylva" render --out out/terrain.png
+"$sylva" render --view lod --wireframe --out out/terrain-lod.png
+"$sylva" render --dem data/external/jacksboro_fault_dem.npz --out out/jacksboro.png

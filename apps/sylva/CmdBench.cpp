@@ -34,6 +34,7 @@ struct Samples {
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> cpu;
   std::map<std::string, std::vector<double>> gpu;
+  std::map<std::string, std::vector<double>> wall;
   std::vector<double> frame;
   std::map<std::string, std::vector<double>> extra;
 
@@ -42,7 +43,8 @@ struct Samples {
     for (const std::string& pass : order) {
       passes.push_back({{"name", pass},
                         {"cpu_ms", render::Stats::of(cpu.at(pass)).toJson()},
-                        {"gpu_ms", render::Stats::of(gpu.at(pass)).toJson()}});
+                        {"gpu_ms", render::Stats::of(gpu.at(pass)).toJson()},
+                        {"wall_ms", render::Stats::of(wall.at(pass)).toJson()}});
     }
     return passes;
   }
@@ -70,6 +72,7 @@ Samples measure(const BenchOptions& o, const std::function<void(render::GpuTimer
       }
       s.cpu[t.name].push_back(t.cpuMs);
       s.gpu[t.name].push_back(t.gpuMs);
+      s.wall[t.name].push_back(t.wallMs);
     }
     for (auto& [name, values] : scratch.extra) {
       s.extra[name].insert(s.extra[name].end(), values.begin(), values.end());
@@ -143,8 +146,14 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
   std::printf("terrain (Table 8): %dx%d samples, %.0fx%.0f m, %d frames after %d warm-up, %dx%d, %s\n",
               field.width(), field.height(), field.extentX(), field.extentZ(), o.frames, o.warmup, o.width,
               o.height, gl::queryContextInfo().renderer.c_str());
-  std::printf("  %5s %4s %4s %-6s %7s %13s %10s %11s %11s %9s\n", "roots", "LOD", "tess", "method", "nodes",
-              "vertices", "LOD ms", "GPU ms", "frame ms", "frames/s");
+  std::printf("  %5s %4s %4s %-6s %7s %11s %9s %9s %9s %9s %9s\n", "roots", "LOD", "tess", "method", "nodes",
+              "vertices", "LOD ms", "pass ms", "GPU ms", "frame ms", "frames/s");
+  // The Table 8 rows for both methods, then the configuration `sylva render`/`view` use (the demo).
+  struct Entry {
+    std::string roots;
+    terrain::QuadtreeConfig config;
+  };
+  std::vector<Entry> entries;
   for (const Table8Row& row : kTable8) {
     for (const std::string method : {"paper", "ours"}) {
       terrain::QuadtreeConfig config =
@@ -154,6 +163,18 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
       config.patchTessLevel = row.tess;
       config.lodEnabled = row.lod;
       config.method = parseCrackMethod(method);
+      entries.push_back({std::to_string(row.roots), config});
+    }
+  }
+  for (const std::string method : {"paper", "ours"}) {
+    terrain::QuadtreeConfig config = o.terrain.configFor(field);
+    config.method = parseCrackMethod(method);
+    entries.push_back({"demo", config});
+  }
+  for (const Entry& entry : entries) {
+    {
+      const terrain::QuadtreeConfig& config = entry.config;
+      const std::string method = config.method == terrain::CrackMethod::PaperSearch ? "paper" : "ours";
       terrain::Quadtree quadtree(config, field);
       terrain::QuadtreeSelection selection;
       terrain::TerrainDrawOptions draw;
@@ -186,13 +207,15 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
       const render::Stats frame = render::Stats::of(s.frame);
       const render::Stats nodes = render::Stats::of(s.extra.at("nodes"));
       const render::Stats vertices = render::Stats::of(s.extra.at("vertices"));
-      std::printf("  %5d %4s %4d %-6s %7.0f %13.0f %10.4f %11.3f %11.3f %9.1f\n", row.roots,
-                  row.lod ? "on" : "off", row.tess, method.c_str(), nodes.median, vertices.median, lod.median,
-                  gpu.median, frame.median, 1000.0 / frame.median);
-      rows.push_back({{"roots", row.roots},
+      const render::Stats pass = render::Stats::of(s.wall.at("terrain"));
+      std::printf("  %5s %4s %4d %-6s %7.0f %11.0f %9.4f %9.2f %9.3f %9.2f %9.1f\n", entry.roots.c_str(),
+                  config.lodEnabled ? "on" : "off", config.patchTessLevel, method.c_str(), nodes.median,
+                  vertices.median, lod.median, pass.median, gpu.median, frame.median, 1000.0 / frame.median);
+      rows.push_back({{"roots", entry.roots},
                       {"roots_layout", {config.rootsX, config.rootsZ}},
-                      {"lod", row.lod},
-                      {"tess", row.tess},
+                      {"lod", config.lodEnabled},
+                      {"tess", config.patchTessLevel},
+                      {"terrain_pass_wall_ms", pass.toJson()},
                       {"method", method},
                       {"max_depth", config.maxDepth},
                       {"nodes", nodes.toJson()},

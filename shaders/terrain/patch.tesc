@@ -6,13 +6,18 @@
 
 layout(vertices = 4) out;
 flat in int vNode[];
-patch out int tcNode;
+// The node, once per patch: the evaluation stage runs per vertex and should not re-read the storage buffer.
+patch out vec4 tcRect;
+patch out vec4 tcOuter;
+patch out ivec4 tcGrid;
 
 void main() {
   gl_out[gl_InvocationID].gl_Position = gl_in[gl_InvocationID].gl_Position;
   if (gl_InvocationID == 0) {
     TerrainNode node = nodes[vNode[0]];
-    tcNode = vNode[0];
+    tcRect = node.rect;
+    tcOuter = node.tessOuter;
+    tcGrid = node.grid;
     if (node.grid.w < 0) {
       for (int e = 0; e < 4; ++e) {
         gl_TessLevelOuter[e] = node.tessOuter[e];

@@ -7,7 +7,9 @@
 #include "terrain.glsl"
 
 layout(quads, equal_spacing, ccw) in;
-patch in int tcNode;
+patch in vec4 tcRect;  // x, z: min corner; y: size; w: minY (metres)
+patch in vec4 tcOuter; // outer levels, PatchEdge order
+patch in ivec4 tcGrid; // grid x, depth, grid z, skirt edge (-1: surface)
 
 invariant gl_Position;
 out vec3 teWorldPos;
@@ -34,34 +36,33 @@ float axisCoord(int g, float t, float size, bool onEdge, float edgeLevel) {
 }
 
 void main() {
-  TerrainNode node = nodes[tcNode];
-  float size = node.rect.y;
-  ivec2 g = node.grid.xz;
+  float size = tcRect.y;
+  ivec2 g = tcGrid.xz;
   vec2 uv = gl_TessCoord.xy;
   vec2 xz;
   float y;
-  if (node.grid.w < 0) {
+  if (tcGrid.w < 0) {
     // u along +x, v along +z. A vertex on the north/south edge (v = 0/1) takes that edge's level for x; one on
     // the west/east edge (u = 0/1) takes that edge's level for z.
     bool northSouth = uv.y == 0.0 || uv.y == 1.0;
     bool westEast = uv.x == 0.0 || uv.x == 1.0;
-    xz.x = axisCoord(g.x, uv.x, size, northSouth, uv.y == 0.0 ? node.tessOuter[1] : node.tessOuter[3]);
-    xz.y = axisCoord(g.y, uv.y, size, westEast, uv.x == 0.0 ? node.tessOuter[0] : node.tessOuter[2]);
+    xz.x = axisCoord(g.x, uv.x, size, northSouth, uv.y == 0.0 ? tcOuter[1] : tcOuter[3]);
+    xz.y = axisCoord(g.y, uv.y, size, westEast, uv.x == 0.0 ? tcOuter[0] : tcOuter[2]);
     y = terrainHeight(xz);
   } else {
     // Skirt under edge e: top vertices are that edge's surface vertices, bottom ones hang below the node.
-    int e = node.grid.w;
-    float level = node.tessOuter[e];
+    int e = tcGrid.w;
+    float level = tcOuter[e];
     float along = axisCoord(e == 0 || e == 2 ? g.y : g.x, uv.x, size, true, level);
     if (e == 0 || e == 2) {
       xz = vec2(float(g.x + (e == 2 ? 1 : 0)) * size, along);
     } else {
       xz = vec2(along, float(g.y + (e == 3 ? 1 : 0)) * size);
     }
-    y = uv.y == 0.0 ? terrainHeight(xz) : node.rect.w - terrain.spacing.w;
+    y = uv.y == 0.0 ? terrainHeight(xz) : tcRect.w - terrain.spacing.w;
   }
   teWorldPos = vec3(xz.x, y, xz.y);
-  teLevel = node.grid.y;
-  teSkirt = node.grid.w >= 0 ? 1 : 0;
+  teLevel = tcGrid.y;
+  teSkirt = tcGrid.w >= 0 ? 1 : 0;
   gl_Position = frame.viewProj * vec4(teWorldPos, 1.0);
 }

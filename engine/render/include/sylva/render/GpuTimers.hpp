@@ -16,12 +16,19 @@ struct PassTiming {
   std::string name;
   double cpuMs = 0.0;
   double gpuMs = -1.0;
+  /**
+   * Synchronous mode only: wall time from begin() until the pass's work has finished (glFinish). The honest
+   * figure on llvmpipe, whose timestamps do not cover rasterisation deferred to its worker threads; -1
+   * otherwise.
+   */
+  double wallMs = -1.0;
 };
 
 /**
  * Per-pass CPU and GPU timings. Each pass is bracketed by begin(name)/end(); GPU time comes from GL_TIMESTAMP
  * queries kept in a ring of `latency` frames, so reading results never stalls the pipeline (except in
- * `synchronous` mode, used by benchmarks and tests, which waits for each frame's results at endFrame()).
+ * `synchronous` mode, used by benchmarks and tests, which waits for each frame's results at endFrame() and
+ * finishes each pass's work before its end timestamp, also recording the pass's wall time to completion).
  */
 class GpuTimers {
 public:
