@@ -74,6 +74,18 @@ nlohmann::json loadJsonFile(const std::filesystem::path& path) {
   }
 }
 
+void requireJsonVersion(const nlohmann::json& json, int expected, const std::string& where) {
+  if (!json.is_object()) {
+    fail("{}: expected a JSON object", where);
+  }
+  if (!json.contains("version")) {
+    fail("{}: missing field 'version'", where);
+  }
+  if (!json["version"].is_number_integer() || json["version"].get<long long>() != expected) {
+    fail("{}: field 'version' must be {}", where, expected);
+  }
+}
+
 void saveJsonFile(const std::filesystem::path& path, const nlohmann::json& json) {
   writeTextFile(path, json.dump(2) + "\n");
 }

@@ -252,15 +252,7 @@ nlohmann::json toJson(const ProceduralSpec& spec) {
 }
 
 ProceduralSpec proceduralSpecFromJson(const nlohmann::json& json, const std::string& where) {
-  if (!json.is_object()) {
-    fail("{}: expected a JSON object", where);
-  }
-  if (!json.contains("version")) {
-    fail("{}: missing field 'version'", where);
-  }
-  if (!json["version"].is_number_integer() || json["version"].get<long long>() != kFormatVersion) {
-    fail("{}: field 'version' must be {}", where, kFormatVersion);
-  }
+  requireJsonVersion(json, kFormatVersion, where);
   ProceduralSpec spec;
   const auto number = [&](const std::string& key, float& out) {
     const nlohmann::json& v = json[key];

@@ -216,15 +216,7 @@ nlohmann::json splatLayersToJson(std::span<const SplatLayer> layers) {
 }
 
 std::vector<SplatLayer> splatLayersFromJson(const nlohmann::json& json, const std::string& where) {
-  if (!json.is_object()) {
-    fail("{}: expected a JSON object", where);
-  }
-  if (!json.contains("version")) {
-    fail("{}: missing field 'version'", where);
-  }
-  if (!json["version"].is_number_integer() || json["version"].get<long long>() != kFormatVersion) {
-    fail("{}: field 'version' must be {}", where, kFormatVersion);
-  }
+  requireJsonVersion(json, kFormatVersion, where);
   for (const auto& [key, value] : json.items()) {
     if (key != "version" && key != "layers") {
       fail("{}: unknown field '{}'", where, key);

@@ -91,3 +91,25 @@ TEST(Files, AtomicWriteCleansUpOnFailure) {
 
 } // namespace
 } // namespace sylva
+
+namespace sylva {
+namespace {
+
+TEST(Files, JsonVersionEnvelope) {
+  EXPECT_NO_THROW(requireJsonVersion(nlohmann::json{{"version", 2}}, 2, "x.json"));
+  const auto message = [](const nlohmann::json& json) {
+    try {
+      requireJsonVersion(json, 1, "rules.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(nlohmann::json::array()), "rules.json: expected a JSON object");
+  EXPECT_EQ(message(nlohmann::json{{"layers", 1}}), "rules.json: missing field 'version'");
+  EXPECT_EQ(message(nlohmann::json{{"version", "1"}}), "rules.json: field 'version' must be 1");
+  EXPECT_EQ(message(nlohmann::json{{"version", 3}}), "rules.json: field 'version' must be 1");
+}
+
+} // namespace
+} // namespace sylva

@@ -26,6 +26,13 @@ std::string readTextFile(const std::filesystem::path& path);
 /** Parses a JSON file; throws sylva::Error naming the file, line and column on syntax errors. */
 nlohmann::json loadJsonFile(const std::filesystem::path& path);
 
+/**
+ * Checks the envelope of a versioned Sylva JSON document: an object whose integer field `version` equals
+ * `expected`. Throws sylva::Error `<where>: expected a JSON object`, `<where>: missing field 'version'` or
+ * `<where>: field 'version' must be <expected>`.
+ */
+void requireJsonVersion(const nlohmann::json& json, int expected, const std::string& where);
+
 /** Writes JSON (2-space indent, trailing newline) atomically. */
 void saveJsonFile(const std::filesystem::path& path, const nlohmann::json& json);
 
