@@ -12,10 +12,16 @@ if [ -x scripts/fetch-sample-data.sh ]; then
 fi
 jobs="$(nproc 2>/dev/null || echo 2)"
 
+phase() { echo "test.sh: $1 ($(( $(date +%s) - start )) s since start)"; }
+
+phase "building release"
 scripts/build.sh release
+phase "release built; running unit + gl + golden"
 export SYLVA_REQUIRE_GL=1 SYLVA_REQUIRE_DISPLAY=1
 xvfb-run -a -s "-screen 0 1280x720x24" ctest --preset release -j "$jobs"
 
+phase "building asan (unit tests)"
 scripts/build.sh asan sylva_tests_unit
+phase "asan built; running unit"
 ctest --preset asan -j "$jobs"
-echo "test.sh: all suites passed in $(( $(date +%s) - start )) s"
+phase "all suites passed"

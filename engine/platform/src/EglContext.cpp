@@ -227,8 +227,8 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextOptions& requested
       if (context) {
         break;
       }
-      attempts.push_back(name + ": " + why);
-      log::debug("{}: {}", name, why);
+      attempts.push_back(fmt::format("{}: {}", name, why));
+      log::debug("{}", attempts.back());
     }
   } else if (options.eglPlatform != "surfaceless") {
     attempts.emplace_back("EGL_EXT_platform_device: not supported by this libEGL");

@@ -267,6 +267,7 @@ Image TerrainRenderer::downloadNormals() const {
 
 std::vector<Image> TerrainRenderer::downloadSplat() const {
   std::vector<Image> pages;
+  pages.reserve(static_cast<std::size_t>(mSplatMap.layers()));
   for (int page = 0; page < mSplatMap.layers(); ++page) {
     pages.push_back(mSplatMap.download(4, PixelType::F32, 0, page));
   }

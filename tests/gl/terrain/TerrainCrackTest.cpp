@@ -90,6 +90,11 @@ struct CrackCase {
   int tess;
 };
 
+/** Readable CTest names ("ours, level 7") instead of the struct's raw bytes. */
+void PrintTo(const CrackCase& c, std::ostream* os) {
+  *os << crackMethodName(c.method) << ", level " << c.tess;
+}
+
 class TerrainCracks : public test::GlTest, public ::testing::WithParamInterface<CrackCase> {};
 
 TEST_P(TerrainCracks, NoBackgroundThroughTheSurfaceOnJacksboro) {
