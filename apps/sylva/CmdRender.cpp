@@ -44,6 +44,7 @@ void registerRender(CLI::App& app) {
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
   command->add_option("--time", o->time, "Scene time in seconds (fixed clock: same time, same image)")
+      ->check(finiteRange(-1.0e6, 1.0e6))
       ->capture_default_str();
   command->add_option("--patches", o->demo.patches, "Demo patches per side")
       ->check(CLI::Range(1, 1024))

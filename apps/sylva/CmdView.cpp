@@ -358,8 +358,10 @@ void registerView(CLI::App& app) {
   command->add_option("--frames", o->frames, "Quit after this many frames (0: run until closed)")
       ->check(CLI::Range(0, 1000000));
   command->add_option("--screenshot", o->screenshot, "Save the last frame (with --frames) to this PNG");
-  command->add_option("--fixed-step", o->fixedStep,
-                      "Advance time by this many seconds per frame (deterministic)");
+  command
+      ->add_option("--fixed-step", o->fixedStep,
+                   "Advance time by this many seconds per frame (deterministic)")
+      ->check(finiteRange(0.0, 10.0));
   command->add_flag("--no-ui", o->noUi, "Start with the ImGui panel hidden");
   command->callback([o] { runViewer(*o); });
 }

@@ -66,7 +66,7 @@ void TerrainFlags::add(CLI::App& command) {
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
   command.add_option("--lod-factor", quadtree.lodDistanceFactor, "Split when distance < factor x node size")
-      ->check(CLI::Range(1.05f, 64.0f))
+      ->check(finiteRange(terrain::kMinRestrictedLodFactor, 64.0))
       ->capture_default_str();
 }
 

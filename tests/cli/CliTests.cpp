@@ -610,6 +610,11 @@ TEST(CliTerrain, BadInputFailsWithOneLineAndNoOutput) {
       {"query bad --at", "terrain query " + seed + " --at 1,nan", "--at"},
       {"query short --at", "terrain query " + seed + " --at 1", "--at"},
       {"query zero ray", "terrain query " + seed + " --ray 1,2,3,0,0,0", "--ray"},
+      // render shares the source options and adds its own; no context is created before they are checked.
+      {"render NaN time", "render " + seed + " --time nan -o {out}/r.png", "--time"},
+      {"render inf LOD factor", "render " + seed + " --lod-factor inf -o {out}/r.png", "--lod-factor"},
+      {"render corrupt DEM", "render --dem {in}/corrupt.png -o {out}/r.png", "corrupt.png"},
+      {"render two sources", "render --dem {in}/valid.png " + seed + " -o {out}/r.png", "--dem"},
       {"query bad ray", "terrain query " + seed + " --ray 1,2,3,4,5", "--ray"},
   };
   for (const BadInput& c : cases) {
