@@ -60,11 +60,14 @@ void TerrainFlags::add(CLI::App& command) {
       ->check(CLI::Range(1, terrain::kMaxPatchTessLevel))
       ->capture_default_str();
   command
-      .add_option("--roots", rootCount, "Number of quadtree roots (e.g. 4, 16, 32, 64; default: 512 m roots)")
+      .add_option("--roots", rootCount,
+                  "Number of quadtree roots (e.g. 4, 16, 32, 64; default: 4 across the longer side)")
       ->check(CLI::Range(1, 4096));
-  command.add_option("--max-depth", quadtree.maxDepth, "Deepest quadtree level")
-      ->check(CLI::Range(0, 16))
-      ->capture_default_str();
+  maxDepthOption =
+      command
+          .add_option("--max-depth", quadtree.maxDepth,
+                      "Deepest quadtree level (default: leaves whose vertices are half a sample apart)")
+          ->check(CLI::Range(0, 16));
   command.add_option("--lod-factor", quadtree.lodDistanceFactor, "Split when distance < factor x node size")
       ->check(finiteRange(terrain::kMinRestrictedLodFactor, 64.0))
       ->capture_default_str();
@@ -79,8 +82,15 @@ terrain::QuadtreeConfig TerrainFlags::configFor(const terrain::HeightField& fiel
     config.rootsZ = layout.rootsZ;
     config.rootSize = layout.rootSize;
   } else {
-    // Keep 512 m roots on big terrains; small DEMs get roots no larger than their extent.
-    config.rootSize = std::min(quadtree.rootSize, std::max(field.extentX(), field.extentZ()));
+    // Four roots across the longer side, whatever the terrain's size (the demo's 2048 m gives 512 m roots).
+    config.rootSize = 0.25f * std::max(field.extentX(), field.extentZ());
+  }
+  if (maxDepthOption == nullptr || maxDepthOption->count() == 0) {
+    // Deep enough that the finest leaves put two tessellated vertices per height sample, and no deeper: finer
+    // leaves would only interpolate (the demo: 512 m roots, 2 m samples, level 16 → depth 5, 16 m leaves).
+    const float spacing = std::min(field.spacingX(), field.spacingZ());
+    const float leaf = 0.5f * spacing * static_cast<float>(config.patchTessLevel);
+    config.maxDepth = std::clamp(static_cast<int>(std::round(std::log2(config.rootSize / leaf))), 0, 12);
   }
   config.method = parseCrackMethod(method);
   return config;

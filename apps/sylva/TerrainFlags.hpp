@@ -28,6 +28,7 @@ struct TerrainFlags {
   terrain::QuadtreeConfig configFor(const terrain::HeightField& field) const;
 
   int rootCount = 0;
+  CLI::Option* maxDepthOption = nullptr;
   static terrain::QuadtreeConfig defaultQuadtree();
 };
 
