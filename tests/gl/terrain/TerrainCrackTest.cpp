@@ -147,6 +147,8 @@ TEST_F(TerrainCrackCheck, FindsCracksWhenStitchingIsDisabled) {
       found = rig.cracks(CrackMethod::None, tess, pose);
     }
     EXPECT_GT(found, 0) << "no crack found at level " << tess << " in " << kPoses << " poses";
+    RecordProperty(fmt::format("level{:02}_first_pose_with_cracks", tess), pose - 1);
+    RecordProperty(fmt::format("level{:02}_crack_samples", tess), std::to_string(found));
   }
 }
 

@@ -135,6 +135,8 @@ TEST_F(TerrainGpu, DrawnSurfaceMatchesGroundQuery) {
     }
   }
   EXPECT_GT(nearPixels, w * h / 10);
+  RecordProperty("near_pixels", nearPixels);
+  RecordProperty("worst_difference_mm", std::to_string(nearWorst * 1000.0f));
   // The target: ≤ 1 cm between the CPU query and the drawn surface around the viewer.
   EXPECT_LE(nearWorst, 0.01f) << "over " << nearPixels << " pixels within 40 m";
 }
