@@ -5,6 +5,7 @@
 #include "SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
@@ -32,12 +33,6 @@
 
 namespace sylva::app {
 namespace {
-
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 /** Throws unless `path` ends in one of `allowed` (lower-case, with the dot); names the option. */
 void requireExtension(const std::string& option, const std::string& path,

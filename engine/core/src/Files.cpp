@@ -2,6 +2,8 @@
 
 #include <sylva/core/Error.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -44,6 +46,13 @@ void writeTextFile(const std::filesystem::path& path, std::string_view text) {
       fail("{}: write failed", path.string());
     }
   });
+}
+
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
 }
 
 std::string readTextFile(const std::filesystem::path& path) {

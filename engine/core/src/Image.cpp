@@ -1,6 +1,7 @@
 #include <sylva/core/Image.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
 
 #include <algorithm>
 #include <cassert>
@@ -127,12 +128,6 @@ void Image::flipVertically() {
     std::memcpy(a, b, row);
     std::memcpy(b, tmp.data(), row);
   }
-}
-
-static std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  return ext;
 }
 
 Image loadImage(const std::filesystem::path& path) {

@@ -30,12 +30,6 @@ namespace sylva::terrain {
 
 namespace detail {
 
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height) {
   if (width > kMaxHeightFieldSide || height > kMaxHeightFieldSide) {
     fail("{}: absurd size {}x{} samples (at most {} per side)", path.string(), width, height,
@@ -371,7 +365,7 @@ HeightFieldInfo heightFieldInfo(const HeightField& field) {
 
 HeightField loadHeightField(const std::filesystem::path& path, const LoadOptions& options) {
   validateOptions(path, options);
-  const std::string ext = detail::lowerExtension(path);
+  const std::string ext = lowerExtension(path);
   if (ext == ".png") {
     return loadImageHeights(path, options, true);
   }
@@ -400,7 +394,7 @@ void saveHeightField(const std::filesystem::path& path, const HeightField& field
   if (std::isinf(info.minHeight) || std::isinf(info.maxHeight)) {
     fail("{}: cannot save infinite heights", path.string());
   }
-  const std::string ext = detail::lowerExtension(path);
+  const std::string ext = lowerExtension(path);
   if (ext == ".png") {
     const bool alpha = info.absentCount > 0;
     Image image(field.width(), field.height(), alpha ? 2 : 1, PixelType::U16);

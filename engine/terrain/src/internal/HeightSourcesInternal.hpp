@@ -37,7 +37,4 @@ inline float toHeight(double value) {
                                              : std::numeric_limits<float>::quiet_NaN();
 }
 
-/** Lower-case extension including the dot, e.g. ".png". */
-std::string lowerExtension(const std::filesystem::path& path);
-
 } // namespace sylva::terrain::detail

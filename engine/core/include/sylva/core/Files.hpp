@@ -20,6 +20,9 @@ void writeFileAtomically(const std::filesystem::path& path,
 /** Writes `text` to `path` atomically; throws sylva::Error naming the file. */
 void writeTextFile(const std::filesystem::path& path, std::string_view text);
 
+/** The extension of `path` in lower case, with its dot (".png"), or "" when there is none. */
+std::string lowerExtension(const std::filesystem::path& path);
+
 /** Reads a whole file; throws sylva::Error naming the file if it is missing or unreadable. */
 std::string readTextFile(const std::filesystem::path& path);
 
