@@ -5,7 +5,11 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
 
+#include <sylva/core/Progress.hpp>
+
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <thread>
 #include <unistd.h>
@@ -51,8 +55,23 @@ int& exitCode() {
 
 } // namespace sylva::app
 
+namespace {
+
+/** Ctrl-C: long work (anything showing progress) stops cleanly, writing no partial file; otherwise quit. */
+extern "C" void onInterrupt(int signal) {
+  if (sylva::Progress::anyActive()) {
+    sylva::Progress::cancelAll();
+  } else {
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+  }
+}
+
+} // namespace
+
 int main(int argc, char** argv) {
   using namespace sylva;
+  std::signal(SIGINT, onInterrupt);
   CLI::App app{"Sylva: real-time procedural nature (terrain, grass, trees, folding textures).\n"
                "Run 'sylva <command> --help' for a command's options.",
                "sylva"};
@@ -79,6 +98,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // CLI11 reports an unknown command as a missing one; name it instead.
+    std::string commands;
+    bool known = false;
+    for (const CLI::App* command : app.get_subcommands({})) {
+      commands += (commands.empty() ? "" : ", ") + command->get_name();
+      known = known || (argc > 1 && command->get_name() == argv[1]);
+    }
+    if (argc > 1 && argv[1][0] != '-' && !known) {
+      std::fprintf(stderr, "sylva: error: unknown command '%s' (commands: %s)\n", argv[1], commands.c_str());
+      return 2;
+    }
     std::fprintf(stderr, "sylva: error: %s (see 'sylva --help')\n", e.what());
     return 2;
   } catch (const Error& e) {

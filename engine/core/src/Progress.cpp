@@ -5,12 +5,34 @@
 
 namespace sylva {
 
+namespace {
+std::atomic<int> gActive{0};
+std::atomic<bool> gCancelAll{false};
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free,
+              "SIGINT handlers may only touch lock-free atomics");
+} // namespace
+
+void Progress::cancelAll() noexcept {
+  gCancelAll.store(true);
+}
+bool Progress::anyActive() noexcept {
+  return gActive.load() > 0;
+}
+bool Progress::cancelAllRequested() noexcept {
+  return gCancelAll.load();
+}
+
 Progress::Progress(std::string label, std::size_t total)
     : mLabel(std::move(label)), mTotal(total), mStart(std::chrono::steady_clock::now()),
-      mInteractive(::isatty(STDERR_FILENO) != 0) {}
+      mInteractive(::isatty(STDERR_FILENO) != 0) {
+  ++gActive;
+}
 
 Progress::~Progress() {
   print(true);
+  if (--gActive == 0) {
+    gCancelAll.store(false);
+  }
 }
 
 void Progress::advance(std::size_t n) {
@@ -33,7 +55,7 @@ void Progress::print(bool final) {
   }
   const double fraction = mTotal == 0 ? 1.0 : static_cast<double>(mDone) / static_cast<double>(mTotal);
   std::fprintf(stderr, "\r%s: %5.1f%% (%zu/%zu) %.1fs%s", mLabel.c_str(), 100.0 * fraction, mDone.load(),
-               mTotal, static_cast<double>(ns) * 1e-9, final ? (mCancelled ? " cancelled\n" : "\n") : "");
+               mTotal, static_cast<double>(ns) * 1e-9, final ? (cancelled() ? " cancelled\n" : "\n") : "");
   std::fflush(stderr);
 }
 

@@ -1,6 +1,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Parallel.hpp>
+#include <sylva/core/Progress.hpp>
 #include <sylva/core/Random.hpp>
 
 #include "TempDir.hpp"
@@ -109,6 +110,29 @@ TEST(Files, JsonVersionEnvelope) {
   EXPECT_EQ(message(nlohmann::json{{"layers", 1}}), "rules.json: missing field 'version'");
   EXPECT_EQ(message(nlohmann::json{{"version", "1"}}), "rules.json: field 'version' must be 1");
   EXPECT_EQ(message(nlohmann::json{{"version", 3}}), "rules.json: field 'version' must be 1");
+}
+
+} // namespace
+} // namespace sylva
+
+namespace sylva {
+namespace {
+
+TEST(Progress, CancelAllReachesEveryLiveProgressAndIsForgottenAfterwards) {
+  {
+    Progress a("a", 10);
+    Progress b("b", 10);
+    EXPECT_TRUE(Progress::anyActive());
+    EXPECT_FALSE(a.cancelled());
+    Progress::cancelAll();
+    EXPECT_TRUE(a.cancelled());
+    EXPECT_TRUE(b.cancelled());
+  }
+  EXPECT_FALSE(Progress::anyActive());
+  Progress c("c", 1);
+  EXPECT_FALSE(c.cancelled()) << "a finished job's Ctrl-C must not cancel the next one";
+  c.cancel();
+  EXPECT_TRUE(c.cancelled());
 }
 
 } // namespace

@@ -23,10 +23,20 @@ public:
   void advance(std::size_t n = 1);
   /** Requests cancellation. Thread-safe. */
   void cancel() { mCancelled = true; }
-  bool cancelled() const { return mCancelled; }
+  /** True after cancel() or cancelAll(). */
+  bool cancelled() const { return mCancelled || cancelAllRequested(); }
+
+  /**
+   * Cancels every live Progress; async-signal-safe (one lock-free store), for a SIGINT handler. The request
+   * is forgotten when the last live Progress is destroyed.
+   */
+  static void cancelAll() noexcept;
+  /** True while at least one Progress exists (long work is running); async-signal-safe. */
+  static bool anyActive() noexcept;
   std::size_t done() const { return mDone; }
 
 private:
+  static bool cancelAllRequested() noexcept;
   void print(bool final);
 
   std::string mLabel;
