@@ -117,6 +117,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sylva: internal error: %s\n", e.what());
     return 3;
+  } catch (...) {
+    std::fprintf(stderr, "sylva: internal error: unknown exception\n");
+    return 3;
   }
   return app::exitCode();
 }

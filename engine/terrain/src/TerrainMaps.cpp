@@ -150,6 +150,7 @@ std::vector<Image> splatMap(const HeightField& field, const Image& normals,
     pages.emplace_back(w, h, 4, PixelType::F32);
   }
   std::vector<float*> pageData;
+  pageData.reserve(pages.size());
   for (Image& page : pages) {
     pageData.push_back(page.values<float>().data());
   }
