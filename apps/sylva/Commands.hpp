@@ -34,6 +34,15 @@ struct MachineInfo {
 };
 MachineInfo machineInfo();
 
+/** The whole `sylva` command line: every subcommand registered, callbacks running the commands. */
+struct Cli {
+  std::unique_ptr<CLI::App> app;
+  std::string logLevel = "warn";
+};
+std::unique_ptr<Cli> makeCli();
+/** Parses and runs; returns the process exit status (errors: one line on stderr, 2; internal errors: 3). */
+int runCli(Cli& cli, int argc, const char* const* argv);
+
 /** Exit code a command asks for (imgdiff: 1 when images differ); 0 by default. */
 int& exitCode();
 

@@ -8,6 +8,7 @@
 #include <png.h>
 
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -16,6 +17,9 @@
 namespace sylva {
 
 namespace {
+
+/** zlib's deflate cannot expand data by more than about 1032:1. */
+constexpr std::uint64_t kMaxInflateRatio = 1032;
 
 struct PngIo {
   const unsigned char* data = nullptr;
@@ -61,6 +65,19 @@ bool decode(PngIo& io, Allocate allocate, void* context) {
   png_set_read_fn(png, &io, readBytes);
   png_set_user_limits(png, 65536, 65536);
   png_read_info(png, info);
+  // A PNG's rows (plus one filter byte each) are zlib-deflated, which expands at most ~1032:1; a header that
+  // claims more than the file can hold is corrupt, and is rejected before a byte of pixels is allocated.
+  const std::uint64_t inflated =
+      (std::uint64_t{png_get_rowbytes(png, info)} + 1) * std::uint64_t{png_get_image_height(png, info)};
+  if (inflated > std::uint64_t{io.size} * kMaxInflateRatio + 4096) {
+    std::snprintf(
+        io.message, sizeof(io.message),
+        "truncated or corrupt PNG: a %ux%u image needs %llu bytes of pixel data, more than %zu bytes "
+        "of file can hold",
+        png_get_image_width(png, info), png_get_image_height(png, info),
+        static_cast<unsigned long long>(inflated), io.size);
+    png_longjmp(png, 1);
+  }
   const int colorType = png_get_color_type(png, info);
   const int depth = png_get_bit_depth(png, info);
   if (colorType == PNG_COLOR_TYPE_PALETTE) {

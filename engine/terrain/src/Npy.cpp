@@ -30,6 +30,8 @@ namespace {
 
 constexpr std::string_view kMagic = "\x93NUMPY";
 constexpr std::size_t kMaxHeaderBytes = 1u << 20;
+/** Deflate cannot expand data by more than about 1032:1 (RFC 1951, 258-byte matches of 2 bits). */
+constexpr std::uint64_t kMaxDeflateRatio = 1032;
 
 /** One value of the header's Python literal: a string, bool, integer, None or tuple. */
 struct PyValue {
@@ -114,7 +116,10 @@ private:
           error("unterminated string");
         }
         if (peek() == '\\') {
-          ++mPos;
+          ++mPos; // the escaped character must exist too: a backslash may not end the header
+          if (mPos >= mText.size()) {
+            error("unterminated string");
+          }
         }
         value.str += mText[mPos++];
       }
@@ -410,6 +415,7 @@ public:
     if (!std::filesystem::is_regular_file(path, ec)) {
       fail("{}: file not found", mPath);
     }
+    mFileSize = std::filesystem::file_size(path, ec);
     int code = 0;
     mZip.reset(zip_open(mPath.c_str(), ZIP_RDONLY, &code));
     if (!mZip) {
@@ -455,6 +461,11 @@ public:
     if (stat.size > kMaxHeaderBytes + kMaxHeightFieldSamples * 8) {
       fail("{}: member too large ({} bytes) for a height field", where, stat.size);
     }
+    if (limit == 0) {
+      // Never allocate what the zip directory claims before two independent checks agree with it: the
+      // member's own .npy header (read with a bounded prefix) and the compressed bytes that really exist.
+      checkClaimedSize(member, stat, where);
+    }
     ZipFilePtr file(zip_fopen_index(mZip.get(), mIndices[member], 0));
     if (!file) {
       fail("{}: cannot open member: {}", where, zip_strerror(mZip.get()));
@@ -485,6 +496,30 @@ public:
     return bytes;
   }
 
+  /**
+   * Rejects a member whose uncompressed size (from the zip directory) disagrees with its `.npy` header, or
+   * exceeds what its compressed bytes can expand to (stored: equal; deflate: at most kMaxDeflateRatio times),
+   * or whose compressed bytes exceed the archive itself. So a small file can never make us allocate much.
+   */
+  void checkClaimedSize(std::size_t member, const zip_stat_t& stat, const std::string& where) const {
+    const NpyHeader head = header(member);
+    const std::size_t implied =
+        head.dataOffset + head.elementCount() * static_cast<std::size_t>(head.itemSize);
+    if (stat.size != implied) {
+      fail("{}: corrupt archive: the member claims {} bytes but its .npy header (shape {} of {}) implies {}",
+           where, stat.size, head.shapeText(), head.descr(), implied);
+    }
+    if ((stat.valid & ZIP_STAT_COMP_SIZE) != 0) {
+      const bool stored = (stat.valid & ZIP_STAT_COMP_METHOD) != 0 && stat.comp_method == ZIP_CM_STORE;
+      const std::uint64_t most = stored ? stat.comp_size : stat.comp_size * kMaxDeflateRatio + 1024;
+      if (stat.comp_size > mFileSize || stat.size > most) {
+        fail("{}: corrupt archive: {} compressed bytes (archive: {}) cannot hold the {} bytes the member "
+             "claims",
+             where, stat.comp_size, mFileSize, stat.size);
+      }
+    }
+  }
+
   /** Header of a member, reading only its first bytes. */
   NpyHeader header(std::size_t member) const {
     const std::string where = label(mNames[member]);
@@ -513,6 +548,7 @@ public:
 
 private:
   std::string mPath;
+  std::uintmax_t mFileSize = 0;
   ZipPtr mZip;
   std::vector<std::string> mNames;
   std::vector<zip_uint64_t> mIndices;

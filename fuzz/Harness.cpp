@@ -1,0 +1,162 @@
+#include "Harness.hpp"
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/shader/Library.hpp>
+#include <sylva/shader/Preprocessor.hpp>
+#include <sylva/terrain/HeightSources.hpp>
+#include <sylva/terrain/Noise.hpp>
+#include <sylva/terrain/TerrainMaps.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace sylva::fuzz {
+
+#ifdef SYLVA_FUZZ_HAVE_CLI
+void runCliArguments(std::span<const std::uint8_t> bytes); // HarnessCli.cpp
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/** A private scratch folder for this process: loaders take paths, so inputs are written there first. */
+const fs::path& scratch() {
+  static const fs::path dir = [] {
+    fs::path base = fs::exists("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
+    fs::path d = base / ("sylva-fuzz-" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+fs::path writeInput(const std::string& name, std::span<const std::uint8_t> bytes) {
+  const fs::path path = scratch() / name;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return path;
+}
+
+/** Runs `body`; a sylva::Error is the expected rejection, anything else escapes and is a finding. */
+template <typename F> void expectCleanRejection(F&& body) {
+  try {
+    body();
+  } catch (const Error&) {
+  }
+}
+
+void heightFile(const char* name, std::span<const std::uint8_t> bytes) {
+  const fs::path path = writeInput(name, bytes);
+  expectCleanRejection([&] { (void)terrain::loadHeightField(path); });
+}
+
+void png(std::span<const std::uint8_t> bytes) {
+  const fs::path path = writeInput("input.png", bytes);
+  fs::remove(scratch() / "input.png.json");
+  expectCleanRejection([&] {
+    const Image image = loadImage(path);
+    if (image.channels() <= 2) {
+      (void)terrain::loadHeightField(path);
+    }
+  });
+}
+
+void exr(std::span<const std::uint8_t> bytes) {
+  const fs::path path = writeInput("input.exr", bytes);
+  expectCleanRejection([&] {
+    const Image image = loadImage(path);
+    if (image.channels() <= 2) {
+      (void)terrain::loadHeightField(path);
+    }
+  });
+}
+
+void npy(std::span<const std::uint8_t> bytes) {
+  heightFile("input.npy", bytes);
+}
+void npz(std::span<const std::uint8_t> bytes) {
+  heightFile("input.npz", bytes);
+}
+void gdal(std::span<const std::uint8_t> bytes) {
+  heightFile("input.tif", bytes);
+}
+
+/** Every Sylva JSON file: procedural spec, splat layers, and a height PNG's sidecar. */
+void json(std::span<const std::uint8_t> bytes) {
+  const fs::path path = writeInput("input.json", bytes);
+  expectCleanRejection([&] { (void)terrain::proceduralSpecFromJson(loadJsonFile(path), path.string()); });
+  expectCleanRejection([&] { (void)terrain::splatLayersFromJson(loadJsonFile(path), path.string()); });
+  static const fs::path heights = [] {
+    Image image(4, 4, 1, PixelType::U16);
+    const fs::path p = scratch() / "sidecar.png";
+    savePng(p, image);
+    return p;
+  }();
+  writeInput("sidecar.png.json", bytes);
+  expectCleanRejection([&] { (void)terrain::loadHeightField(heights); });
+}
+
+/**
+ * Shader preprocessor: the input is split at NUL bytes into up to four files a.glsl, b.glsl, c.glsl, d.glsl
+ * (so `#include "b.glsl"` and cycles are reachable), then a.glsl is preprocessed with two defines.
+ */
+void shader(std::span<const std::uint8_t> bytes) {
+  const fs::path dir = scratch() / "shaders";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const char* names[] = {"a.glsl", "b.glsl", "c.glsl", "d.glsl"};
+  std::size_t start = 0;
+  for (std::size_t file = 0; file < 4; ++file) {
+    std::size_t end = start;
+    while (end < bytes.size() && bytes[end] != 0) {
+      ++end;
+    }
+    if (start <= bytes.size()) {
+      std::ofstream out(dir / names[file], std::ios::binary);
+      out.write(reinterpret_cast<const char*>(bytes.data() + start),
+                static_cast<std::streamsize>(end - start));
+    }
+    start = end + 1;
+    if (start > bytes.size()) {
+      break;
+    }
+  }
+  const shader::Library library(dir);
+  expectCleanRejection([&] { (void)shader::preprocess(library, "a.glsl", {{"SYLVA_A", "1"}, {"B", ""}}); });
+}
+
+} // namespace
+
+const std::vector<Target>& targets() {
+  static const std::vector<Target> kTargets = {
+      {"png", "PNG images, 8/16-bit, and PNG height maps (loadImage, loadHeightField)", png},
+      {"exr", "OpenEXR images and EXR height maps", exr},
+      {"npy", "NumPy .npy height arrays", npy},
+      {"npz", "NumPy .npz archives (zip of .npy, with dx/dy/extent scalars)", npz},
+      {"gdal", "rasters opened through GDAL (GeoTIFF and every format GDAL identifies)", gdal},
+      {"json", "Sylva JSON files: procedural spec, splat layers, height-map sidecar", json},
+      {"shader", "the shader preprocessor's #include, #pragma once, #version and #line handling", shader},
+#ifdef SYLVA_FUZZ_HAVE_CLI
+      {"cli", "the sylva command line's option parsing and validation (commands not run)", runCliArguments},
+#endif
+  };
+  return kTargets;
+}
+
+void runTarget(std::string_view name, std::span<const std::uint8_t> bytes) {
+  for (const Target& target : targets()) {
+    if (target.name == name) {
+      target.run(bytes);
+      return;
+    }
+  }
+  throw std::invalid_argument("unknown fuzz target " + std::string(name));
+}
+
+} // namespace sylva::fuzz

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Fuzzes Sylva's loaders and parsers with libFuzzer (+ ASan/UBSan):
+#   scripts/fuzz.sh [TARGET|all] [SECONDS] [--merge]
+# TARGET: png exr npy npz gdal json shader cli (default all); SECONDS per target (default 60).
+# Each run starts from the committed seeds (fuzz/corpus/TARGET) and regression inputs (fuzz/regressions/TARGET) and
+# works in build/fuzz-work/TARGET. A crash, leak, sanitizer report, timeout (>10 s) or allocation over the limit
+# writes the input there as crash-*/leak-*/timeout-*/oom-* and makes the script fail; copy it into
+# fuzz/regressions/TARGET when fixing the defect. --merge adds inputs that reach new coverage to fuzz/corpus/TARGET.
+# Prints one summary line per target: executions, executions/s, coverage (edges) and features.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+target="${1:-all}"
+seconds="${2:-60}"
+merge="${3:-}"
+all=(png exr npy npz gdal json shader cli)
+if [ "$target" = all ]; then targets=("${all[@]}"); else targets=("$target"); fi
+for t in "${targets[@]}"; do
+  [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (targets: ${all[*]})" >&2; exit 2; }
+done
+[[ "$seconds" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2; }
+
+scripts/build.sh fuzz sylva_fuzz >/dev/null
+# Memory ceiling per input: loaders accept fields up to their documented limits, but a small input must never
+# make them allocate near this much (see docs/testing.md).
+limit_mb=2048
+status=0
+for t in "${targets[@]}"; do
+  work="build/fuzz-work/$t"
+  mkdir -p "$work/corpus"
+  seeds=("fuzz/corpus/$t")
+  [ -d "fuzz/regressions/$t" ] && seeds+=("fuzz/regressions/$t")
+  log="$work/fuzz.log"
+  set +e
+  "build/fuzz/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb="$limit_mb" \
+    -malloc_limit_mb="$limit_mb" -max_len=65536 -print_final_stats=1 -artifact_prefix="$work/" \
+    "$work/corpus" "${seeds[@]}" >"$log" 2>&1
+  rc=$?
+  set -e
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
+  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
+  cov=$(grep -o 'cov: [0-9]* ft: [0-9]*' "$log" | tail -1 || true)
+  if [ $rc -ne 0 ]; then
+    status=1
+    echo "fuzz.sh: $t FAILED after ${execs:-?} executions (exit $rc); input and log in $work/" >&2
+    grep -m3 -E 'ERROR: (AddressSanitizer|libFuzzer|UndefinedBehaviorSanitizer|LeakSanitizer)|runtime error|uncaught exception|Test unit written' "$log" >&2 || tail -5 "$log" >&2
+  else
+    echo "fuzz.sh: $t ok: $execs executions in ${seconds} s ($rate/s), ${cov:-cov: ?}"
+  fi
+  if [ "$merge" = --merge ] && [ $rc -eq 0 ]; then
+    "build/fuzz/fuzz/fuzz_$t" -merge=1 -max_len=65536 "fuzz/corpus/$t" "$work/corpus" >>"$log" 2>&1
+  fi
+done
+exit $status
