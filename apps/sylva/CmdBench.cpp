@@ -3,6 +3,8 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/Progress.hpp>
+#include <sylva/gl/Debug.hpp>
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/GpuTimers.hpp>
@@ -11,7 +13,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
+#include <numeric>
+#include <unistd.h>
 
 namespace sylva::app {
 
@@ -26,6 +31,7 @@ struct BenchOptions {
   int height = 720;
   std::string out;
   std::string area = "demo";
+  double maxGrowthPercent = 1.0;
 };
 
 /** Samples of one measured run: per-pass CPU/GPU milliseconds, wall time per frame, extra per-frame series.
@@ -233,6 +239,133 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
   report["rows"] = rows;
 }
 
+/** Resident set size of this process in bytes (Linux /proc/self/statm), 0 if unknown. */
+std::uint64_t residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t size = 0;
+  std::uint64_t resident = 0;
+  statm >> size >> resident;
+  return resident * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+}
+
+/**
+ * `bench soak`: renders the terrain scene for warmup + frames frames while the camera orbits (the LOD
+ * selection changes every frame), and reports resident memory after warm-up and at the end, GL errors
+ * (glGetError and KHR_debug errors) and the drift of frame time (mean of the last 10 % of frames against the
+ * first 10 %). Fails (exit 1) when memory grew more than `maxGrowthPercent` or any GL error occurred.
+ */
+void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
+  shader::Library library;
+  render::RenderTarget target(o.width, o.height);
+  auto scene = o.terrain.build(library);
+  const terrain::HeightField& field = scene->field();
+  const render::Camera base = scene->defaultCamera();
+  const glm::vec3 centre(0.5f * field.extentX(), base.target.y, 0.5f * field.extentZ());
+  terrain::Quadtree quadtree(o.terrain.configFor(field), field);
+  terrain::QuadtreeSelection selection;
+  terrain::TerrainDrawOptions draw;
+  draw.environment = scene->environment();
+  gl::clearDebugErrors();
+  std::size_t glErrors = 0;
+  std::vector<std::string> firstErrors;
+  std::vector<double> frameMs;
+  std::vector<std::pair<int, std::uint64_t>> rssSeries;
+  std::uint64_t rssAfterWarmup = 0;
+  Progress progress("soak", static_cast<std::size_t>(o.warmup + o.frames));
+  for (int i = 0; i < o.warmup + o.frames && !progress.cancelled(); ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    const float angle = 0.01f * static_cast<float>(i);
+    render::Camera camera = base;
+    const glm::vec3 offset = base.position - centre;
+    camera.position = centre + glm::vec3(std::cos(angle) * offset.x - std::sin(angle) * offset.z, offset.y,
+                                         std::sin(angle) * offset.x + std::cos(angle) * offset.z);
+    camera.target = centre;
+    const Frustum frustum = camera.frustum(target.aspect());
+    quadtree.select(camera.position, &frustum, selection);
+    target.begin(glm::vec4(draw.environment.fogColor, 1.0f));
+    scene->renderer().draw(selection, camera, o.width, o.height, 0.05 * i, nullptr, draw);
+    glFinish();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    for (const std::string& e : gl::drainGlErrors()) {
+      ++glErrors;
+      if (firstErrors.size() < 5) {
+        firstErrors.push_back(fmt::format("frame {}: glGetError {}", i, e));
+      }
+    }
+    for (const gl::DebugMessage& m : gl::debugErrors()) {
+      ++glErrors;
+      if (firstErrors.size() < 5) {
+        firstErrors.push_back(fmt::format("frame {}: {}", i, m.text));
+      }
+    }
+    gl::clearDebugErrors();
+    if (i + 1 == o.warmup) {
+      rssAfterWarmup = residentBytes();
+    }
+    if (i >= o.warmup) {
+      frameMs.push_back(ms);
+      const int measured = i - o.warmup + 1;
+      if (measured % std::max(1, o.frames / 20) == 0 || measured == o.frames) {
+        rssSeries.emplace_back(measured, residentBytes());
+      }
+    }
+    progress.advance();
+  }
+  if (progress.cancelled()) {
+    fail("soak cancelled after {} frames", frameMs.size());
+  }
+  if (o.warmup == 0) {
+    rssAfterWarmup = rssSeries.empty() ? residentBytes() : rssSeries.front().second;
+  }
+  const std::uint64_t rssEnd = residentBytes();
+  const double growth = 100.0 * (static_cast<double>(rssEnd) - static_cast<double>(rssAfterWarmup)) /
+                        static_cast<double>(std::max<std::uint64_t>(rssAfterWarmup, 1));
+  const std::size_t tenth = std::max<std::size_t>(1, frameMs.size() / 10);
+  const auto mean = [](auto first, auto last) {
+    return std::accumulate(first, last, 0.0) / static_cast<double>(std::distance(first, last));
+  };
+  const double early = mean(frameMs.begin(), frameMs.begin() + static_cast<std::ptrdiff_t>(tenth));
+  const double late = mean(frameMs.end() - static_cast<std::ptrdiff_t>(tenth), frameMs.end());
+  const double drift = 100.0 * (late - early) / early;
+  const render::Stats f = render::Stats::of(frameMs);
+  std::printf("soak: %d frames after %d warm-up, %dx%d, %s\n", o.frames, o.warmup, o.width, o.height,
+              gl::queryContextInfo().renderer.c_str());
+  std::printf("  resident memory: %.1f MiB after warm-up, %.1f MiB at the end (%+.3f %%, limit %.2f %%)\n",
+              static_cast<double>(rssAfterWarmup) / 1048576.0, static_cast<double>(rssEnd) / 1048576.0,
+              growth, o.maxGrowthPercent);
+  std::printf("  GL errors: %zu\n", glErrors);
+  std::printf("  frame time: median %.2f ms; first 10 %% %.2f ms, last 10 %% %.2f ms (drift %+.1f %%)\n",
+              f.median, early, late, drift);
+  report = header(o, "soak", context);
+  report["terrain"] = {{"samples", {field.width(), field.height()}}, {"source", o.terrain.source.describe()}};
+  report["rss_bytes_after_warmup"] = rssAfterWarmup;
+  report["rss_bytes_end"] = rssEnd;
+  report["rss_growth_percent"] = growth;
+  report["rss_growth_limit_percent"] = o.maxGrowthPercent;
+  nlohmann::json series = nlohmann::json::array();
+  for (const auto& [frame, bytes] : rssSeries) {
+    series.push_back({{"frame", frame}, {"rss_bytes", bytes}});
+  }
+  report["rss_series"] = series;
+  report["gl_errors"] = glErrors;
+  report["gl_error_samples"] = firstErrors;
+  report["frame_ms"] = f.toJson();
+  report["frame_ms_first_tenth"] = early;
+  report["frame_ms_last_tenth"] = late;
+  report["frame_time_drift_percent"] = drift;
+  const bool ok = glErrors == 0 && growth < o.maxGrowthPercent;
+  report["passed"] = ok;
+  if (!ok) {
+    std::fprintf(stderr, "sylva: soak failed: %s\n",
+                 glErrors > 0 ? fmt::format("{} GL errors (first: {})", glErrors, firstErrors.front()).c_str()
+                              : fmt::format("resident memory grew {:.3f} % (limit {:.2f} %)", growth,
+                                            o.maxGrowthPercent)
+                                    .c_str());
+    exitCode() = 1;
+  }
+}
+
 } // namespace
 
 void registerBench(CLI::App& app) {
@@ -241,8 +374,9 @@ void registerBench(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   command
       ->add_option("area", o->area,
-                   "demo (pipeline scene) or terrain (the paper's Table 8, both crack methods)")
-      ->check(CLI::IsMember({"demo", "terrain"}))
+                   "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or soak (long "
+                   "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure)")
+      ->check(CLI::IsMember({"demo", "terrain", "soak"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -259,11 +393,18 @@ void registerBench(CLI::App& app) {
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
   command->add_option("-o,--out", o->out, "JSON report path (default: out/bench-<area>.json)");
+  command
+      ->add_option("--max-growth", o->maxGrowthPercent,
+                   "soak: largest allowed growth of resident memory after warm-up, in percent")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
   command->callback([o] {
     auto context = platform::createHeadlessContext(o->context.options());
     nlohmann::json report;
     if (o->area == "terrain") {
       benchTerrain(*o, *context, report);
+    } else if (o->area == "soak") {
+      benchSoak(*o, *context, report);
     } else {
       benchDemo(*o, *context, report);
     }

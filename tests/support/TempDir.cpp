@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <string>
+
 #include <unistd.h>
 
 namespace sylva::test {
@@ -26,6 +29,11 @@ TempDir::~TempDir() {
 
 std::filesystem::path sourcePath(const std::string& relative) {
   return std::filesystem::path(SYLVA_SOURCE_DIR) / relative;
+}
+
+bool fullMode() {
+  const char* value = std::getenv("SYLVA_FULL");
+  return value != nullptr && std::string(value) == "1";
 }
 
 } // namespace sylva::test

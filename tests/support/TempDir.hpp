@@ -20,6 +20,12 @@ private:
   std::filesystem::path mPath;
 };
 
+/**
+ * True when SYLVA_FULL=1: heavy property tests (crack proofs, kill tests, soak) then run their full case
+ * counts instead of the CI-sized ones (docs/testing.md).
+ */
+bool fullMode();
+
 /** Path of a file in the source tree, e.g. sourcePath("data/x.png"). */
 std::filesystem::path sourcePath(const std::string& relative);
 

@@ -3,7 +3,12 @@
 #include <sylva/core/Error.hpp>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cctype>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -12,29 +17,110 @@
 
 namespace sylva {
 
+namespace {
+
+/**
+ * Temporaries of writes in progress, readable from a signal handler: fixed slots, each a path and a state
+ * (0 free, 1 being filled in, 2 valid). No allocation, no locks.
+ */
+struct TempSlot {
+  std::atomic<int> state{0};
+  char path[4096] = {};
+};
+std::array<TempSlot, 32> gTempSlots;
+
+int registerTemporary(const std::filesystem::path& tmp) {
+  const std::string text = tmp.string();
+  if (text.size() >= sizeof(TempSlot::path)) {
+    return -1;
+  }
+  for (std::size_t i = 0; i < gTempSlots.size(); ++i) {
+    int expected = 0;
+    if (gTempSlots[i].state.compare_exchange_strong(expected, 1)) {
+      std::memcpy(gTempSlots[i].path, text.c_str(), text.size() + 1);
+      gTempSlots[i].state.store(2);
+      return static_cast<int>(i);
+    }
+  }
+  return -1; // more than 32 concurrent writes: that one is simply not cleaned up on a signal
+}
+
+void unregisterTemporary(int slot) {
+  if (slot >= 0) {
+    gTempSlots[static_cast<std::size_t>(slot)].state.store(0);
+  }
+}
+
+/** `.<name>.tmp.` for `path` (built by appending: GCC 12 misreports `"." + string` under -Wrestrict). */
+std::string temporaryPrefix(const std::filesystem::path& path) {
+  std::string prefix(1, '.');
+  prefix.append(path.filename().string()).append(".tmp.");
+  return prefix;
+}
+
+/** Removes `.<name>.tmp.<pid>` files next to `path` whose writing process no longer exists. */
+void removeStaleTemporaries(const std::filesystem::path& path) {
+  const std::string prefix = temporaryPrefix(path);
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (!name.starts_with(prefix)) {
+      continue;
+    }
+    const std::string pidText = name.substr(prefix.size());
+    if (pidText.empty() || pidText.size() > 9 ||
+        !std::all_of(pidText.begin(), pidText.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      continue;
+    }
+    const auto pid = static_cast<pid_t>(std::stol(pidText));
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      std::filesystem::remove(it->path(), ignored);
+    }
+  }
+}
+
+} // namespace
+
+void removeTemporaryFilesForSignal() noexcept {
+  for (TempSlot& slot : gTempSlots) {
+    if (slot.state.load() == 2) {
+      ::unlink(slot.path);
+    }
+  }
+}
+
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& writer) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    fail("{}: cannot write: it is a directory", path.string());
+  }
   if (path.has_parent_path()) {
     std::filesystem::create_directories(path.parent_path(), ec);
     if (ec) {
       fail("{}: cannot create directory: {}", path.parent_path().string(), ec.message());
     }
   }
+  removeStaleTemporaries(path);
   // The temporary lives in the same directory so the rename is atomic on one filesystem.
-  std::filesystem::path tmp = path;
-  tmp += ".tmp." + std::to_string(::getpid());
+  const std::filesystem::path tmp = path.parent_path() / (temporaryPrefix(path) + std::to_string(::getpid()));
+  const int slot = registerTemporary(tmp);
   try {
     writer(tmp);
   } catch (...) {
     std::filesystem::remove(tmp, ec);
+    unregisterTemporary(slot);
     throw;
   }
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     std::filesystem::remove(tmp, ec);
+    unregisterTemporary(slot);
     fail("{}: cannot write: {}", path.string(), ec.message());
   }
+  unregisterTemporary(slot);
 }
 
 void writeTextFile(const std::filesystem::path& path, std::string_view text) {

@@ -13,10 +13,13 @@
 #include <ogr_srs_api.h>
 
 #include <nlohmann/json.hpp>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -106,6 +109,30 @@ struct Sidecar {
   float spacingZ = 1.0f;
 };
 
+/** Size and zlib CRC-32 of a file: what binds a sidecar to the image it was written with. */
+struct Fingerprint {
+  std::uintmax_t bytes = 0;
+  std::uint32_t crc = 0;
+};
+
+Fingerprint fingerprint(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    fail("{}: cannot open file (missing or unreadable)", path.string());
+  }
+  Fingerprint f;
+  uLong crc = crc32(0L, Z_NULL, 0);
+  std::vector<char> buffer(1 << 20);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const auto n = static_cast<std::size_t>(in.gcount());
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(buffer.data()), static_cast<uInt>(n));
+    f.bytes += n;
+  }
+  f.crc = static_cast<std::uint32_t>(crc);
+  return f;
+}
+
 std::optional<Sidecar> readSidecar(const std::filesystem::path& image) {
   const std::filesystem::path path = sidecarPath(image);
   std::error_code ec;
@@ -142,6 +169,25 @@ std::optional<Sidecar> readSidecar(const std::filesystem::path& image) {
   };
   Sidecar sidecar{number("minHeight", false), number("maxHeight", false), number("spacingX", true),
                   number("spacingZ", true)};
+  // Written since the image and its sidecar became a pair bound by the image's size and CRC: a sidecar left
+  // next to another image (an interrupted overwrite, or a file replaced by hand) must not rescale it
+  // silently.
+  if (json.contains("imageBytes") || json.contains("imageCrc32")) {
+    const nlohmann::json& bytes = field("imageBytes");
+    const nlohmann::json& crc = field("imageCrc32");
+    if (!bytes.is_number_unsigned() || !crc.is_string()) {
+      fail("{}: fields 'imageBytes' (a byte count) and 'imageCrc32' (8 hex digits) are malformed", name);
+    }
+    const Fingerprint actual = fingerprint(image);
+    const std::string actualCrc = fmt::format("{:08x}", actual.crc);
+    if (bytes.get<std::uintmax_t>() != actual.bytes || crc.get<std::string>() != actualCrc) {
+      fail("{}: does not belong to {} (written for {} bytes with CRC-32 {}, the image has {} bytes with "
+           "CRC-32 "
+           "{}); the pair was left by an interrupted write or one file was replaced",
+           name, image.string(), bytes.get<std::uintmax_t>(), crc.get<std::string>(), actual.bytes,
+           actualCrc);
+    }
+  }
   if (sidecar.maxHeight < sidecar.minHeight) {
     fail("{}: field 'maxHeight' ({}) is below 'minHeight' ({})", name, sidecar.maxHeight, sidecar.minHeight);
   }
@@ -330,15 +376,32 @@ void saveGeoTiff(const std::filesystem::path& path, const HeightField& field) {
   });
 }
 
-void saveSidecar(const std::filesystem::path& path, const HeightField& field, const HeightFieldInfo& info) {
-  nlohmann::json json;
-  json["version"] = kSidecarVersion;
-  json["format"] = kSidecarFormat;
-  json["minHeight"] = info.minHeight;
-  json["maxHeight"] = info.maxHeight;
-  json["spacingX"] = field.spacingX();
-  json["spacingZ"] = field.spacingZ();
-  saveJsonFile(sidecarPath(path), json);
+/**
+ * Writes `image` to `path` (.png or .exr) with its sidecar, as a bound pair: the image is completed in its
+ * temporary first, the sidecar (holding that image's size and CRC-32) is renamed into place, then the image.
+ * A process killed in between leaves a sidecar that does not match the image beside it, which readSidecar
+ * rejects, instead of heights silently rescaled by another run's range.
+ */
+void saveImageWithSidecar(const std::filesystem::path& path, const Image& image, const HeightField& field,
+                          const HeightFieldInfo& info, bool png) {
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    if (png) {
+      savePng(tmp, image);
+    } else {
+      saveExr(tmp, image);
+    }
+    const Fingerprint written = fingerprint(tmp);
+    nlohmann::json json;
+    json["version"] = kSidecarVersion;
+    json["format"] = kSidecarFormat;
+    json["minHeight"] = info.minHeight;
+    json["maxHeight"] = info.maxHeight;
+    json["spacingX"] = field.spacingX();
+    json["spacingZ"] = field.spacingZ();
+    json["imageBytes"] = written.bytes;
+    json["imageCrc32"] = fmt::format("{:08x}", written.crc);
+    saveJsonFile(sidecarPath(path), json);
+  });
 }
 
 } // namespace
@@ -412,13 +475,11 @@ void saveHeightField(const std::filesystem::path& path, const HeightField& field
         }
       }
     }
-    saveImage(path, image);
-    saveSidecar(path, field, info);
+    saveImageWithSidecar(path, image, field, info, true);
   } else if (ext == ".exr") {
     Image image(field.width(), field.height(), 1, PixelType::F32);
     std::copy(field.samples().begin(), field.samples().end(), image.values<float>().begin());
-    saveImage(path, image);
-    saveSidecar(path, field, info);
+    saveImageWithSidecar(path, image, field, info, false);
   } else if (ext == ".npy") {
     detail::saveNpy(path, field);
   } else if (ext == ".tif" || ext == ".tiff") {

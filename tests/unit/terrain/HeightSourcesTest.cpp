@@ -280,6 +280,39 @@ TEST(HeightSources, BrokenSidecarNamesTheField) {
   expectLoadError(dir / "h.png", "'version'");
 }
 
+// What a run killed between renaming the sidecar and renaming the image leaves: the new sidecar beside the
+// old image. Loading must refuse the pair instead of rescaling the old image by the new range.
+TEST(HeightSources, SidecarOfAnotherImageIsRejected) {
+  test::TempDir dir;
+  saveHeightField(dir / "old.png", ramp(8, 8, 1.0f, 1.0f));
+  HeightField higher = ramp(8, 8);
+  for (float& h : higher.samples()) {
+    h = 2.0f * h + 500.0f;
+  }
+  higher.at(3, 3) += 40.0f; // not a linear image of the old ramp, whose normalised PNG would be identical
+  saveHeightField(dir / "new.png", higher);
+  std::filesystem::copy_file(dir / "new.png.json", dir / "old.png.json",
+                             std::filesystem::copy_options::overwrite_existing);
+  expectLoadError(dir / "old.png", "does not belong to");
+  // The same for EXR, and a sidecar whose binding fields are malformed names them.
+  saveHeightField(dir / "a.exr", ramp(5, 5));
+  saveHeightField(dir / "b.exr", ramp(6, 5));
+  std::filesystem::copy_file(dir / "b.exr.json", dir / "a.exr.json",
+                             std::filesystem::copy_options::overwrite_existing);
+  expectLoadError(dir / "a.exr", "does not belong to");
+  nlohmann::json sidecar = loadJsonFile(dir / "new.png.json");
+  EXPECT_TRUE(sidecar.contains("imageBytes"));
+  EXPECT_EQ(sidecar.at("imageCrc32").get<std::string>().size(), 8u);
+  sidecar["imageCrc32"] = 12;
+  saveJsonFile(dir / "new.png.json", sidecar);
+  expectLoadError(dir / "new.png", "'imageCrc32'");
+  // Sidecars without the binding (older files, or written by hand) still load.
+  sidecar.erase("imageCrc32");
+  sidecar.erase("imageBytes");
+  saveJsonFile(dir / "new.png.json", sidecar);
+  EXPECT_NO_THROW((void)loadHeightField(dir / "new.png"));
+}
+
 // ---- EXR / NPY / GeoTIFF round trips ----
 
 TEST(HeightSources, ExrRoundTripIsExactWithNegativeHeightsAndHoles) {

@@ -10,12 +10,20 @@
 namespace sylva {
 
 /**
- * Writes a file atomically: `writer` fills a temporary file next to `path`, which is then renamed over
- * `path`. If `writer` throws, the temporary is removed and the exception propagates, so no half-written
- * output remains. Parent directories are created.
+ * Writes a file atomically: `writer` fills a temporary file next to `path` (named `.<name>.tmp.<pid>`), which
+ * is then renamed over `path`. So `path` is either absent, its old content, or the complete new content, even
+ * if the process is killed. If `writer` throws, the temporary is removed and the exception propagates.
+ * Temporaries left by killed processes (SIGKILL, power loss) for the same `path` are removed on the next
+ * write. Parent directories are created.
  */
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& writer);
+
+/**
+ * Removes the temporary files of writes in progress; async-signal-safe (only unlink(2)), for SIGINT/SIGTERM
+ * handlers that then end the process.
+ */
+void removeTemporaryFilesForSignal() noexcept;
 
 /** Writes `text` to `path` atomically; throws sylva::Error naming the file. */
 void writeTextFile(const std::filesystem::path& path, std::string_view text);
