@@ -23,6 +23,7 @@ void registerInfo(CLI::App& app) {
     if (options->json) {
       nlohmann::json json = info.toJson();
       json["context"] = context->description();
+      json["context_attempts"] = context->creationReport();
       json["sylva_version"] = SYLVA_VERSION;
       std::cout << json.dump(2) << "\n";
       return;
@@ -50,6 +51,12 @@ void registerInfo(CLI::App& app) {
     std::printf("  max texture size:                 %d\n", info.maxTextureSize);
     std::printf("  max SSBO size:                    %d bytes\n", info.maxShaderStorageBlockSize);
     std::printf("  timestamp query bits:             %d\n", info.timestampBits);
+    // Every EGL platform and device tried, with its reason when it failed: what to read when a GPU machine
+    // ends up on Mesa instead of its driver.
+    std::printf("context creation:\n");
+    for (const std::string& line : context->creationReport()) {
+      std::printf("  %s\n", line.c_str());
+    }
   });
 }
 

@@ -79,6 +79,7 @@ class EglContext final : public GlContext {
 public:
   EglContext(EGLDisplay display, EGLContext context, std::string description)
       : mDisplay(display), mContext(context), mDescription(std::move(description)) {}
+  void setReport(std::vector<std::string> report) { mReport = std::move(report); }
   ~EglContext() override {
     if (eglGetCurrentContext() == mContext) {
       eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
@@ -96,17 +97,19 @@ public:
   }
   std::string description() const override { return mDescription; }
   bool headless() const override { return true; }
+  std::vector<std::string> creationReport() const override { return mReport; }
 
 private:
   EGLDisplay mDisplay;
   EGLContext mContext;
   std::string mDescription;
+  std::vector<std::string> mReport;
 };
 
 /** Initialises `display` and creates a current 4.5 core context on it; returns nullptr with `why` on failure.
  */
-std::unique_ptr<GlContext> tryDisplay(EGLDisplay display, const ContextOptions& options,
-                                      const std::string& name, std::string& why) {
+std::unique_ptr<EglContext> tryDisplay(EGLDisplay display, const ContextOptions& options,
+                                       const std::string& name, std::string& why) {
   if (display == EGL_NO_DISPLAY) {
     why = "no display";
     return nullptr;
@@ -167,6 +170,71 @@ std::unique_ptr<GlContext> tryDisplay(EGLDisplay display, const ContextOptions& 
   return std::make_unique<EglContext>(display, context, name + fmt::format(", EGL {}.{}", major, minor));
 }
 
+/**
+ * Tries every EGL device (EGL_EXT_platform_device), hardware before software, appending one line per device
+ * (or one saying why devices could not be listed) to `attempts`. The entry points are resolved with
+ * eglGetProcAddress, so a libEGL that names only EGL_EXT_device_base (which includes enumeration and query)
+ * works as well as one that names EGL_EXT_device_enumeration.
+ */
+void tryDevices(const char* clientExtensions, const ContextOptions& options,
+                std::vector<std::string>& attempts, std::unique_ptr<EglContext>& context) {
+  if (!hasExtension(clientExtensions, "EGL_EXT_platform_device")) {
+    attempts.emplace_back("EGL devices: EGL_EXT_platform_device not in the client extensions");
+    return;
+  }
+  const bool enumeration = hasExtension(clientExtensions, "EGL_EXT_device_enumeration") ||
+                           hasExtension(clientExtensions, "EGL_EXT_device_base");
+  if (!enumeration) {
+    attempts.emplace_back(
+        "EGL devices: neither EGL_EXT_device_enumeration nor EGL_EXT_device_base in the client extensions");
+    return;
+  }
+  const auto queryDevices =
+      reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  const auto queryDeviceString =
+      reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  const auto platformDisplay =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  if (queryDevices == nullptr || platformDisplay == nullptr) {
+    attempts.emplace_back(fmt::format("EGL devices: libEGL returns no {}", queryDevices == nullptr
+                                                                               ? "eglQueryDevicesEXT"
+                                                                               : "eglGetPlatformDisplayEXT"));
+    return;
+  }
+  EGLint count = 0;
+  if (queryDevices(0, nullptr, &count) != EGL_TRUE || count <= 0) {
+    attempts.emplace_back(fmt::format("EGL devices: none listed ({})", eglErrorName(eglGetError())));
+    return;
+  }
+  std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
+  queryDevices(count, devices.data(), &count);
+  // Hardware devices first: Mesa lists its software rasteriser as a device too.
+  std::vector<std::pair<int, bool>> order;
+  for (int i = 0; i < count; ++i) {
+    const char* deviceExtensions =
+        queryDeviceString != nullptr ? queryDeviceString(devices[static_cast<std::size_t>(i)], EGL_EXTENSIONS)
+                                     : nullptr;
+    order.emplace_back(i, hasExtension(deviceExtensions, "EGL_MESA_device_software"));
+  }
+  std::stable_sort(order.begin(), order.end(), [](auto a, auto b) { return !a.second && b.second; });
+  for (const auto& [index, software] : order) {
+    const std::string name = fmt::format("EGL device {} ({})", index, software ? "software" : "hardware");
+    if (options.eglDevice >= 0 && index != options.eglDevice) {
+      attempts.push_back(fmt::format("{}: skipped (--egl-device {})", name, options.eglDevice));
+      continue;
+    }
+    std::string why;
+    EGLDisplay display =
+        platformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[static_cast<std::size_t>(index)], nullptr);
+    context = tryDisplay(display, options, name, why);
+    attempts.push_back(name + ": " + (context ? std::string("ok") : why));
+    log::debug("{}", attempts.back());
+    if (context) {
+      return;
+    }
+  }
+}
+
 std::string envOr(const char* name, const std::string& fallback) {
   const char* value = std::getenv(name);
   return value != nullptr && *value != '\0' ? value : fallback;
@@ -198,50 +266,22 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextOptions& requested
     fail("EGL platform '{}' is unknown (expected auto, device or surfaceless)", options.eglPlatform);
   }
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  std::vector<std::string> attempts;
-  std::unique_ptr<GlContext> context;
+  std::vector<std::string> attempts; // "<platform or device>: <ok | reason>", in the order tried
+  std::unique_ptr<EglContext> context;
 
-  if (options.eglPlatform != "surfaceless" && hasExtension(clientExtensions, "EGL_EXT_platform_device") &&
-      hasExtension(clientExtensions, "EGL_EXT_device_enumeration")) {
-    EGLint count = 0;
-    eglQueryDevicesEXT(0, nullptr, &count);
-    std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(std::max(count, 0)));
-    eglQueryDevicesEXT(count, devices.data(), &count);
-    // Hardware devices first: Mesa lists its software rasteriser as a device too.
-    std::vector<std::pair<int, bool>> order;
-    for (int i = 0; i < count; ++i) {
-      const char* deviceExtensions =
-          eglQueryDeviceStringEXT(devices[static_cast<std::size_t>(i)], EGL_EXTENSIONS);
-      order.emplace_back(i, hasExtension(deviceExtensions, "EGL_MESA_device_software"));
-    }
-    std::stable_sort(order.begin(), order.end(), [](auto a, auto b) { return !a.second && b.second; });
-    for (const auto& [index, software] : order) {
-      if (options.eglDevice >= 0 && index != options.eglDevice) {
-        continue;
-      }
-      const std::string name = fmt::format("EGL device {} ({})", index, software ? "software" : "hardware");
-      std::string why;
-      EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT,
-                                                    devices[static_cast<std::size_t>(index)], nullptr);
-      context = tryDisplay(display, options, name, why);
-      if (context) {
-        break;
-      }
-      attempts.push_back(fmt::format("{}: {}", name, why));
-      log::debug("{}", attempts.back());
-    }
-  } else if (options.eglPlatform != "surfaceless") {
-    attempts.emplace_back("EGL_EXT_platform_device: not supported by this libEGL");
+  if (options.eglPlatform != "surfaceless") {
+    tryDevices(clientExtensions, options, attempts, context);
   }
-
-  if (!context && options.eglPlatform != "device" &&
-      hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
-    std::string why;
-    EGLDisplay display =
-        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    context = tryDisplay(display, options, "EGL Mesa surfaceless", why);
-    if (!context) {
-      attempts.push_back("EGL_MESA_platform_surfaceless: " + why);
+  if (!context && options.eglPlatform != "device") {
+    if (!hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
+      attempts.emplace_back(
+          "EGL Mesa surfaceless: EGL_MESA_platform_surfaceless not in the client extensions");
+    } else {
+      std::string why;
+      EGLDisplay display =
+          eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+      context = tryDisplay(display, options, "EGL Mesa surfaceless", why);
+      attempts.push_back("EGL Mesa surfaceless: " + (context ? std::string("ok") : why));
     }
   }
   if (!context) {
@@ -249,13 +289,18 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextOptions& requested
     for (const std::string& a : attempts) {
       all += (all.empty() ? "" : "; ") + a;
     }
-    fail("no headless OpenGL 4.5 core context could be created ({})", all.empty() ? "no EGL platform" : all);
+    fail("no headless OpenGL 4.5 core context could be created ({}; EGL client extensions: {})",
+         all.empty() ? "no EGL platform" : all, clientExtensions != nullptr ? clientExtensions : "none");
   }
+  std::vector<std::string> report{
+      fmt::format("EGL client extensions: {}", clientExtensions != nullptr ? clientExtensions : "none")};
+  report.insert(report.end(), attempts.begin(), attempts.end());
+  context->setReport(std::move(report));
   gl::enableDebugOutput();
   const gl::ContextInfo info = gl::queryContextInfo();
   gl::requireSylvaFeatures(info);
   log::debug("OpenGL {} on {} via {}", info.version, info.renderer, context->description());
-  return context;
+  return std::unique_ptr<GlContext>(std::move(context));
 }
 
 } // namespace sylva::platform

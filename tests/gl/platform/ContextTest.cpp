@@ -61,6 +61,35 @@ TEST(HeadlessContext, MesaSurfacelessWorks) {
   }
 }
 
+// `sylva info` prints this report; on a GPU machine it is what tells why the driver was not used.
+TEST(HeadlessContext, CreationReportListsClientExtensionsAndEveryAttempt) {
+  SKIP_WITHOUT_EGL();
+  auto context = createHeadlessContext();
+  const std::vector<std::string> report = context->creationReport();
+  ASSERT_GE(report.size(), 2u);
+  EXPECT_EQ(report.front().rfind("EGL client extensions: ", 0), 0u) << report.front();
+  EXPECT_NE(report.front().find("EGL_EXT_platform_device"), std::string::npos) << report.front();
+  // The last attempt is the one that worked, and names the context the description names.
+  EXPECT_EQ(report.back().substr(report.back().size() - 4), ": ok") << report.back();
+  EXPECT_EQ(context->description().rfind(report.back().substr(0, report.back().size() - 4), 0), 0u)
+      << context->description() << " vs " << report.back();
+}
+
+TEST(HeadlessContext, DeviceIndexThatDoesNotExistListsEveryDevice) {
+  SKIP_WITHOUT_EGL();
+  ContextOptions options;
+  options.eglPlatform = "device";
+  options.eglDevice = 99;
+  try {
+    auto context = createHeadlessContext(options);
+    FAIL() << "device 99 should not exist: " << context->description();
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("skipped (--egl-device 99)"), std::string::npos) << message;
+    EXPECT_NE(message.find("EGL client extensions:"), std::string::npos) << message;
+  }
+}
+
 TEST(HeadlessContext, UnknownPlatformIsAClearError) {
   SKIP_WITHOUT_EGL();
   ContextOptions options;

@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace sylva::platform {
 
@@ -30,12 +31,19 @@ public:
   virtual void swapBuffers() {}
   /** True for contexts without a window. */
   virtual bool headless() const = 0;
+  /**
+   * How creation went, one line each, for `sylva info`: headless contexts list the EGL client extensions seen
+   * and every platform/device tried with its outcome (the reason when it failed); windows return nothing.
+   */
+  virtual std::vector<std::string> creationReport() const { return {}; }
 };
 
 /**
  * Creates a headless EGL context: EGL_EXT_platform_device devices first (so NVIDIA GPUs work without X),
- * hardware before software, then EGL_MESA_platform_surfaceless. Also routes KHR_debug to the log and checks
- * that the context meets Sylva's needs. Throws sylva::Error saying what is missing if none works.
+ * hardware before software, then EGL_MESA_platform_surfaceless. Devices are enumerated when the client
+ * extensions name EGL_EXT_device_enumeration or EGL_EXT_device_base (which includes it; some drivers name
+ * only that one). Also routes KHR_debug to the log and checks that the context meets Sylva's needs. Throws
+ * sylva::Error listing every attempt and its reason if none works.
  * Environment overrides: SYLVA_EGL_PLATFORM=device|surfaceless, SYLVA_EGL_DEVICE=N.
  */
 std::unique_ptr<GlContext> createHeadlessContext(const ContextOptions& options = {});
