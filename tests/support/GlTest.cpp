@@ -5,14 +5,50 @@
 #include <sylva/gl/Debug.hpp>
 
 #include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <dlfcn.h>
+#include <link.h>
 
 namespace sylva::test {
+
+namespace {
+
+/**
+ * Pins the GL driver libraries in memory (RTLD_NODELETE). Mesa unloads its driver at eglTerminate, and
+ * LeakSanitizer, which checks at exit, can then neither name the library of the allocations Mesa keeps for
+ * the process lifetime nor match them with tests/sanitizers/lsan.supp; they would be reported against our
+ * binary.
+ */
+void pinGlDrivers() {
+  std::vector<std::string> paths;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void* data) {
+        const std::string name = info->dlpi_name != nullptr ? info->dlpi_name : "";
+        if (name.find("/dri/") != std::string::npos || name.find("libgallium") != std::string::npos ||
+            name.find("libEGL_mesa") != std::string::npos || name.find("libLLVM") != std::string::npos ||
+            name.find("libglapi") != std::string::npos) {
+          static_cast<std::vector<std::string>*>(data)->push_back(name);
+        }
+        return 0;
+      },
+      &paths);
+  for (const std::string& path : paths) {
+    // A second reference that is never closed, on a library already loaded.
+    (void)dlopen(path.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+  }
+}
+
+} // namespace
 
 platform::GlContext* sharedContext(std::string* why) {
   static std::string sWhy;
   static std::unique_ptr<platform::GlContext> sContext = [] {
     try {
-      return platform::createHeadlessContext();
+      auto context = platform::createHeadlessContext();
+      pinGlDrivers();
+      return context;
     } catch (const Error& e) {
       sWhy = e.what();
       return std::unique_ptr<platform::GlContext>();

@@ -78,12 +78,12 @@ Image loadExr(const std::filesystem::path& path) {
     float* base = image.values<float>().data();
     const std::size_t xStride = sizeof(float) * names.size();
     const std::size_t yStride = xStride * static_cast<std::size_t>(width);
-    // OpenEXR addresses the buffer with absolute data-window coordinates.
-    char* origin = reinterpret_cast<char*>(base) - static_cast<std::ptrdiff_t>(window.min.x) * xStride -
-                   static_cast<std::ptrdiff_t>(window.min.y) * yStride;
+    // OpenEXR addresses the buffer with absolute data-window coordinates; Slice::Make offsets our pointer by
+    // the window's origin in integer arithmetic (forming `base - min * stride` as a pointer overflows for
+    // windows far from the origin, which fuzzing found).
     Imf::FrameBuffer frame;
     for (std::size_t c = 0; c < names.size(); ++c) {
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xStride, yStride));
+      frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, base + c, window, xStride, yStride));
     }
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
