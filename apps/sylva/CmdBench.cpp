@@ -141,13 +141,35 @@ constexpr Table8Row kTable8[] = {{4, false, 1},   {4, false, 32}, {4, true, 32},
                                  {32, true, 32},  {64, false, 1}, {64, false, 32}, {64, true, 1},
                                  {64, true, 32}};
 
-void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
+/** What the terrain benches render: the scene from the terrain flags, and an orbit around the field's centre.
+ */
+struct TerrainRig {
   shader::Library library;
-  render::RenderTarget target(o.width, o.height);
-  auto scene = o.terrain.build(library);
+  render::RenderTarget target;
+  std::unique_ptr<terrain::TerrainScene> scene;
+  render::Camera base;
+  glm::vec3 centre{0.0f};
+
+  explicit TerrainRig(const BenchOptions& o)
+      : target(o.width, o.height), scene(o.terrain.build(library)), base(scene->defaultCamera()),
+        centre(0.5f * scene->field().extentX(), base.target.y, 0.5f * scene->field().extentZ()) {}
+
+  /** The default camera turned by `angle` radians about the vertical through the centre, looking at it. */
+  render::Camera orbit(float angle) const {
+    render::Camera camera = base;
+    const glm::vec3 offset = base.position - centre;
+    camera.position = centre + glm::vec3(std::cos(angle) * offset.x - std::sin(angle) * offset.z, offset.y,
+                                         std::sin(angle) * offset.x + std::cos(angle) * offset.z);
+    camera.target = centre;
+    return camera;
+  }
+};
+
+void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
+  TerrainRig rig(o);
+  render::RenderTarget& target = rig.target;
+  const auto& scene = rig.scene;
   const terrain::HeightField& field = scene->field();
-  const render::Camera base = scene->defaultCamera();
-  const glm::vec3 centre(0.5f * field.extentX(), base.target.y, 0.5f * field.extentZ());
   report = header(o, "terrain", context);
   report["terrain"] = {{"samples", {field.width(), field.height()}},
                        {"extent_m", {field.extentX(), field.extentZ()}},
@@ -192,13 +214,7 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
       draw.environment = scene->environment();
       const Samples s = measure(o, [&](render::GpuTimers& timers, int i, Samples& out) {
         // A slow orbit around the centre: the selection changes every frame, as in a fly-through.
-        const float angle = 0.02f * static_cast<float>(i);
-        render::Camera camera = base;
-        const glm::vec3 offset = base.position - centre;
-        camera.position =
-            centre + glm::vec3(std::cos(angle) * offset.x - std::sin(angle) * offset.z, offset.y,
-                               std::sin(angle) * offset.x + std::cos(angle) * offset.z);
-        camera.target = centre;
+        const render::Camera camera = rig.orbit(0.02f * static_cast<float>(i));
         const Frustum frustum = camera.frustum(target.aspect());
         const auto start = std::chrono::steady_clock::now();
         quadtree.select(camera.position, &frustum, selection);
@@ -255,12 +271,10 @@ std::uint64_t residentBytes() {
  * first 10 %). Fails (exit 1) when memory grew more than `maxGrowthPercent` or any GL error occurred.
  */
 void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
-  shader::Library library;
-  render::RenderTarget target(o.width, o.height);
-  auto scene = o.terrain.build(library);
+  TerrainRig rig(o);
+  render::RenderTarget& target = rig.target;
+  const auto& scene = rig.scene;
   const terrain::HeightField& field = scene->field();
-  const render::Camera base = scene->defaultCamera();
-  const glm::vec3 centre(0.5f * field.extentX(), base.target.y, 0.5f * field.extentZ());
   terrain::Quadtree quadtree(o.terrain.configFor(field), field);
   terrain::QuadtreeSelection selection;
   terrain::TerrainDrawOptions draw;
@@ -274,12 +288,7 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
   Progress progress("soak", static_cast<std::size_t>(o.warmup + o.frames));
   for (int i = 0; i < o.warmup + o.frames && !progress.cancelled(); ++i) {
     const auto start = std::chrono::steady_clock::now();
-    const float angle = 0.01f * static_cast<float>(i);
-    render::Camera camera = base;
-    const glm::vec3 offset = base.position - centre;
-    camera.position = centre + glm::vec3(std::cos(angle) * offset.x - std::sin(angle) * offset.z, offset.y,
-                                         std::sin(angle) * offset.x + std::cos(angle) * offset.z);
-    camera.target = centre;
+    const render::Camera camera = rig.orbit(0.01f * static_cast<float>(i));
     const Frustum frustum = camera.frustum(target.aspect());
     quadtree.select(camera.position, &frustum, selection);
     target.begin(glm::vec4(draw.environment.fogColor, 1.0f));

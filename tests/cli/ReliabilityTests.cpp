@@ -66,6 +66,9 @@ pid_t spawnSylva(const std::vector<std::string>& args, const fs::path& cwd) {
 }
 
 int waitFor(pid_t pid) {
+  if (pid <= 0) {
+    return -1;
+  }
   int status = 0;
   ::waitpid(pid, &status, 0);
   return status;
@@ -141,13 +144,16 @@ TEST(Reliability, KilledRunsLeaveNoPartialOutputs) {
       expected.push_back(readAll(ref / output));
       ASSERT_FALSE(expected.back().empty()) << output;
     }
-    std::uniform_real_distribution<double> moment(0.0, 1.1 * seconds);
+    // Half the moments anywhere in the run, half in its last quarter, where the outputs are written.
+    std::uniform_real_distribution<double> anywhere(0.0, 1.1 * seconds);
+    std::uniform_real_distribution<double> writing(0.75 * seconds, 1.05 * seconds);
     fs::path lastKilled;
     for (int k = 0; k < killsPerJob; ++k) {
       const fs::path run = dir / (job.name + "_kill" + std::to_string(k));
       fs::create_directories(run);
-      const double delay = moment(random);
+      const double delay = k % 2 == 0 ? anywhere(random) : writing(random);
       const pid_t pid = spawnSylva(job.args, run);
+      ASSERT_GT(pid, 0); // never kill(-1, ...): that would signal every process we may signal
       std::this_thread::sleep_for(std::chrono::duration<double>(delay));
       ::kill(pid, SIGKILL);
       waitFor(pid);
@@ -191,6 +197,7 @@ void expectCleanInterrupt(const std::vector<std::string>& args, const std::strin
   const fs::path run = dir / name;
   fs::create_directories(run);
   const pid_t pid = spawnSylva(args, run);
+  ASSERT_GT(pid, 0);
   std::this_thread::sleep_for(std::chrono::duration<double>(fraction * seconds));
   ::kill(pid, SIGINT);
   const int raw = waitFor(pid);

@@ -103,6 +103,15 @@ void writeFileAtomically(const std::filesystem::path& path,
       fail("{}: cannot create directory: {}", path.parent_path().string(), ec.message());
     }
   }
+  // Writing into one of this process's own temporaries (a writer that itself calls an atomic save, as the
+  // image + sidecar pair does): the outer rename already makes the result atomic, and a second temporary
+  // would be one that stale-temporary cleanup cannot recognise.
+  const std::string name = path.filename().string();
+  const std::string ownSuffix = ".tmp." + std::to_string(::getpid());
+  if (name.starts_with(".") && name.ends_with(ownSuffix)) {
+    writer(path);
+    return;
+  }
   removeStaleTemporaries(path);
   // The temporary lives in the same directory so the rename is atomic on one filesystem.
   const std::filesystem::path tmp = path.parent_path() / (temporaryPrefix(path) + std::to_string(::getpid()));

@@ -8,9 +8,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <fstream>
+#include <string>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace sylva {
 namespace {
@@ -88,6 +93,45 @@ TEST(Files, AtomicWriteCleansUpOnFailure) {
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
   saveJsonFile(dir / "sub/ok.json", nlohmann::json{{"version", 1}});
   EXPECT_EQ(loadJsonFile(dir / "sub/ok.json")["version"], 1);
+}
+
+std::vector<std::string> entries(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    names.push_back(e.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A SIGKILLed writer leaves its temporary; the next write of the same file removes it (its process is gone),
+// and leaves alone temporaries of other files and of live processes.
+TEST(Files, NextWriteRemovesTemporariesOfDeadWriters) {
+  test::TempDir dir;
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::_exit(0);
+  }
+  ::waitpid(child, nullptr, 0); // a pid that no longer runs
+  const std::string dead = ".out.txt.tmp." + std::to_string(child);
+  const std::string alive = ".out.txt.tmp.1"; // init: always alive
+  const std::string other = ".other.txt.tmp." + std::to_string(child);
+  for (const std::string& name : {dead, alive, other}) {
+    std::ofstream(dir / name) << "partial";
+  }
+  writeTextFile(dir / "out.txt", "complete");
+  EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{other, alive, "out.txt"}));
+}
+
+// An atomic save called on one of this process's own temporaries (an image written inside the writer of its
+// sidecar pair) writes straight into it: no temporary of a temporary.
+TEST(Files, AtomicWriteIntoOwnTemporaryNeedsNoSecondTemporary) {
+  test::TempDir dir;
+  writeFileAtomically(dir / "pair.png", [&](const std::filesystem::path& tmp) {
+    writeTextFile(tmp, "image");
+    EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{tmp.filename().string()}));
+  });
+  EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"pair.png"}));
 }
 
 } // namespace
