@@ -175,6 +175,12 @@ nlohmann::json loadJsonFile(const std::filesystem::path& path) {
       }
     }
     fail("{}:{}:{}: invalid JSON", path.string(), line, column);
+  } catch (const nlohmann::json::exception& e) {
+    // Not a syntax error but a value the parser cannot hold (a number overflowing a double, found by
+    // fuzzing): keep nlohmann's reason, without its "[json.exception.out_of_range.406] " tag.
+    std::string reason = e.what();
+    const auto tag = reason.find("] ");
+    fail("{}: invalid JSON: {}", path.string(), tag == std::string::npos ? reason : reason.substr(tag + 2));
   }
 }
 

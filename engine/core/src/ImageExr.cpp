@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <exception>
 #include <filesystem>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,14 @@ Image loadExr(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) {
     fail("{}: cannot open file (missing)", path.string());
   }
+  // OpenEXR sizes its line buffers and decompressors from the header while opening the file, before we see
+  // it: a 300-byte header once asked for 2 GB (found by fuzzing). Its own sanity check then refuses images
+  // and tiles larger than our Image accepts (65536 per side).
+  static std::once_flag limits;
+  std::call_once(limits, [] {
+    Imf::Header::setMaxImageSize(65536, 65536);
+    Imf::Header::setMaxTileSize(65536, 65536);
+  });
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();

@@ -22,7 +22,10 @@ std::optional<std::string> Library::read(const std::string& path) const {
     return std::string(it->second);
   }
   const std::filesystem::path file = mDirectory / path;
-  if (!std::filesystem::is_regular_file(file)) {
+  // The error_code overload: a name the filesystem refuses (too long, bad characters) is simply not there,
+  // rather than a filesystem_error escaping the preprocessor (found by fuzzing).
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
     return std::nullopt;
   }
   return readTextFile(file);

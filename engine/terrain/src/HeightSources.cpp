@@ -304,6 +304,19 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   const bool flipX = haveTransform && axisAligned && gt[1] < 0.0;
   const bool flipZ = haveTransform && axisAligned && gt[5] > 0.0;
 
+  // Blocks a file declares but does not hold (sparse or cut-off GeoTIFF strips and tiles) read back as zeros
+  // without any error. Without nodata to mark them absent that is wrong ground, so refuse before reading: a
+  // 200-byte TIFF claiming 15k x 16k samples made us allocate a gigabyte of zeros (found by fuzzing).
+  double coverage = 100.0;
+  const int status = GDALGetDataCoverageStatus(band, 0, 0, width, height, 0, &coverage);
+  if (allValid && (status & GDAL_DATA_COVERAGE_STATUS_EMPTY) != 0) {
+    fail("{}: {:.3g} % of the raster's blocks are missing from the file (truncated or corrupt; no nodata "
+         "value "
+         "to mark them absent)",
+         name, 100.0 - coverage);
+  }
+  CPLErrorReset();
+
   HeightField field(width, height);
   std::vector<double> row(static_cast<std::size_t>(width));
   std::vector<unsigned char> maskRow(static_cast<std::size_t>(width), 1);

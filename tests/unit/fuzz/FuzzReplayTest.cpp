@@ -6,6 +6,7 @@
 #include "TempDir.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 
 #include <gtest/gtest.h>
@@ -85,6 +86,37 @@ TEST(FuzzRegressions, NpzMemberClaimingGigabytesIsRejectedBeforeAllocating) {
   } catch (const sylva::Error& e) {
     EXPECT_NE(std::string(e.what()).find("corrupt archive"), std::string::npos) << e.what();
   }
+}
+
+/** The one-line message loading `relative` (a committed regression input) fails with. */
+std::string loadError(const std::string& relative) {
+  try {
+    (void)sylva::terrain::loadHeightField(sylva::test::sourcePath(relative));
+  } catch (const sylva::Error& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+TEST(FuzzRegressions, TiffWithoutItsBlocksIsRejectedBeforeReadingZeros) {
+  EXPECT_NE(loadError("fuzz/regressions/gdal/tiff-claims-15k-by-16k-without-blocks.tif")
+                .find("blocks are missing from the file"),
+            std::string::npos);
+}
+
+TEST(FuzzRegressions, JsonNumberOverflowIsInvalidJson) {
+  try {
+    (void)sylva::loadJsonFile(sylva::test::sourcePath("fuzz/regressions/json/number-overflows-double.json"));
+    FAIL() << "parsed";
+  } catch (const sylva::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("invalid JSON: number overflow"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FuzzRegressions, IncludeNameTooLongIsAMissingInclude) {
+  const std::vector<std::uint8_t> bytes =
+      readBytes(sylva::test::sourcePath("fuzz/regressions/shader/include-name-too-long.glsl"));
+  EXPECT_NO_THROW(sylva::fuzz::runTarget("shader", bytes));
 }
 
 } // namespace
