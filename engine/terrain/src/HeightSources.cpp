@@ -33,7 +33,8 @@ namespace sylva::terrain {
 
 namespace detail {
 
-void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height) {
+void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height,
+                          std::size_t maxSamples) {
   if (width > kMaxHeightFieldSide || height > kMaxHeightFieldSide) {
     fail("{}: absurd size {}x{} samples (at most {} per side)", path.string(), width, height,
          kMaxHeightFieldSide);
@@ -41,14 +42,13 @@ void checkHeightFieldSize(const std::filesystem::path& path, long long width, lo
   if (width < 2 || height < 2) {
     fail("{}: {}x{} samples; a height field needs at least 2x2", path.string(), width, height);
   }
-  if (static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > kMaxHeightFieldSamples) {
-    fail("{}: absurd size {}x{} samples (at most {} in all)", path.string(), width, height,
-         kMaxHeightFieldSamples);
+  if (static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > maxSamples) {
+    fail("{}: absurd size {}x{} samples (at most {} in all)", path.string(), width, height, maxSamples);
   }
 }
 
 void finishHeightField(const std::filesystem::path& path, HeightField& field, const LoadOptions& options) {
-  checkHeightFieldSize(path, field.width(), field.height());
+  checkHeightFieldSize(path, field.width(), field.height(), options.maxSamples);
   if (options.spacing > 0.0f) {
     field.setSpacing(options.spacing, options.spacing);
   }
@@ -92,6 +92,10 @@ void requireFile(const std::filesystem::path& path) {
 }
 
 void validateOptions(const std::filesystem::path& path, const LoadOptions& options) {
+  if (options.maxSamples < 4 || options.maxSamples > kMaxHeightFieldSamples) {
+    fail("{}: absurd maxSamples {} (must be 4..{})", path.string(), options.maxSamples,
+         kMaxHeightFieldSamples);
+  }
   if (!std::isfinite(options.heightScale) || options.heightScale <= 0.0f) {
     fail("{}: absurd heightScale {} (must be finite and > 0 metres)", path.string(), options.heightScale);
   }
@@ -201,7 +205,7 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
   if (image.channels() > 2) {
     fail("{}: height images must be grey (or grey+alpha), got {} channels", path.string(), image.channels());
   }
-  detail::checkHeightFieldSize(path, image.width(), image.height());
+  detail::checkHeightFieldSize(path, image.width(), image.height(), options.maxSamples);
   const std::optional<Sidecar> sidecar = readSidecar(path);
   HeightField field(image.width(), image.height());
   if (sidecar) {
@@ -225,7 +229,12 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
 
 void registerGdal() {
   static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
+  std::call_once(once, [] {
+    GDALAllRegister();
+    // We read rasters once, row by row: a row of blocks is all the cache needs. GDAL's default (5 % of RAM)
+    // let a reader hold over a gigabyte of blocks on top of the field itself.
+    GDALSetCacheMax64(std::int64_t{256} << 20);
+  });
 }
 
 /** Silences GDAL's stderr printing for the current thread and collects the last message instead. */
@@ -283,7 +292,7 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   }
   const int width = GDALGetRasterXSize(dataset.get());
   const int height = GDALGetRasterYSize(dataset.get());
-  detail::checkHeightFieldSize(path, width, height);
+  detail::checkHeightFieldSize(path, width, height, options.maxSamples);
   GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
   if (GDALDataTypeIsComplex(GDALGetRasterDataType(band))) {
     fail("{}: band 1 holds complex numbers, not heights", name);
@@ -309,7 +318,7 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   // 200-byte TIFF claiming 15k x 16k samples made us allocate a gigabyte of zeros (found by fuzzing).
   double coverage = 100.0;
   const int status = GDALGetDataCoverageStatus(band, 0, 0, width, height, 0, &coverage);
-  if (allValid && (status & GDAL_DATA_COVERAGE_STATUS_EMPTY) != 0) {
+  if ((status & GDAL_DATA_COVERAGE_STATUS_EMPTY) != 0 && (allValid || coverage <= 0.0)) {
     fail("{}: {:.3g} % of the raster's blocks are missing from the file (truncated or corrupt; no nodata "
          "value "
          "to mark them absent)",

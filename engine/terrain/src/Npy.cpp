@@ -345,7 +345,7 @@ const std::byte* dataOf(std::span<const std::byte> bytes, const NpyHeader& heade
 
 /** A 2D array as a HeightField with 1 m spacing (rows = shape[0] north to south, columns = shape[1]). */
 HeightField toHeightField(std::span<const std::byte> bytes, const std::string& where,
-                          const std::filesystem::path& path) {
+                          const std::filesystem::path& path, std::size_t maxSamples) {
   const NpyHeader header = parseHeader(bytes, where);
   if (header.shape.size() != 2) {
     fail("{}: expected a 2D array, got shape {}", where, header.shapeText());
@@ -353,7 +353,7 @@ HeightField toHeightField(std::span<const std::byte> bytes, const std::string& w
   const long long rows = header.shape[0];
   const long long cols = header.shape[1];
   try {
-    checkHeightFieldSize(path, cols, rows);
+    checkHeightFieldSize(path, cols, rows, maxSamples);
   } catch (const Error& e) {
     // Re-label with the array name for .npz members; checkHeightFieldSize names only the file.
     const std::string message = e.what();
@@ -600,7 +600,7 @@ void applyNpzSpacing(const NpzArchive& archive, HeightField& field, const LoadOp
 
 HeightField loadNpy(const std::filesystem::path& path, const LoadOptions& options) {
   const std::vector<std::byte> bytes = readWholeFile(path);
-  HeightField field = toHeightField(bytes, path.string(), path);
+  HeightField field = toHeightField(bytes, path.string(), path, options.maxSamples);
   finishHeightField(path, field, options);
   return field;
 }
@@ -631,7 +631,7 @@ HeightField loadNpz(const std::filesystem::path& path, const LoadOptions& option
     }
   }
   const std::vector<std::byte> bytes = archive.read(member);
-  HeightField field = toHeightField(bytes, archive.label(archive.names()[member]), path);
+  HeightField field = toHeightField(bytes, archive.label(archive.names()[member]), path, options.maxSamples);
   applyNpzSpacing(archive, field, options, path.string());
   finishHeightField(path, field, options);
   return field;

@@ -10,9 +10,10 @@
 
 namespace sylva::terrain::detail {
 
-/** Throws `<file>: ...` unless width × height is within 2..kMaxHeightFieldSide per side and the sample
- * budget. */
-void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height);
+/** Throws `<file>: ...` unless width × height is within 2..kMaxHeightFieldSide per side and `maxSamples`
+ * (LoadOptions::maxSamples) in all. */
+void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height,
+                          std::size_t maxSamples = kMaxHeightFieldSamples);
 
 /**
  * Common last step of every loader: applies LoadOptions::spacing, turns non-finite samples into NaN, checks

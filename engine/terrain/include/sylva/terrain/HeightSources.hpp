@@ -73,6 +73,11 @@ struct LoadOptions {
   std::string npzArray;
   /** How `.npz` spacing members are interpreted. */
   NpzSpacing npzSpacing = NpzSpacing::Auto;
+  /**
+   * Largest field accepted, in samples (4..kMaxHeightFieldSamples), checked before anything is allocated: a
+   * memory guard for services and fuzzing, where a small file may legitimately claim a huge sparse raster.
+   */
+  std::size_t maxSamples = kMaxHeightFieldSamples;
 };
 
 /** Summary of a height field's valid samples. */
