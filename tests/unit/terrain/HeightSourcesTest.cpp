@@ -313,6 +313,21 @@ TEST(HeightSources, SidecarOfAnotherImageIsRejected) {
   EXPECT_NO_THROW((void)loadHeightField(dir / "new.png"));
 }
 
+TEST(HeightSources, MaxSamplesIsCheckedBeforeLoadingEveryFormat) {
+  test::TempDir dir;
+  LoadOptions options;
+  options.maxSamples = 24; // a 5x5 field has 25
+  for (const char* name : {"h.png", "h.exr", "h.npy", "h.tif"}) {
+    saveHeightField(dir / name, ramp(5, 5));
+    expectLoadError(dir / name, "at most 24 in all", options);
+    options.maxSamples = 25;
+    EXPECT_NO_THROW((void)loadHeightField(dir / name, options)) << name;
+    options.maxSamples = 24;
+  }
+  options.maxSamples = 3;
+  expectLoadError(dir / "h.npy", "absurd maxSamples", options);
+}
+
 // ---- EXR / NPY / GeoTIFF round trips ----
 
 TEST(HeightSources, ExrRoundTripIsExactWithNegativeHeightsAndHoles) {
