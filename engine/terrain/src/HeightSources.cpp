@@ -26,6 +26,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -227,6 +228,9 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
 
 // ---- GDAL ----
 
+/** Largest decoded GDAL block we let GDAL allocate: 1 GiB (a single-strip 16k x 16k float DEM). */
+constexpr double kMaxBlockBytes = 1024.0 * 1048576.0;
+
 void registerGdal() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -312,6 +316,26 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   const bool axisAligned = gt[2] == 0.0 && gt[4] == 0.0;
   const bool flipX = haveTransform && axisAligned && gt[1] < 0.0;
   const bool flipZ = haveTransform && axisAligned && gt[5] > 0.0;
+
+  // GDAL decodes whole blocks (strips or tiles, all bands at once for pixel-interleaved files) into buffers
+  // it allocates from the header. A 200-byte TIFF with an absurd strip made GDAL allocate 4.7 GB (found by
+  // fuzzing); real DEMs use blocks of a few rows or 256-512 tiles. Refuse blocks larger than twice the raster
+  // (tiles may overhang the edge) and than kMaxBlockBytes.
+  int blockX = 0;
+  int blockY = 0;
+  GDALGetBlockSize(band, &blockX, &blockY);
+  const double typeBytes = GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band));
+  const char* interleave = GDALGetMetadataItem(dataset.get(), "INTERLEAVE", "IMAGE_STRUCTURE");
+  const int bands = GDALGetRasterCount(dataset.get());
+  const double blockBands = interleave != nullptr && std::string_view(interleave) == "PIXEL" ? bands : 1;
+  const double blockBytes = static_cast<double>(blockX) * blockY * typeBytes * blockBands;
+  const double rasterBytes = static_cast<double>(width) * height * typeBytes * blockBands;
+  if (blockBytes > std::max(2.0 * rasterBytes, 1048576.0) || blockBytes > kMaxBlockBytes) {
+    fail("{}: blocks of {}x{} samples x {} bands ({:.0f} MiB each) are not a plausible layout for a {}x{} "
+         "raster "
+         "(corrupt header?)",
+         name, blockX, blockY, blockBands, blockBytes / 1048576.0, width, height);
+  }
 
   // Blocks a file declares but does not hold (sparse or cut-off GeoTIFF strips and tiles) read back as zeros
   // without any error. Without nodata to mark them absent that is wrong ground, so refuse before reading: a
