@@ -23,10 +23,11 @@ function(sylva_add_module name)
   set_target_properties(sylva_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endfunction()
 
-# sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...>)
+# sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...> [LOCK <resource>])
 # One GoogleTest executable per (module, tier); every test case becomes a CTest test carrying the label.
+# LOCK: a CTest RESOURCE_LOCK shared by executables whose tests must not run at the same time.
 function(sylva_add_test name)
-  cmake_parse_arguments(ARG "" "LABEL" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "LABEL;LOCK" "SOURCES;DEPS" ${ARGN})
   if(NOT ARG_SOURCES)
     message(STATUS "Test ${name} has no sources yet; skipped")
     return()
@@ -36,9 +37,13 @@ function(sylva_add_test name)
   target_compile_options(${name} PRIVATE ${SYLVA_WARNINGS})
   target_compile_definitions(${name} PRIVATE
     SYLVA_SOURCE_DIR="${PROJECT_SOURCE_DIR}" SYLVA_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  set(lock)
+  if(ARG_LOCK)
+    set(lock RESOURCE_LOCK ${ARG_LOCK})
+  endif()
   gtest_discover_tests(${name}
     DISCOVERY_MODE PRE_TEST
-    PROPERTIES LABELS ${ARG_LABEL} ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}"
+    PROPERTIES LABELS ${ARG_LABEL} ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}" ${lock}
     DISCOVERY_TIMEOUT 60)
   add_dependencies(sylva_tests_${ARG_LABEL} ${name})
 endfunction()
