@@ -4,6 +4,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/Limits.hpp>
 
 #include <png.h>
 
@@ -17,9 +18,6 @@
 namespace sylva {
 
 namespace {
-
-/** zlib's deflate cannot expand data by more than about 1032:1. */
-constexpr std::uint64_t kMaxInflateRatio = 1032;
 
 struct PngIo {
   const unsigned char* data = nullptr;
@@ -69,7 +67,7 @@ bool decode(PngIo& io, Allocate allocate, void* context) {
   // claims more than the file can hold is corrupt, and is rejected before a byte of pixels is allocated.
   const std::uint64_t inflated =
       (std::uint64_t{png_get_rowbytes(png, info)} + 1) * std::uint64_t{png_get_image_height(png, info)};
-  if (inflated > std::uint64_t{io.size} * kMaxInflateRatio + 4096) {
+  if (inflated > std::uint64_t{io.size} * kMaxDeflateRatio + 4096) {
     std::snprintf(
         io.message, sizeof(io.message),
         "truncated or corrupt PNG: a %ux%u image needs %llu bytes of pixel data, more than %zu bytes "

@@ -7,6 +7,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/Limits.hpp>
 
 #include <zip.h>
 
@@ -30,8 +31,6 @@ namespace {
 
 constexpr std::string_view kMagic = "\x93NUMPY";
 constexpr std::size_t kMaxHeaderBytes = 1u << 20;
-/** Deflate cannot expand data by more than about 1032:1 (RFC 1951, 258-byte matches of 2 bits). */
-constexpr std::uint64_t kMaxDeflateRatio = 1032;
 
 /** One value of the header's Python literal: a string, bool, integer, None or tuple. */
 struct PyValue {
