@@ -269,7 +269,8 @@ void registerTerrainInfo(CLI::App& terrainCommand) {
   o->source.add(*command);
   command->add_flag("--json", o->json, "Print JSON instead of text");
   command->callback([o] {
-    const terrain::HeightField field = o->source.load();
+    terrain::LoadReport report;
+    const terrain::HeightField field = o->source.load(&report);
     const terrain::HeightFieldInfo info = terrain::heightFieldInfo(field);
     const terrain::QuadtreeConfig config =
         terrain::QuadtreeConfig::forRootCount(16, field.extentX(), field.extentZ());
@@ -289,6 +290,10 @@ void registerTerrainInfo(CLI::App& terrainCommand) {
                                    {"maxHeight", info.maxHeight},
                                    {"validSamples", info.validCount},
                                    {"absentSamples", info.absentCount},
+                                   {"horizontalUnits", report.units},
+                                   {"horizontalUnitsReason", report.reason},
+                                   {"orientation", report.orientation},
+                                   {"warnings", report.warnings},
                                    {"quadtree",
                                     {{"roots", 16},
                                      {"rootsX", used.rootsX},
@@ -297,13 +302,29 @@ void registerTerrainInfo(CLI::App& terrainCommand) {
                                      {"maxDepth", used.maxDepth},
                                      {"leafSize", leafSize},
                                      {"minMaxBytes", tree.memoryBytes()}}}};
-      std::printf("%s\n", json.dump(2).c_str());
+      nlohmann::json out = json;
+      if (report.units == "degrees") {
+        out["latitude"] = {{"centre", report.centreLatitude},
+                           {"south", report.southLatitude},
+                           {"north", report.northLatitude},
+                           {"eastWestError", report.eastWestError}};
+      }
+      std::printf("%s\n", out.dump(2).c_str());
       return;
     }
     std::printf("source    %s\n", o->source.describe().c_str());
     std::printf("size      %d x %d samples\n", field.width(), field.height());
     std::printf("spacing   %s x %s m\n", fmt::format("{:.6g}", field.spacingX()).c_str(),
                 fmt::format("{:.6g}", field.spacingZ()).c_str());
+    std::printf("units     %s: %s\n", report.units == "none" ? "none (1 m per sample)" : report.units.c_str(),
+                report.reason.c_str());
+    if (report.units == "degrees") {
+      std::printf("latitude  %.4f .. %.4f, converted at %.4f (east-west distances off by up to %.2f%% on the "
+                  "outer rows)\n",
+                  report.southLatitude, report.northLatitude, report.centreLatitude,
+                  100.0 * report.eastWestError);
+    }
+    std::printf("rows      %s\n", report.orientation.c_str());
     std::printf("extent    %s x %s m\n", fmt::format("{:.6g}", field.extentX()).c_str(),
                 fmt::format("{:.6g}", field.extentZ()).c_str());
     std::printf("height    %.3f .. %.3f m (range %.3f m)\n", static_cast<double>(info.minHeight),

@@ -4,6 +4,8 @@
 // bench): one parser, one set of checks, one loader.
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
@@ -13,6 +15,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -46,13 +49,21 @@ inline CLI::Validator finiteRange(double lo, double hi) {
       fmt::format("FLOAT in [{:g}, {:g}]", lo, hi));
 }
 
-/** A CLI11 check: a whole number ≥ 0 written with digits only (no sign, which would wrap for uint64). */
+/**
+ * A CLI11 check: a whole number in [0, 2^64 - 1] written with digits only (no sign, which would wrap, and no
+ * value CLI11 would clamp silently).
+ */
 inline CLI::Validator unsignedInteger() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        if (text.empty() || text.size() > 20 ||
+        if (text.empty() ||
             !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c) != 0; })) {
           return fmt::format("'{}' is not a whole number >= 0", text);
+        }
+        errno = 0;
+        (void)std::strtoull(text.c_str(), nullptr, 10);
+        if (errno == ERANGE) {
+          return fmt::format("'{}' is larger than 18446744073709551615 (2^64 - 1)", text);
         }
         return {};
       },
@@ -65,17 +76,20 @@ inline CLI::Validator unsignedInteger() {
  * throws sylva::Error naming the option or file.
  */
 struct SourceOptions {
-  /** CLI defaults for the procedural source (the `terrain` subcommands' plain fBm). */
-  SourceOptions() = default;
+  /**
+   * The default landscape (terrain::defaultLandscapeSpec on the default grid), as `render` uses: the same
+   * --seed gives the same heights in every command. A height source must be given.
+   */
+  SourceOptions();
   /** Defaults from `spec` and a size × size field at `spacing` metres (render/view/bench use the demo). */
   SourceOptions(const terrain::ProceduralSpec& spec, int size, float spacing);
 
   std::string dem;
-  std::uint64_t seed = 1;
-  std::string type = "fbm";
-  int size = 1025;
-  float spacing = 1.0f;
-  float heightScale = 200.0f;
+  std::uint64_t seed = 7;
+  std::string type = "warped";
+  int size = terrain::kDefaultProceduralSize;
+  float spacing = terrain::kDefaultProceduralSpacing;
+  float heightScale = 400.0f;
   /** When neither --dem nor --seed/--spec is given: true = use the defaults above; false = an error. */
   bool defaultToProcedural = false;
   /** Procedural parameters not exposed as options (octaves, frequency, ...), from the defaults' spec. */
@@ -83,6 +97,8 @@ struct SourceOptions {
   std::string spec;
   float pngScale = 100.0f;
   std::string npzArray;
+  bool geographic = false;
+  bool flipY = false;
 
   CLI::Option* demOption = nullptr;
   CLI::Option* seedOption = nullptr;
@@ -93,6 +109,8 @@ struct SourceOptions {
   CLI::Option* specOption = nullptr;
   CLI::Option* pngScaleOption = nullptr;
   CLI::Option* npzArrayOption = nullptr;
+  CLI::Option* geographicOption = nullptr;
+  CLI::Option* flipYOption = nullptr;
 
   void add(CLI::App& command) {
     demOption = command.add_option("--dem", dem,
@@ -129,6 +147,13 @@ struct SourceOptions {
             ->capture_default_str();
     npzArrayOption =
         command.add_option("--npz-array", npzArray, "Array inside an .npz DEM (default: the first 2D array)");
+    geographicOption = command.add_flag(
+        "--geographic", geographic,
+        "The DEM's coordinates are longitude/latitude degrees, whatever the file says (converted to metres "
+        "at the centre latitude; see docs/terrain-data.md)");
+    flipYOption = command.add_flag("--flip-y", flipY,
+                                   "Reverse the DEM's rows after reading (when its coordinates are missing or "
+                                   "wrong about which edge is north)");
   }
 
   /** True when the heights come from the generator (--seed/--spec, or no --dem with defaultToProcedural). */
@@ -155,7 +180,7 @@ struct SourceOptions {
         fail("--dem: empty file name");
       }
     } else {
-      for (const CLI::Option* option : {pngScaleOption, npzArrayOption}) {
+      for (const CLI::Option* option : {pngScaleOption, npzArrayOption, geographicOption, flipYOption}) {
         if (option->count() > 0) {
           fail("{}: applies to --dem only", option->get_name());
         }
@@ -194,15 +219,38 @@ struct SourceOptions {
                        terrain::procedureTypeName(s.type), s.seed, size, size, spacing, s.heightScale);
   }
 
-  /** Loads or generates the height field; throws sylva::Error naming the file or option. */
-  terrain::HeightField load() const {
+  /** The DEM reading options (--png-scale, --spacing, --npz-array, --geographic, --flip-y). */
+  terrain::LoadOptions loadOptions() const {
+    terrain::LoadOptions options;
+    options.heightScale = pngScale;
+    options.spacing = spacingOption->count() > 0 ? spacing : 0.0f;
+    options.npzArray = npzArray;
+    options.horizontal = geographic ? terrain::HorizontalUnits::Degrees : terrain::HorizontalUnits::Auto;
+    options.flipY = flipY;
+    return options;
+  }
+
+  /**
+   * Loads or generates the height field; throws sylva::Error naming the file or option. `report` (may be
+   * null) receives what the DEM loader assumed; a procedural field reports metres.
+   */
+  terrain::HeightField load(terrain::LoadReport* report = nullptr) const {
     check();
     if (!procedural()) {
-      terrain::LoadOptions options;
-      options.heightScale = pngScale;
-      options.spacing = spacingOption->count() > 0 ? spacing : 0.0f;
-      options.npzArray = npzArray;
-      return terrain::loadHeightField(dem, options);
+      if (pngScaleOption->count() > 0 && lowerExtension(dem) != ".png") {
+        log::warn("--png-scale {:g}: ignored, {} is not a PNG (only PNG heights are normalised)", pngScale,
+                  dem);
+      }
+      if (npzArrayOption->count() > 0 && lowerExtension(dem) != ".npz") {
+        log::warn("--npz-array {}: ignored, {} is not an .npz archive", npzArray, dem);
+      }
+      return terrain::loadHeightField(dem, loadOptions(), report);
+    }
+    if (report != nullptr) {
+      *report = terrain::LoadReport{};
+      report->units = "metres";
+      report->reason = fmt::format("procedural, --spacing {:g} m", spacing);
+      report->orientation = "row 0 is north";
     }
     const terrain::ProceduralSpec s = proceduralSpec();
     const std::size_t samples = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
@@ -228,6 +276,12 @@ struct SourceOptions {
     return field;
   }
 };
+
+inline SourceOptions::SourceOptions()
+    : SourceOptions(terrain::defaultLandscapeSpec(), terrain::kDefaultProceduralSize,
+                    terrain::kDefaultProceduralSpacing) {
+  defaultToProcedural = false;
+}
 
 inline SourceOptions::SourceOptions(const terrain::ProceduralSpec& spec, int fieldSize, float fieldSpacing)
     : seed(spec.seed), type(terrain::procedureTypeName(spec.type)), size(fieldSize), spacing(fieldSpacing),

@@ -92,9 +92,9 @@ std::vector<fs::path> filesUnder(const fs::path& root) {
   return files;
 }
 
+/** The spec `sylva terrain` uses for --seed/--type/--height-scale: the default landscape's other fields. */
 terrain::ProceduralSpec specFor(std::uint64_t seed, terrain::ProceduralSpec::Type type, float heightScale) {
-  terrain::ProceduralSpec spec;
-  spec.seed = seed;
+  terrain::ProceduralSpec spec = terrain::defaultLandscapeSpec(seed);
   spec.type = type;
   spec.heightScale = heightScale;
   return spec;
@@ -250,7 +250,7 @@ TEST(CliTerrain, LargeHeightmapIsGeneratedInStripsWithIdenticalHeights) {
       dir, "terrain heightmap --seed 99 --type warped --size 1100 --spacing 0.5 -o " + quote(exr.string()));
   ASSERT_EQ(r.status, 0) << r.err;
   const terrain::HeightField expected = terrain::generate(
-      specFor(99, terrain::ProceduralSpec::Type::Warped, 200.0f), 0.0, 0.0, 1100, 1100, 0.5f);
+      specFor(99, terrain::ProceduralSpec::Type::Warped, 400.0f), 0.0, 0.0, 1100, 1100, 0.5f);
   expectSameHeights(exr, expected);
 }
 
@@ -266,14 +266,14 @@ TEST(CliTerrain, HeightmapFromSpecFileWithOverrides) {
   const RunResult r = runSylva(dir, "terrain heightmap --spec " + quote((dir / "spec.json").string()) +
                                         " --size 33 -o " + quote((dir / "a.exr").string()));
   ASSERT_EQ(r.status, 0) << r.err;
-  expectSameHeights(dir / "a.exr", terrain::generate(spec, 0.0, 0.0, 33, 33, 1.0f));
+  expectSameHeights(dir / "a.exr", terrain::generate(spec, 0.0, 0.0, 33, 33, terrain::kDefaultProceduralSpacing));
 
   // --seed overrides the file's seed; the other fields stay.
   const RunResult o = runSylva(dir, "terrain heightmap --spec " + quote((dir / "spec.json").string()) +
                                         " --seed 11 --size 33 -o " + quote((dir / "b.exr").string()));
   ASSERT_EQ(o.status, 0) << o.err;
   spec.seed = 11;
-  expectSameHeights(dir / "b.exr", terrain::generate(spec, 0.0, 0.0, 33, 33, 1.0f));
+  expectSameHeights(dir / "b.exr", terrain::generate(spec, 0.0, 0.0, 33, 33, terrain::kDefaultProceduralSpacing));
 }
 
 TEST(CliTerrain, HeightmapFromDemRoundTrips) {
@@ -304,7 +304,7 @@ TEST(CliTerrain, NormalsPngAndExr) {
   ASSERT_EQ(p.status, 0) << p.err;
 
   const terrain::HeightField field =
-      terrain::generate(specFor(4, terrain::ProceduralSpec::Type::Fbm, 90.0f), 0.0, 0.0, 48, 48, 1.5f);
+      terrain::generate(specFor(4, terrain::ProceduralSpec::Type::Warped, 90.0f), 0.0, 0.0, 48, 48, 1.5f);
   const Image expected = terrain::sobelNormalMap(field);
   const Image exr = loadImage(dir / "n.exr");
   ASSERT_EQ(exr.width(), 48);

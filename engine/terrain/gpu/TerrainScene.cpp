@@ -8,14 +8,7 @@
 namespace sylva::terrain {
 
 ProceduralSpec TerrainSource::defaultProcedural() {
-  ProceduralSpec spec;
-  spec.seed = 7;
-  spec.type = ProceduralSpec::Type::Warped;
-  spec.octaves = 8;
-  spec.frequency = 1.0f / 700.0f;
-  spec.warpStrength = 150.0f;
-  spec.heightScale = 400.0f;
-  return spec;
+  return defaultLandscapeSpec();
 }
 
 HeightField loadTerrainSource(const TerrainSource& source) {

@@ -16,6 +16,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -25,6 +26,7 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -48,10 +50,17 @@ void checkHeightFieldSize(const std::filesystem::path& path, long long width, lo
   }
 }
 
-void finishHeightField(const std::filesystem::path& path, HeightField& field, const LoadOptions& options) {
+void finishHeightField(const std::filesystem::path& path, HeightField& field, const LoadOptions& options,
+                       LoadReport& report) {
   checkHeightFieldSize(path, field.width(), field.height(), options.maxSamples);
   if (options.spacing > 0.0f) {
     field.setSpacing(options.spacing, options.spacing);
+    report.units = "metres";
+    report.reason = fmt::format("--spacing {:g} m overrides the file ({})", options.spacing, report.reason);
+  }
+  if (options.flipY) {
+    flipRows(field);
+    report.orientation += "; then flipped north-south (--flip-y)";
   }
   const auto usable = [](float s) { return std::isfinite(s) && s > 0.0f; };
   if (!usable(field.spacingX()) || !usable(field.spacingZ())) {
@@ -71,6 +80,108 @@ void finishHeightField(const std::filesystem::path& path, HeightField& field, co
   }
 }
 
+void warn(const std::filesystem::path& path, LoadReport& report, const std::string& text) {
+  log::warn("{}: {}", path.string(), text);
+  report.warnings.push_back(text);
+}
+
+void flipRows(HeightField& field) {
+  const auto w = static_cast<std::ptrdiff_t>(field.width());
+  auto& s = field.samples();
+  for (int top = 0, bottom = field.height() - 1; top < bottom; ++top, --bottom) {
+    std::swap_ranges(s.begin() + top * w, s.begin() + (top + 1) * w, s.begin() + bottom * w);
+  }
+}
+
+void flipColumns(HeightField& field) {
+  const auto w = static_cast<std::ptrdiff_t>(field.width());
+  auto& s = field.samples();
+  for (int row = 0; row < field.height(); ++row) {
+    std::reverse(s.begin() + row * w, s.begin() + (row + 1) * w);
+  }
+}
+
+void applyCoordinates(const std::filesystem::path& path, HeightField& field, const FileCoordinates& coordinates,
+                      const LoadOptions& options, LoadReport& report) {
+  using Kind = FileCoordinates::Kind;
+  Kind kind = coordinates.kind;
+  std::string reason = coordinates.reason;
+  if (options.horizontal == HorizontalUnits::Degrees) {
+    if (kind == Kind::None) {
+      fail("{}: --geographic: the file holds no coordinates to read as degrees (give --spacing in metres)",
+           path.string());
+    }
+    if (kind == Kind::Metres) {
+      warn(path, report, fmt::format("--geographic overrides {}", reason));
+    }
+    kind = Kind::Degrees;
+    reason = fmt::format("--geographic ({})", reason);
+  } else if (options.horizontal == HorizontalUnits::Metres && kind != Kind::None) {
+    kind = Kind::Metres;
+    reason = fmt::format("LoadOptions::horizontal = Metres ({})", reason);
+  }
+  switch (kind) {
+  case Kind::None:
+    return; // the loader's default spacing (1 m, or a sidecar's) stands; report keeps "none"
+  case Kind::Metres:
+    report.units = "metres";
+    report.reason = reason;
+    field.setSpacing(static_cast<float>(coordinates.stepX), static_cast<float>(coordinates.stepZ));
+    return;
+  case Kind::Unknown:
+    report.units = "metres";
+    report.reason = fmt::format("{}; units unknown, taken as metres", reason);
+    field.setSpacing(static_cast<float>(coordinates.stepX), static_cast<float>(coordinates.stepZ));
+    warn(path, report,
+         fmt::format("horizontal units unknown ({}): spacing {:g} x {:g} taken as metres{}; pass --geographic "
+                     "for degrees or --spacing for metres",
+                     reason, coordinates.stepX, coordinates.stepZ,
+                     coordinates.looksLikeDegrees ? ", although the coordinates look like longitude/latitude"
+                                                  : ""));
+    return;
+  case Kind::Degrees:
+    break;
+  }
+  double south = coordinates.south;
+  double north = coordinates.north;
+  if (std::isnan(south) || std::isnan(north)) {
+    warn(path, report, "degrees without a latitude in the file: converted to metres at the equator");
+    south = north = 0.0;
+  }
+  if (south < -90.0 - 1e-6 || north > 90.0 + 1e-6) {
+    fail("{}: latitudes {:g} to {:g} lie beyond +-90 degrees; the coordinates are not degrees ({})",
+         path.string(), south, north, reason);
+  }
+  const auto cosDeg = [](double degrees) {
+    return std::cos(std::clamp(degrees, -90.0, 90.0) * std::numbers::pi / 180.0);
+  };
+  const double centre = 0.5 * (south + north);
+  const double cosCentre = cosDeg(centre);
+  if (cosCentre < 1e-3) {
+    fail("{}: the grid is centred on a pole (latitude {:g}); reproject it to a polar projection first",
+         path.string(), centre);
+  }
+  double error = std::max(std::abs(cosDeg(south) / cosCentre - 1.0), std::abs(cosDeg(north) / cosCentre - 1.0));
+  if (south < 0.0 && north > 0.0) {
+    error = std::max(error, 1.0 / cosCentre - 1.0);
+  }
+  report.units = "degrees";
+  report.reason = reason;
+  report.centreLatitude = centre;
+  report.southLatitude = south;
+  report.northLatitude = north;
+  report.eastWestError = error;
+  field.setSpacing(static_cast<float>(coordinates.stepX * kMetresPerDegree * cosCentre),
+                   static_cast<float>(coordinates.stepZ * kMetresPerDegree));
+  if (error > 0.05) {
+    warn(path, report,
+         fmt::format("spans latitudes {:.4g} to {:.4g} degrees: with one east-west spacing (at {:.4g} degrees) "
+                     "distances are off by up to {:.0f} % on the outer rows; reproject to a projected CRS for "
+                     "true distances",
+                     south, north, centre, 100.0 * error));
+  }
+}
+
 } // namespace detail
 
 namespace {
@@ -87,7 +198,11 @@ std::filesystem::path sidecarPath(const std::filesystem::path& path) {
 
 void requireFile(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) {
+    fail("{}: is a directory, not a height file", path.string());
+  }
+  if (!std::filesystem::is_regular_file(status)) {
     fail("{}: file not found", path.string());
   }
 }
@@ -200,7 +315,8 @@ std::optional<Sidecar> readSidecar(const std::filesystem::path& image) {
 }
 
 /** PNG or EXR: channel 0 heights, optional alpha (channel 1; 0 = absent). */
-HeightField loadImageHeights(const std::filesystem::path& path, const LoadOptions& options, bool png) {
+HeightField loadImageHeights(const std::filesystem::path& path, const LoadOptions& options, bool png,
+                             LoadReport& report) {
   requireFile(path);
   const Image image = loadImage(path);
   if (image.channels() > 2) {
@@ -209,8 +325,17 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
   detail::checkHeightFieldSize(path, image.width(), image.height(), options.maxSamples);
   const std::optional<Sidecar> sidecar = readSidecar(path);
   HeightField field(image.width(), image.height());
+  detail::FileCoordinates coordinates;
   if (sidecar) {
-    field.setSpacing(sidecar->spacingX, sidecar->spacingZ);
+    coordinates.kind = detail::FileCoordinates::Kind::Metres;
+    coordinates.stepX = sidecar->spacingX;
+    coordinates.stepZ = sidecar->spacingZ;
+    coordinates.reason = fmt::format("sidecar {}", sidecarPath(path).filename().string());
+    if (png && options.heightScale != LoadOptions{}.heightScale) {
+      detail::warn(path, report,
+                   fmt::format("height scale {:g} m (--png-scale) ignored: the sidecar {} gives heights in metres",
+                               options.heightScale, sidecarPath(path).filename().string()));
+    }
   }
   const double base = png && sidecar ? sidecar->minHeight : 0.0;
   const double scale = png ? (sidecar ? static_cast<double>(sidecar->maxHeight) - sidecar->minHeight
@@ -222,7 +347,8 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
       field.at(x, y) = absent ? kNaN : static_cast<float>(base + scale * image.get(x, y, 0));
     }
   }
-  detail::finishHeightField(path, field, options);
+  detail::applyCoordinates(path, field, coordinates, options, report);
+  detail::finishHeightField(path, field, options, report);
   return field;
 }
 
@@ -281,15 +407,130 @@ double elevationUnitToMetres(const std::filesystem::path& path, std::string unit
   return 1.0;
 }
 
-HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& options) {
+/** Lower-case copy. */
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+/**
+ * netCDF/CF axis attributes in GDAL's dataset metadata (`<variable>#units=degrees_east`, ...): "lon in
+ * degrees_east, lat in degrees_north" when both a longitude and a latitude axis are declared and no
+ * projected x/y axis is, else "".
+ */
+std::string cfGeographicAxes(GDALDatasetH dataset) {
+  static const std::set<std::string> kEast = {"degrees_east", "degree_east", "degrees_e", "degree_e",
+                                              "degreese",     "degreee"};
+  static const std::set<std::string> kNorth = {"degrees_north", "degree_north", "degrees_n", "degree_n",
+                                               "degreesn",      "degreen"};
+  std::string lon;
+  std::string lat;
+  bool projectedAxis = false;
+  for (char** item = GDALGetMetadata(dataset, nullptr); item != nullptr && *item != nullptr; ++item) {
+    const std::string_view entry(*item);
+    const std::size_t hash = entry.find('#');
+    const std::size_t equals = entry.find('=');
+    if (hash == std::string_view::npos || equals == std::string_view::npos || equals < hash) {
+      continue;
+    }
+    const std::string variable(entry.substr(0, hash));
+    const std::string key(entry.substr(hash + 1, equals - hash - 1));
+    const std::string value = lower(std::string(entry.substr(equals + 1)));
+    if ((key == "units" && kEast.contains(value)) || (key == "standard_name" && value == "longitude")) {
+      lon = fmt::format("{} ({} {})", variable, key, value);
+    } else if ((key == "units" && kNorth.contains(value)) || (key == "standard_name" && value == "latitude")) {
+      lat = fmt::format("{} ({} {})", variable, key, value);
+    } else if (key == "standard_name" &&
+               (value == "projection_x_coordinate" || value == "projection_y_coordinate")) {
+      projectedAxis = true;
+    }
+  }
+  if (lon.empty() || lat.empty() || projectedAxis) {
+    return {};
+  }
+  return fmt::format("netCDF/CF axis attributes: {}, {}", lon, lat);
+}
+
+/** What a GDAL dataset says about its horizontal coordinates (geotransform, CRS, CF attributes). */
+detail::FileCoordinates gdalCoordinates(GDALDatasetH dataset, bool haveTransform, const double* gt,
+                                        int height) {
+  detail::FileCoordinates c;
+  if (!haveTransform) {
+    return c;
+  }
+  c.stepX = std::hypot(gt[1], gt[4]);
+  c.stepZ = std::hypot(gt[2], gt[5]);
+  // Latitudes (in CRS units) of the centres of the first and last rows, for an axis-aligned grid.
+  const double first = gt[3] + 0.5 * gt[5];
+  const double last = gt[3] + (height - 0.5) * gt[5];
+  c.south = std::min(first, last);
+  c.north = std::max(first, last);
+  const double west = gt[0];
+  const double east = gt[0] + gt[1] * GDALGetRasterXSize(dataset);
+  OGRSpatialReferenceH srs = GDALGetSpatialRef(dataset);
+  const char* srsName = srs != nullptr ? OSRGetName(srs) : nullptr;
+  const std::string name = srsName != nullptr ? srsName : "unnamed";
+  if (srs != nullptr && OSRIsGeographic(srs)) {
+    const double degreesPerUnit = OSRGetAngularUnits(srs, nullptr) * 180.0 / std::numbers::pi;
+    c.kind = detail::FileCoordinates::Kind::Degrees;
+    c.stepX *= degreesPerUnit;
+    c.stepZ *= degreesPerUnit;
+    c.south *= degreesPerUnit;
+    c.north *= degreesPerUnit;
+    c.reason = fmt::format("CRS '{}' is geographic", name);
+  } else if (srs != nullptr && OSRIsProjected(srs)) {
+    const double metresPerUnit = OSRGetLinearUnits(srs, nullptr);
+    c.kind = detail::FileCoordinates::Kind::Metres;
+    c.stepX *= metresPerUnit;
+    c.stepZ *= metresPerUnit;
+    c.reason = fmt::format("CRS '{}' is projected ({:g} m per unit)", name, metresPerUnit);
+  } else if (const std::string cf = cfGeographicAxes(dataset); !cf.empty()) {
+    c.kind = detail::FileCoordinates::Kind::Degrees;
+    c.reason = cf;
+  } else {
+    c.kind = detail::FileCoordinates::Kind::Unknown;
+    c.reason = srs != nullptr ? fmt::format("CRS '{}' is neither geographic nor projected", name)
+                              : "a geotransform without a CRS or axis units";
+    c.looksLikeDegrees = std::min(west, east) >= -180.0 && std::max(west, east) <= 360.0 &&
+                         c.south >= -90.0 && c.north <= 90.0 && c.stepX < 1.0 && c.stepZ < 1.0;
+  }
+  return c;
+}
+
+/** A short description of a file's leading bytes, for open errors GDAL leaves without a message. */
+std::string guessCorruptFormat(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, 8> head{};
+  in.read(head.data(), head.size());
+  const std::string_view bytes(head.data(), static_cast<std::size_t>(in.gcount()));
+  if (bytes.starts_with("\x89HDF\r\n\x1a\n")) {
+    return "corrupt or truncated HDF5/netCDF-4 file";
+  }
+  if (bytes.starts_with("CDF")) {
+    return "corrupt or truncated netCDF file";
+  }
+  if (bytes.starts_with("II*") || bytes.starts_with(std::string_view("MM\0*", 4))) {
+    return "corrupt or truncated TIFF file";
+  }
+  return "not a raster format GDAL can read";
+}
+
+HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& options, LoadReport& report) {
   requireFile(path);
+  detail::checkNetCdfClassicSize(path);
   registerGdal();
   const QuietGdal quiet;
   const std::string name = path.string();
   DatasetPtr dataset(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR,
                                 nullptr, nullptr, nullptr));
   if (!dataset) {
-    fail("{}: {}", name, QuietGdal::lastMessage("not a raster format GDAL can read"));
+    // A known signature that GDAL cannot open is a damaged file of that format, not an unknown format.
+    const std::string guess = guessCorruptFormat(path);
+    const std::string message = QuietGdal::lastMessage("");
+    if (message.empty() || guess.starts_with("corrupt")) {
+      fail("{}: {}", name, guess);
+    }
+    fail("{}: {}", name, message);
   }
   if (GDALGetRasterCount(dataset.get()) < 1) {
     fail("{}: raster has no band", name);
@@ -316,6 +557,10 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   const bool axisAligned = gt[2] == 0.0 && gt[4] == 0.0;
   const bool flipX = haveTransform && axisAligned && gt[1] < 0.0;
   const bool flipZ = haveTransform && axisAligned && gt[5] > 0.0;
+  if (flipZ || flipX) {
+    report.orientation = fmt::format("{}{}{} (the geotransform says so)", flipZ ? "rows flipped: south-up" : "",
+                                     flipZ && flipX ? "; " : "", flipX ? "columns flipped: east-left" : "");
+  }
 
   // GDAL decodes whole blocks (strips or tiles, all bands at once for pixel-interleaved files) into buffers
   // it allocates from the header. A 200-byte TIFF with an absurd strip made GDAL allocate 4.7 GB (found by
@@ -354,12 +599,15 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   std::vector<double> row(static_cast<std::size_t>(width));
   std::vector<unsigned char> maskRow(static_cast<std::size_t>(width), 1);
   for (int y = 0; y < height; ++y) {
-    if (GDALRasterIO(band, GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_Float64, 0, 0) != CE_None) {
+    // Some drivers report a failed block read without failing the request (the rows come back as zeros).
+    if (GDALRasterIO(band, GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_Float64, 0, 0) != CE_None ||
+        CPLGetLastErrorType() >= CE_Failure) {
       fail("{}: cannot read row {}: {}", name, y,
            QuietGdal::lastMessage("read failed (truncated or corrupt?)"));
     }
     if (mask != nullptr &&
-        GDALRasterIO(mask, GF_Read, 0, y, width, 1, maskRow.data(), width, 1, GDT_Byte, 0, 0) != CE_None) {
+        (GDALRasterIO(mask, GF_Read, 0, y, width, 1, maskRow.data(), width, 1, GDT_Byte, 0, 0) != CE_None ||
+         CPLGetLastErrorType() >= CE_Failure)) {
       fail("{}: cannot read the nodata mask of row {}: {}", name, y, QuietGdal::lastMessage("read failed"));
     }
     const int j = flipZ ? height - 1 - y : y;
@@ -370,25 +618,9 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
     }
   }
 
-  if (haveTransform) {
-    double pixelX = std::hypot(gt[1], gt[4]);
-    double pixelZ = std::hypot(gt[2], gt[5]);
-    OGRSpatialReferenceH srs = GDALGetSpatialRef(dataset.get());
-    if (srs != nullptr && OSRIsGeographic(srs)) {
-      // Degrees → metres on a sphere-ish Earth at the raster's centre latitude (see docs/terrain-data.md).
-      const double degreesPerUnit = OSRGetAngularUnits(srs, nullptr) * 180.0 / std::numbers::pi;
-      const double centreLat = (gt[3] + gt[4] * width * 0.5 + gt[5] * height * 0.5) * degreesPerUnit;
-      const double cosLat = std::cos(std::clamp(centreLat, -90.0, 90.0) * std::numbers::pi / 180.0);
-      pixelX *= degreesPerUnit * detail::kMetresPerDegree * cosLat;
-      pixelZ *= degreesPerUnit * detail::kMetresPerDegree;
-    } else if (srs != nullptr && OSRIsProjected(srs)) {
-      const double metresPerUnit = OSRGetLinearUnits(srs, nullptr);
-      pixelX *= metresPerUnit;
-      pixelZ *= metresPerUnit;
-    }
-    field.setSpacing(static_cast<float>(pixelX), static_cast<float>(pixelZ));
-  }
-  detail::finishHeightField(path, field, options);
+  detail::applyCoordinates(path, field, gdalCoordinates(dataset.get(), haveTransform, gt, height), options,
+                           report);
+  detail::finishHeightField(path, field, options, report);
   return field;
 }
 
@@ -472,22 +704,28 @@ HeightFieldInfo heightFieldInfo(const HeightField& field) {
   return info;
 }
 
-HeightField loadHeightField(const std::filesystem::path& path, const LoadOptions& options) {
+HeightField loadHeightField(const std::filesystem::path& path, const LoadOptions& options,
+                            LoadReport* report) {
   validateOptions(path, options);
+  LoadReport local;
+  LoadReport& r = report != nullptr ? *report : local;
+  r = LoadReport{};
   const std::string ext = lowerExtension(path);
   if (ext == ".png") {
-    return loadImageHeights(path, options, true);
+    return loadImageHeights(path, options, true, r);
   }
   if (ext == ".exr") {
-    return loadImageHeights(path, options, false);
+    return loadImageHeights(path, options, false, r);
   }
   if (ext == ".npy") {
-    return detail::loadNpy(path, options);
+    requireFile(path);
+    return detail::loadNpy(path, options, r);
   }
   if (ext == ".npz") {
-    return detail::loadNpz(path, options);
+    requireFile(path);
+    return detail::loadNpz(path, options, r);
   }
-  return loadGdal(path, options);
+  return loadGdal(path, options, r);
 }
 
 void saveHeightField(const std::filesystem::path& path, const HeightField& field) {

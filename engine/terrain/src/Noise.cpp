@@ -55,6 +55,17 @@ double grad(std::uint8_t hash, double dx, double dz) {
 
 } // namespace
 
+ProceduralSpec defaultLandscapeSpec(std::uint64_t seed) {
+  ProceduralSpec spec;
+  spec.seed = seed;
+  spec.type = ProceduralSpec::Type::Warped;
+  spec.octaves = 8;
+  spec.frequency = 1.0f / 700.0f;
+  spec.warpStrength = 150.0f;
+  spec.heightScale = 400.0f;
+  return spec;
+}
+
 const char* procedureTypeName(ProceduralSpec::Type type) {
   switch (type) {
   case ProceduralSpec::Type::Fbm:

@@ -9,6 +9,8 @@
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Limits.hpp>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <zip.h>
 
 #include <algorithm>
@@ -553,58 +555,172 @@ private:
   std::vector<zip_uint64_t> mIndices;
 };
 
-/** Applies the archive's dx/dy members to `field` according to options.npzSpacing. */
-void applyNpzSpacing(const NpzArchive& archive, HeightField& field, const LoadOptions& options,
-                     const std::string& path) {
-  if (options.npzSpacing == NpzSpacing::Ignore) {
-    return;
+/** A 1D coordinate array of `length` finite values; nullopt when absent, or (with a warning) unusable. */
+std::optional<std::vector<double>> coordinateArray(const NpzArchive& archive, const std::string& name,
+                                                   int length, const std::filesystem::path& path,
+                                                   LoadReport& report) {
+  const auto member = archive.find(name);
+  if (!member) {
+    return std::nullopt;
   }
+  const NpyHeader head = archive.header(*member);
+  if (head.shape.size() != 1 || head.shape[0] != length) {
+    warn(path, report,
+         fmt::format("array '{}' has shape {}; a coordinate array needs ({},): ignored", name, head.shapeText(),
+                     length));
+    return std::nullopt;
+  }
+  const std::vector<std::byte> bytes = archive.read(*member);
+  const std::string where = archive.label(name);
+  const NpyHeader header = parseHeader(bytes, where);
+  const std::byte* data = dataOf(bytes, header, where);
+  std::vector<double> values(static_cast<std::size_t>(length));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    values[i] = element(data, i, header);
+    if (!std::isfinite(values[i])) {
+      warn(path, report, fmt::format("array '{}' holds {} at index {}: ignored", name, values[i], i));
+      return std::nullopt;
+    }
+  }
+  return values;
+}
+
+/**
+ * Step of an evenly spaced coordinate array (last − first) / (n − 1); warns when the steps vary by more than
+ * 1 % (the mean is used) and fails when it does not move monotonically.
+ */
+double coordinateStep(const std::vector<double>& values, const std::string& name,
+                      const std::filesystem::path& path, LoadReport& report) {
+  const double step = (values.back() - values.front()) / static_cast<double>(values.size() - 1);
+  double worst = 0.0;
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    const double d = values[i] - values[i - 1];
+    if (d == 0.0 || (d > 0.0) != (step > 0.0)) {
+      fail("{}: coordinate array '{}' is not strictly monotonic (index {}: {} after {})", path.string(), name,
+           i, values[i], values[i - 1]);
+    }
+    worst = std::max(worst, std::abs(d - step) / std::abs(step));
+  }
+  if (worst > 0.01) {
+    warn(path, report,
+         fmt::format("coordinate array '{}' is unevenly spaced (steps differ by up to {:.1f} %); its mean "
+                     "step {:g} is used",
+                     name, 100.0 * worst, step));
+  }
+  return step;
+}
+
+/**
+ * Coordinates from 1D arrays named as NumPy/xarray users write them (`lon`/`lat`, `longitude`/`latitude`,
+ * `x`/`y`), flipping `field` so that row 0 is north and column 0 west. nullopt when there are none.
+ */
+std::optional<FileCoordinates> coordinatesFromArrays(const NpzArchive& archive, HeightField& field,
+                                                     const std::filesystem::path& path, LoadReport& report) {
+  static constexpr std::array<std::pair<const char*, const char*>, 3> kPairs = {
+      {{"lon", "lat"}, {"longitude", "latitude"}, {"x", "y"}}};
+  for (const auto& [xName, yName] : kPairs) {
+    const bool hasX = archive.find(xName).has_value();
+    const bool hasY = archive.find(yName).has_value();
+    if (!hasX && !hasY) {
+      continue;
+    }
+    if (hasX != hasY) {
+      warn(path, report,
+           fmt::format("coordinate array '{}' without '{}': both are needed, so both are ignored",
+                       hasX ? xName : yName, hasX ? yName : xName));
+      continue;
+    }
+    const auto xs = coordinateArray(archive, xName, field.width(), path, report);
+    const auto ys = coordinateArray(archive, yName, field.height(), path, report);
+    if (!xs || !ys) {
+      continue;
+    }
+    const double stepX = coordinateStep(*xs, xName, path, report);
+    const double stepY = coordinateStep(*ys, yName, path, report);
+    const bool degrees = std::string_view(xName) != "x";
+    FileCoordinates c;
+    c.kind = degrees ? FileCoordinates::Kind::Degrees : FileCoordinates::Kind::Unknown;
+    c.stepX = std::abs(stepX);
+    c.stepZ = std::abs(stepY);
+    c.south = std::min(ys->front(), ys->back());
+    c.north = std::max(ys->front(), ys->back());
+    const double west = std::min(xs->front(), xs->back());
+    const double east = std::max(xs->front(), xs->back());
+    c.looksLikeDegrees = west >= -180.0 && east <= 360.0 && c.south >= -90.0 && c.north <= 90.0 &&
+                         c.stepX < 1.0 && c.stepZ < 1.0;
+    c.reason = degrees ? fmt::format("coordinate arrays '{}' and '{}' (longitude/latitude)", xName, yName)
+                       : fmt::format("coordinate arrays '{}' and '{}' (no units in the file)", xName, yName);
+    std::vector<std::string> flips;
+    if (stepY > 0.0) {
+      flipRows(field);
+      flips.push_back(fmt::format("rows flipped: '{}' rises with the row index, so the last row is north", yName));
+    }
+    if (stepX < 0.0) {
+      flipColumns(field);
+      flips.push_back(fmt::format("columns flipped: '{}' falls with the column index", xName));
+    }
+    report.orientation = flips.empty() ? fmt::format("row 0 is north ('{}' falls with the row index)", yName)
+                                       : fmt::format("{}", fmt::join(flips, "; "));
+    return c;
+  }
+  return std::nullopt;
+}
+
+/**
+ * Coordinates from the scalar members `dx`, `dy` (e.g. matplotlib's Jacksboro DEM): degrees when `xmin`,
+ * `xmax`, `ymin`, `ymax` describe a lon/lat box spanning width·dx × height·dy (±1 sample), else unknown.
+ */
+FileCoordinates coordinatesFromSteps(const NpzArchive& archive, const HeightField& field,
+                                     const std::string& path) {
   std::optional<double> dx = archive.scalar("dx");
   std::optional<double> dy = archive.scalar("dy");
+  FileCoordinates c;
   if (!dx && !dy) {
-    return;
+    return c;
   }
   dx = dx ? dx : dy;
   dy = dy ? dy : dx;
   if (!std::isfinite(*dx) || !std::isfinite(*dy) || *dx == 0.0 || *dy == 0.0) {
     fail("{}: spacing members dx={} dy={} must be finite and non-zero", path, *dx, *dy);
   }
-  const double absDx = std::abs(*dx);
-  const double absDy = std::abs(*dy);
+  c.stepX = std::abs(*dx);
+  c.stepZ = std::abs(*dy);
+  c.kind = FileCoordinates::Kind::Unknown;
+  c.reason = "scalar members 'dx'/'dy' (no units in the file)";
   const auto xmin = archive.scalar("xmin");
   const auto xmax = archive.scalar("xmax");
   const auto ymin = archive.scalar("ymin");
   const auto ymax = archive.scalar("ymax");
-  bool degrees = options.npzSpacing == NpzSpacing::Degrees;
-  if (options.npzSpacing == NpzSpacing::Auto && xmin && xmax && ymin && ymax) {
+  if (ymin && ymax) {
+    c.south = std::min(*ymin, *ymax);
+    c.north = std::max(*ymin, *ymax);
+  }
+  if (xmin && xmax && ymin && ymax) {
     const auto spans = [](double lo, double hi, int count, double step) {
       return std::abs(std::abs(hi - lo) - count * step) <= 1.01 * step;
     };
     const bool lonLat = std::abs(*xmin) <= 180.0 && std::abs(*xmax) <= 180.0 && std::abs(*ymin) <= 90.0 &&
                         std::abs(*ymax) <= 90.0;
-    degrees =
-        lonLat && spans(*xmin, *xmax, field.width(), absDx) && spans(*ymin, *ymax, field.height(), absDy);
+    c.looksLikeDegrees = lonLat;
+    if (lonLat && spans(*xmin, *xmax, field.width(), c.stepX) && spans(*ymin, *ymax, field.height(), c.stepZ)) {
+      c.kind = FileCoordinates::Kind::Degrees;
+      c.reason = "scalar members 'dx'/'dy' with a longitude/latitude box 'xmin'..'ymax' of that size";
+    }
   }
-  if (degrees) {
-    const double latitude = ymin && ymax ? 0.5 * (*ymin + *ymax) : 0.0;
-    const double cosLat = std::cos(latitude * std::numbers::pi / 180.0);
-    field.setSpacing(static_cast<float>(absDx * kMetresPerDegree * cosLat),
-                     static_cast<float>(absDy * kMetresPerDegree));
-  } else {
-    field.setSpacing(static_cast<float>(absDx), static_cast<float>(absDy));
-  }
+  return c;
 }
 
 } // namespace
 
-HeightField loadNpy(const std::filesystem::path& path, const LoadOptions& options) {
+HeightField loadNpy(const std::filesystem::path& path, const LoadOptions& options, LoadReport& report) {
   const std::vector<std::byte> bytes = readWholeFile(path);
   HeightField field = toHeightField(bytes, path.string(), path, options.maxSamples);
-  finishHeightField(path, field, options);
+  applyCoordinates(path, field, FileCoordinates{}, options, report);
+  finishHeightField(path, field, options, report);
   return field;
 }
 
-HeightField loadNpz(const std::filesystem::path& path, const LoadOptions& options) {
+HeightField loadNpz(const std::filesystem::path& path, const LoadOptions& options, LoadReport& report) {
   const NpzArchive archive(path);
   std::size_t member = 0;
   if (!options.npzArray.empty()) {
@@ -631,8 +747,12 @@ HeightField loadNpz(const std::filesystem::path& path, const LoadOptions& option
   }
   const std::vector<std::byte> bytes = archive.read(member);
   HeightField field = toHeightField(bytes, archive.label(archive.names()[member]), path, options.maxSamples);
-  applyNpzSpacing(archive, field, options, path.string());
-  finishHeightField(path, field, options);
+  std::optional<FileCoordinates> coordinates = coordinatesFromArrays(archive, field, path, report);
+  if (!coordinates) {
+    coordinates = coordinatesFromSteps(archive, field, path.string());
+  }
+  applyCoordinates(path, field, *coordinates, options, report);
+  finishHeightField(path, field, options, report);
   return field;
 }
 

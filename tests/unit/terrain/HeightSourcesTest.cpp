@@ -9,6 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -19,6 +23,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -510,10 +515,8 @@ TEST(HeightSources, NpzSpacingMembersInMetresAndDegrees) {
   EXPECT_NEAR(degrees.spacingX(), 0.01 * 111320.0 * 0.5, 0.01);
   EXPECT_NEAR(degrees.spacingZ(), 0.01 * 111320.0, 0.01);
   LoadOptions options;
-  options.npzSpacing = NpzSpacing::Metres;
+  options.horizontal = HorizontalUnits::Metres;
   EXPECT_FLOAT_EQ(loadHeightField(dir / "d.npz", options).spacingX(), 0.01f);
-  options.npzSpacing = NpzSpacing::Ignore;
-  EXPECT_EQ(loadHeightField(dir / "d.npz", options).spacingX(), 1.0f);
   options.spacing = 7.0f;
   EXPECT_EQ(loadHeightField(dir / "d.npz", options).spacingZ(), 7.0f);
 }
@@ -651,6 +654,243 @@ TEST(HeightSourcesRealData, JacksboroFaultNpz) {
   expectSameHeights(field, loadHeightField(path, options));
   options.npzArray = "dx";
   expectLoadError(path, "expected a 2D array", options);
+}
+
+
+// ---- real-world coordinates: geographic grids, coordinate arrays, truncated netCDF ----
+
+namespace geo {
+
+/** Height of the synthetic test DEM at column i, row j (row 0 = the file's first latitude). */
+float testHeight(int i, int j) {
+  return static_cast<float>(10 * j + i);
+}
+
+/**
+ * Writes a CF netCDF grid through GDAL's multidimensional API, as climate and ocean tools do: 1D coordinate
+ * variables `lonName`/`latName` with CF units and no CRS, latitude rising with the row (the common
+ * south-to-north order), heights in metres.
+ */
+void writeCfNetCdf(const std::filesystem::path& path, bool netcdf4, const char* lonName = "lon",
+                   const char* latName = "lat", const char* lonUnits = "degrees_east",
+                   const char* latUnits = "degrees_north", double lat0 = 40.0, double step = 0.5, int w = 9,
+                   int h = 7) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("netCDF");
+  ASSERT_NE(driver, nullptr);
+  const char* options[] = {netcdf4 ? "FORMAT=NC4" : "FORMAT=NC", nullptr};
+  std::unique_ptr<GDALDataset> ds(
+      driver->CreateMultiDimensional(path.string().c_str(), nullptr, const_cast<char**>(options)));
+  ASSERT_NE(ds, nullptr);
+  auto root = ds->GetRootGroup();
+  auto dimLat = root->CreateDimension(latName, "", "", static_cast<GUInt64>(h));
+  auto dimLon = root->CreateDimension(lonName, "", "", static_cast<GUInt64>(w));
+  const auto f64 = GDALExtendedDataType::Create(GDT_Float64);
+  const auto text = GDALExtendedDataType::CreateString();
+  auto lat = root->CreateMDArray(latName, {dimLat}, f64);
+  auto lon = root->CreateMDArray(lonName, {dimLon}, f64);
+  lat->CreateAttribute("units", {}, text)->Write(latUnits);
+  lon->CreateAttribute("units", {}, text)->Write(lonUnits);
+  std::vector<double> lats(static_cast<std::size_t>(h));
+  std::vector<double> lons(static_cast<std::size_t>(w));
+  for (int j = 0; j < h; ++j) {
+    lats[static_cast<std::size_t>(j)] = lat0 + step * j;
+  }
+  for (int i = 0; i < w; ++i) {
+    lons[static_cast<std::size_t>(i)] = 5.0 + step * i;
+  }
+  const GUInt64 start[2] = {0, 0};
+  std::size_t count[2] = {static_cast<std::size_t>(h), static_cast<std::size_t>(w)};
+  ASSERT_TRUE(lat->Write(start, count, nullptr, nullptr, f64, lats.data()));
+  ASSERT_TRUE(lon->Write(start, count + 1, nullptr, nullptr, f64, lons.data()));
+  auto z = root->CreateMDArray("elevation", {dimLat, dimLon}, GDALExtendedDataType::Create(GDT_Float32));
+  z->CreateAttribute("units", {}, text)->Write("m");
+  std::vector<float> values(static_cast<std::size_t>(w * h));
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      values[static_cast<std::size_t>(j * w + i)] = testHeight(i, j);
+    }
+  }
+  ASSERT_TRUE(z->Write(start, count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32), values.data()));
+}
+
+/** A 6x5 GeoTIFF with geotransform (x0, step, 0, y0, 0, -step) and, if `epsg` > 0, that CRS. */
+void writeGeoTiff(const std::filesystem::path& path, double x0, double y0, double step, int epsg) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+  std::unique_ptr<GDALDataset> ds(driver->Create(path.string().c_str(), 6, 5, 1, GDT_Float32, nullptr));
+  ASSERT_NE(ds, nullptr);
+  double gt[6] = {x0, step, 0.0, y0, 0.0, -step};
+  ds->SetGeoTransform(gt);
+  if (epsg > 0) {
+    OGRSpatialReference srs;
+    srs.importFromEPSG(epsg);
+    ds->SetSpatialRef(&srs);
+  }
+  std::vector<float> values(30);
+  for (int k = 0; k < 30; ++k) {
+    values[static_cast<std::size_t>(k)] = static_cast<float>(k);
+  }
+  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 6, 5, values.data(), 6, 5, GDT_Float32, 0, 0,
+                                            nullptr),
+            CE_None);
+}
+
+} // namespace geo
+
+TEST(HeightSourcesGeo, CfNetCdfWithoutCrsIsGeographicAndNorthUp) {
+  test::TempDir dir;
+  for (const bool nc4 : {false, true}) {
+    const std::filesystem::path path = dir / (nc4 ? "grid4.nc" : "grid.nc");
+    geo::writeCfNetCdf(path, nc4);
+    LoadReport report;
+    const HeightField field = loadHeightField(path, {}, &report);
+    ASSERT_EQ(field.width(), 9);
+    ASSERT_EQ(field.height(), 7);
+    // Latitudes 40..43 degrees: converted at 41.5 degrees.
+    const double cosCentre = std::cos(41.5 * std::numbers::pi / 180.0);
+    EXPECT_NEAR(field.spacingX(), 0.5 * 111320.0 * cosCentre, 0.05) << path;
+    EXPECT_NEAR(field.spacingZ(), 0.5 * 111320.0, 0.05) << path;
+    EXPECT_EQ(report.units, "degrees");
+    EXPECT_NE(report.reason.find("degrees_east"), std::string::npos) << report.reason;
+    EXPECT_NEAR(report.centreLatitude, 41.5, 1e-9);
+    // Worst on the northern row (43 degrees): cos 43 / cos 41.5 - 1 = -2.35 %.
+    EXPECT_NEAR(report.eastWestError, 1.0 - std::cos(43.0 * std::numbers::pi / 180.0) / cosCentre, 1e-9);
+    EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+    // Row 0 is north: the file's last latitude row (43 degrees).
+    EXPECT_EQ(field.at(0, 0), geo::testHeight(0, 6)) << path;
+    EXPECT_EQ(field.at(8, 6), geo::testHeight(8, 0)) << path;
+  }
+}
+
+TEST(HeightSourcesGeo, CfStandardNamesAndWideLatitudeRangesWarn) {
+  test::TempDir dir;
+  // Axes named x/y but declared as longitude/latitude degrees by their units, spanning 60 degrees.
+  geo::writeCfNetCdf(dir / "wide.nc", false, "x", "y", "degree_east", "degree_north", 0.0, 10.0, 5, 7);
+  LoadReport report;
+  const HeightField field = loadHeightField(dir / "wide.nc", {}, &report);
+  EXPECT_EQ(report.units, "degrees");
+  EXPECT_NEAR(report.centreLatitude, 30.0, 1e-9);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("off by up to"), std::string::npos) << report.warnings[0];
+  EXPECT_NEAR(field.spacingX(), 10.0 * 111320.0 * std::cos(30.0 * std::numbers::pi / 180.0), 0.5);
+}
+
+TEST(HeightSourcesGeo, TruncatedNetCdfIsAnErrorNeverZeros) {
+  test::TempDir dir;
+  for (const bool nc4 : {false, true}) {
+    const std::filesystem::path whole = dir / (nc4 ? "whole4.nc" : "whole.nc");
+    geo::writeCfNetCdf(whole, nc4, "lon", "lat", "degrees_east", "degrees_north", 40.0, 0.5, 64, 48);
+    const std::string bytes = readBytes(whole);
+    for (const std::size_t keep : {std::size_t{1000}, bytes.size() / 2, bytes.size() - 1}) {
+      const std::filesystem::path cut = dir / fmt::format("cut{}_{}.nc", nc4 ? 4 : 3, keep);
+      writeBytes(cut, bytes.substr(0, keep));
+      expectLoadError(cut, nc4 ? "netCDF" : "truncated netCDF file");
+    }
+  }
+  // A header that lies about a dimension's size is caught the same way.
+  std::string bytes = readBytes(dir / "whole.nc");
+  writeBytes(dir / "header.nc", bytes.substr(0, 200));
+  expectLoadError(dir / "header.nc", "netCDF");
+}
+
+TEST(HeightSourcesGeo, GeoTiffUnitsFromTheCrsOrAWarning) {
+  test::TempDir dir;
+  geo::writeGeoTiff(dir / "wgs84.tif", 6.0, 50.0, 0.001, 4326);
+  LoadReport report;
+  const HeightField geographic = loadHeightField(dir / "wgs84.tif", {}, &report);
+  EXPECT_EQ(report.units, "degrees");
+  EXPECT_NE(report.reason.find("geographic"), std::string::npos) << report.reason;
+  EXPECT_NEAR(report.centreLatitude, 50.0 - 0.0025, 1e-9);
+  EXPECT_NEAR(geographic.spacingZ(), 111.32, 1e-3);
+  geo::writeGeoTiff(dir / "utm.tif", 500000.0, 5500000.0, 25.0, 32632);
+  const HeightField utm = loadHeightField(dir / "utm.tif", {}, &report);
+  EXPECT_EQ(report.units, "metres");
+  EXPECT_NE(report.reason.find("projected"), std::string::npos) << report.reason;
+  EXPECT_FLOAT_EQ(utm.spacingX(), 25.0f);
+  EXPECT_TRUE(report.warnings.empty());
+  // No CRS, numbers that look like lon/lat: metres, with a warning that says so; --geographic fixes it.
+  geo::writeGeoTiff(dir / "bare.tif", 6.0, 50.0, 0.001, 0);
+  const HeightField bare = loadHeightField(dir / "bare.tif", {}, &report);
+  EXPECT_FLOAT_EQ(bare.spacingX(), 0.001f);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("look like longitude/latitude"), std::string::npos) << report.warnings[0];
+  LoadOptions options;
+  options.horizontal = HorizontalUnits::Degrees;
+  const HeightField forced = loadHeightField(dir / "bare.tif", options, &report);
+  EXPECT_EQ(report.units, "degrees");
+  EXPECT_NEAR(forced.spacingZ(), 111.32, 1e-3);
+}
+
+TEST(HeightSourcesGeo, GeographicNeedsCoordinates) {
+  test::TempDir dir;
+  saveHeightField(dir / "h.npy", ramp(4, 3));
+  LoadOptions options;
+  options.horizontal = HorizontalUnits::Degrees;
+  expectLoadError(dir / "h.npy", "--geographic: the file holds no coordinates", options);
+  LoadReport report;
+  (void)loadHeightField(dir / "h.npy", {}, &report);
+  EXPECT_EQ(report.units, "none");
+  EXPECT_TRUE(report.warnings.empty());
+}
+
+TEST(HeightSourcesGeo, NpzCoordinateArraysGiveSpacingAndOrientation) {
+  test::TempDir dir;
+  // 3 rows x 4 columns; latitude rises with the row index (south first), as xarray writes ascending axes.
+  const std::string heights =
+      npyBytes("<f4", "(3, 4)", false, raw<float>({0, 1, 2, 3, 10, 11, 12, 13, 20, 21, 22, 23}));
+  const auto axis = [](std::vector<double> v) {
+    return npyBytes("<f8", fmt::format("({},)", v.size()), false, raw<double>(v));
+  };
+  for (const auto& [lonName, latName] : {std::pair{"lon", "lat"}, std::pair{"longitude", "latitude"}}) {
+    const std::string file = fmt::format("{}.npz", lonName);
+    writeBytes(dir / file, makeZip({{"elevation.npy", heights},
+                                    {std::string(lonName) + ".npy", axis({10.0, 10.01, 10.02, 10.03})},
+                                    {std::string(latName) + ".npy", axis({59.99, 60.0, 60.01})}}));
+    LoadReport report;
+    const HeightField field = loadHeightField(dir / file, {}, &report);
+    EXPECT_EQ(report.units, "degrees") << file;
+    EXPECT_NEAR(field.spacingX(), 0.01 * 111320.0 * 0.5, 0.05) << file;
+    EXPECT_NEAR(field.spacingZ(), 0.01 * 111320.0, 0.05) << file;
+    EXPECT_EQ(field.at(0, 0), 20.0f) << "row 0 must be the northern (last) row of " << file;
+    EXPECT_EQ(field.at(3, 2), 3.0f) << file;
+    EXPECT_NE(report.orientation.find("rows flipped"), std::string::npos) << report.orientation;
+    // --flip-y undoes it for a user who knows the file is the other way round.
+    LoadOptions options;
+    options.flipY = true;
+    EXPECT_EQ(loadHeightField(dir / file, options).at(0, 0), 0.0f) << file;
+  }
+  // x/y in metres, x falling: columns flipped; y falling (north first): rows kept. Units are unknown: warned.
+  writeBytes(dir / "xy.npz", makeZip({{"z.npy", heights},
+                                      {"x.npy", axis({300.0, 270.0, 240.0, 210.0})},
+                                      {"y.npy", axis({5000.0, 4950.0, 4900.0})}}));
+  LoadReport report;
+  const HeightField xy = loadHeightField(dir / "xy.npz", {}, &report);
+  EXPECT_FLOAT_EQ(xy.spacingX(), 30.0f);
+  EXPECT_FLOAT_EQ(xy.spacingZ(), 50.0f);
+  EXPECT_EQ(xy.at(0, 0), 3.0f);
+  EXPECT_EQ(report.units, "metres");
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("units unknown"), std::string::npos);
+  // Unusable coordinate arrays are named: wrong length (ignored with a warning), not monotonic (an error).
+  writeBytes(dir / "short.npz",
+             makeZip({{"z.npy", heights}, {"lon.npy", axis({1.0, 2.0})}, {"lat.npy", axis({1.0, 2.0, 3.0})}}));
+  (void)loadHeightField(dir / "short.npz", {}, &report);
+  EXPECT_EQ(report.units, "none");
+  ASSERT_FALSE(report.warnings.empty());
+  EXPECT_NE(report.warnings[0].find("array 'lon' has shape (2,)"), std::string::npos) << report.warnings[0];
+  writeBytes(dir / "zigzag.npz", makeZip({{"z.npy", heights},
+                                          {"lon.npy", axis({1.0, 2.0, 1.5, 3.0})},
+                                          {"lat.npy", axis({1.0, 2.0, 3.0})}}));
+  expectLoadError(dir / "zigzag.npz", "coordinate array 'lon' is not strictly monotonic");
+}
+
+TEST(HeightSourcesGeo, DirectoryAsDemIsNamedAsSuch) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "dem.tif");
+  expectLoadError(dir / "dem.tif", "is a directory");
+  std::filesystem::create_directories(dir / "dem.npy");
+  expectLoadError(dir / "dem.npy", "is a directory");
 }
 
 } // namespace

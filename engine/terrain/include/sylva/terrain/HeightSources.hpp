@@ -4,7 +4,9 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace sylva::terrain {
 
@@ -17,18 +19,22 @@ namespace sylva::terrain {
  * - `.exr`, float (OpenEXR): metres as stored; spacing from the sidecar, else 1 m.
  * - `.npy`: metres as stored; int8/16/32/64, uint8/16/32/64, float32/64 in either byte order, C or
  *   Fortran order, 2D only (rows = z, columns = x); spacing 1 m.
- * - `.npz` (zip of `.npy`, via libzip): the member chosen by LoadOptions::npzArray; spacing from the
- *   scalar members `dx`, `dy` when present (see NpzSpacing), else 1 m.
+ * - `.npz` (zip of `.npy`, via libzip): the member chosen by LoadOptions::npzArray. Spacing and orientation
+ *   from 1D coordinate arrays when present (`lon`/`lat`, `longitude`/`latitude` or `x`/`y`, one value per
+ *   column/row; rows whose latitude or y rises are flipped so that row 0 is north, falling longitude or x
+ *   flips columns), else from the scalar members `dx`, `dy` (degrees when `xmin`, `xmax`, `ymin`, `ymax`
+ *   describe a lon/lat box of that size), else 1 m.
  * - anything else, through GDAL (GeoTIFF, netCDF, ...): band 1 × scale + offset, metres (a band unit
- *   of feet is converted); masked/nodata samples absent; spacing = |pixel size| from the geotransform,
- *   projected units converted to metres, geographic degrees converted at the centre latitude φ:
- *   1° of latitude = 111320 m, 1° of longitude = 111320 · cos φ m. No geotransform: 1 m.
+ *   of feet is converted); masked/nodata samples absent; spacing = |pixel size| from the geotransform in the
+ *   units of HorizontalUnits (CRS, netCDF/CF axis attributes). No geotransform: 1 m. A truncated classic
+ *   netCDF file (whose library reads missing data as zeros) and any read GDAL flags as failed are errors.
  *
- * In every case LoadOptions::spacing, when non-zero, overrides the spacing on both axes.
+ * In every case LoadOptions::spacing, when non-zero, overrides the spacing on both axes (in metres), and
+ * LoadOptions::flipY then reverses the rows.
  *
  * Conventions (all formats): sample (i, j) is column i from the west and row j from the north; row 0 is the
- * first row of the file for PNG/EXR/NumPy, and the northern row for GDAL rasters (south-up rasters are
- * flipped). Non-finite samples (NaN, ±inf) and values beyond the float range become absent (NaN); absent
+ * first row of the file for PNG/EXR/`.npy`, and the northern row for GDAL rasters (south-up rasters are
+ * flipped) and `.npz` archives with coordinate arrays. Non-finite samples (NaN, ±inf) and values beyond the float range become absent (NaN); absent
  * samples are never height 0.
  *
  * PNG/EXR channels: 1 channel = heights; 2 channels = heights + alpha, where alpha 0 marks an absent sample;
@@ -47,16 +53,22 @@ inline constexpr int kMaxHeightFieldSide = 65536;
 /** Largest accepted number of samples in one height field (4 GiB of floats). */
 inline constexpr std::size_t kMaxHeightFieldSamples = std::size_t{1} << 30;
 
-/** How the scalar `dx`/`dy` members of an `.npz` archive are read (e.g. matplotlib's Jacksboro DEM). */
-enum class NpzSpacing {
+/**
+ * How the horizontal coordinates a file carries (geotransform, coordinate arrays, `dx`/`dy`) are read.
+ * Degrees become metres with one spacing per axis taken at the centre latitude φ: 1° of latitude = 111320 m,
+ * 1° of longitude = 111320 · cos φ m. East-west distances are then off by cos φ_row / cos φ − 1 on other rows
+ * (LoadReport::eastWestError gives the worst row); reproject (e.g. `gdalwarp -t_srs EPSG:32633`) for wide
+ * latitude ranges.
+ */
+enum class HorizontalUnits {
   /**
-   * Degrees when the archive also holds `xmin`, `xmax`, `ymin`, `ymax` that look like longitude/latitude
-   * (|x| ≤ 180, |y| ≤ 90) and span width·dx and height·dy (±1 sample); metres otherwise.
+   * From the file: a CRS (geographic: degrees; projected: its linear unit), else netCDF/CF axis attributes
+   * (`units` degrees_east/degrees_north or `standard_name` longitude/latitude), else NumPy coordinate array
+   * names (`lon`/`lat`, `longitude`/`latitude`: degrees; `x`/`y`: metres), else metres with a warning.
    */
   Auto,
-  Metres,  ///< `dx`, `dy` are metres per sample.
-  Degrees, ///< `dx`, `dy` are degrees; converted with the latitude at the centre of ymin..ymax (0 if absent).
-  Ignore,  ///< do not read `dx`/`dy`; spacing is 1 m unless LoadOptions::spacing is set.
+  Metres,  ///< the file's coordinates are metres, whatever it says.
+  Degrees, ///< the file's coordinates are longitude/latitude degrees (`--geographic`).
 };
 
 /** Options for loadHeightField. Validated on every call, whatever the format. */
@@ -71,13 +83,39 @@ struct LoadOptions {
   /** Name of the array inside an `.npz` (member `<name>.npy`); empty = the first 2D array in archive order.
    */
   std::string npzArray;
-  /** How `.npz` spacing members are interpreted. */
-  NpzSpacing npzSpacing = NpzSpacing::Auto;
+  /** How the file's horizontal coordinates are read. */
+  HorizontalUnits horizontal = HorizontalUnits::Auto;
+  /**
+   * Reverses the row order after the file's own orientation has been applied: for files whose coordinates
+   * are missing or wrong about which row is north (`--flip-y`).
+   */
+  bool flipY = false;
   /**
    * Largest field accepted, in samples (4..kMaxHeightFieldSamples), checked before anything is allocated: a
    * memory guard for services and fuzzing, where a small file may legitimately claim a huge sparse raster.
    */
   std::size_t maxSamples = kMaxHeightFieldSamples;
+};
+
+/**
+ * What loadHeightField assumed about a file's coordinates: for `sylva terrain info`, and so that no guess is
+ * silent. Every warning is also logged (log::warn) as it is made.
+ */
+struct LoadReport {
+  /** Horizontal units read from the file: "metres", "degrees", or "none" (no coordinates: 1 m per sample). */
+  std::string units = "none";
+  /** Why, in words: "CRS 'WGS 84' is geographic", "netCDF/CF axes lon (degrees_east), lat ...", ... */
+  std::string reason = "the file holds no coordinates";
+  /** Degrees only: the latitude at which degrees became metres, and the rows' latitude range; NaN if unknown. */
+  double centreLatitude = std::numeric_limits<double>::quiet_NaN();
+  double southLatitude = std::numeric_limits<double>::quiet_NaN();
+  double northLatitude = std::numeric_limits<double>::quiet_NaN();
+  /** Degrees only: largest relative error of east-west distances over the rows (0.04 = 4 %). */
+  double eastWestError = 0.0;
+  /** How rows map to north: "row 0 is north (file order)", "flipped: latitude rises with the row", ... */
+  std::string orientation = "row 0 is north (file order)";
+  /** Everything the loader guessed or ignored, one line each (also logged as warnings). */
+  std::vector<std::string> warnings;
 };
 
 /** Summary of a height field's valid samples. */
@@ -100,7 +138,8 @@ HeightFieldInfo heightFieldInfo(const HeightField& field);
  * above). Throws sylva::Error `<file>: <reason>` on any failure; never returns a field without a valid
  * sample.
  */
-HeightField loadHeightField(const std::filesystem::path& path, const LoadOptions& options = {});
+HeightField loadHeightField(const std::filesystem::path& path, const LoadOptions& options = {},
+                            LoadReport* report = nullptr);
 
 /**
  * Saves `field` by extension, atomically (temporary file + rename):

@@ -46,6 +46,17 @@ struct ProceduralSpec {
   bool operator==(const ProceduralSpec&) const = default;
 };
 
+/**
+ * The default landscape of every command (`sylva terrain ...`, render, view, bench) when only a seed is
+ * given: warped fBm, 8 octaves, features ~700 m apart, 150 m warp, 400 m relief; on a
+ * kDefaultProceduralSize² grid at kDefaultProceduralSpacing metres.
+ */
+ProceduralSpec defaultLandscapeSpec(std::uint64_t seed = 7);
+/** Samples per side of the default procedural field. */
+inline constexpr int kDefaultProceduralSize = 1025;
+/** Metres between samples of the default procedural field. */
+inline constexpr float kDefaultProceduralSpacing = 2.0f;
+
 /** "fbm", "ridged" or "warped". */
 const char* procedureTypeName(ProceduralSpec::Type type);
 
