@@ -211,7 +211,7 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
       terrain::QuadtreeSelection selection;
       terrain::TerrainDrawOptions draw;
       draw.countVertices = true;
-      draw.environment = scene->environment();
+      draw.environment = scene->environment(rig.base);
       const Samples s = measure(o, [&](render::GpuTimers& timers, int i, Samples& out) {
         // A slow orbit around the centre: the selection changes every frame, as in a fly-through.
         const render::Camera camera = rig.orbit(0.02f * static_cast<float>(i));
@@ -278,7 +278,7 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
   terrain::Quadtree quadtree(o.terrain.configFor(field), field);
   terrain::QuadtreeSelection selection;
   terrain::TerrainDrawOptions draw;
-  draw.environment = scene->environment();
+  draw.environment = scene->environment(rig.base);
   gl::clearDebugErrors();
   std::size_t glErrors = 0;
   std::vector<std::string> firstErrors;

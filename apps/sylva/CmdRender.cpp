@@ -18,6 +18,7 @@ void registerRender(CLI::App& app) {
     ContextFlags context;
     std::string scene = "terrain";
     TerrainFlags terrain;
+    CameraFlags camera;
     std::string view = "shaded";
     std::string out = "out/terrain.png";
     int width = 1280;
@@ -33,6 +34,7 @@ void registerRender(CLI::App& app) {
       ->check(CLI::IsMember({"terrain", "demo"}))
       ->capture_default_str();
   o->terrain.add(*command);
+  o->camera.add(*command);
   command->add_option("--view", o->view, "Terrain view: shaded, lod (LOD colours), normals or splat")
       ->check(CLI::IsMember({"shaded", "lod", "normals", "splat"}))
       ->capture_default_str();
@@ -55,22 +57,23 @@ void registerRender(CLI::App& app) {
                    "Read shaders from this directory instead of the embedded copies")
       ->check(CLI::ExistingDirectory);
   command->callback([o] {
+    o->camera.check();
     auto context = platform::createHeadlessContext(o->context.options());
     shader::Library library(o->shaderDir);
     render::RenderTarget target(o->width, o->height);
     const render::Environment environment;
-    target.begin(glm::vec4(environment.fogColor, 1.0f));
     if (o->scene == "demo") {
+      target.begin(glm::vec4(environment.fogColor, 1.0f));
       render::DemoScene scene(library, o->demo);
       scene.render(scene.defaultCamera(), o->width, o->height, o->time, nullptr, o->wireframe);
     } else {
       auto scene = o->terrain.build(library);
-      const render::Camera camera = scene->defaultCamera();
+      const render::Camera camera = o->camera.camera(*scene, target.aspect());
+      target.begin(glm::vec4(environment.fogColor, 1.0f));
       scene->update(camera, target.aspect());
-      terrain::TerrainDrawOptions options;
+      terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->camera.fog);
       options.view = parseTerrainView(o->view);
       options.wireframe = o->wireframe;
-      options.environment = scene->environment();
       scene->draw(camera, o->width, o->height, o->time, nullptr, options);
     }
     saveImage(o->out, target.readColor());

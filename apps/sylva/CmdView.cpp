@@ -29,6 +29,7 @@ namespace {
 struct ViewOptions {
   std::string scene = "terrain";
   TerrainFlags terrain;
+  CameraFlags camera;
   int width = 1280;
   int height = 720;
   std::string shaderDir;
@@ -141,19 +142,22 @@ void runViewer(const ViewOptions& o) {
     v.method = v.lod.method == terrain::CrackMethod::PaperSearch ? 0
                : v.lod.method == terrain::CrackMethod::None      ? 2
                                                                  : 1;
-    v.draw.environment = v.terrain->environment();
+    // The same framing as `sylva render` with the same flags; fog stays fixed from there on.
+    const glm::ivec2 size = window.framebufferSize();
+    start = o.camera.camera(*v.terrain, static_cast<float>(std::max(size.x, 1)) / static_cast<float>(std::max(size.y, 1)));
+    v.draw = v.terrain->drawOptions(start, o.camera.fog);
     v.draw.countVertices = true;
-    start = v.terrain->defaultCamera();
   } else {
     v.demo = std::make_unique<render::DemoScene>(library);
     start = v.demo->defaultCamera();
   }
-  render::OrbitController orbit;
-  orbit.target = start.target;
-  orbit.distance = glm::length(start.position - start.target);
-  const glm::vec3 dir = glm::normalize(start.position - start.target);
-  orbit.yaw = std::atan2(dir.x, dir.z);
-  orbit.pitch = std::asin(dir.y);
+  render::OrbitController orbit = render::OrbitController::from(start);
+  if (v.terrain) {
+    // Zoom out until the whole terrain is a small part of the view, in until a few samples fill it.
+    const Aabb box = v.terrain->bounds();
+    orbit.maxDistance = std::max(4.0f * orbit.distance, 2.0f * glm::length(box.max - box.min));
+    orbit.minDistance = std::max(0.5f, 2.0f * std::min(v.terrain->field().spacingX(), v.terrain->field().spacingZ()));
+  }
   render::FlyController fly;
   fly.speed = std::max(10.0f, 0.05f * orbit.distance);
   bool flyMode = false;
@@ -233,6 +237,7 @@ void runViewer(const ViewOptions& o) {
         }
       }
       fly.apply(camera);
+      camera.fovY = start.fovY;
     } else {
       if (mouseFree && in.mouseLeft) {
         orbit.rotate(static_cast<float>(in.cursorDelta.x), static_cast<float>(in.cursorDelta.y));
@@ -244,8 +249,6 @@ void runViewer(const ViewOptions& o) {
         orbit.zoom(static_cast<float>(in.scrollDelta));
       }
       orbit.apply(camera);
-      camera.nearPlane = start.nearPlane;
-      camera.farPlane = start.farPlane;
       camera.fovY = start.fovY;
       fly.position = camera.position; // switching to fly mode starts where the orbit camera is
       const glm::vec3 d = glm::normalize(camera.target - camera.position);
@@ -253,6 +256,12 @@ void runViewer(const ViewOptions& o) {
       fly.pitch = std::asin(d.y);
     }
 
+    if (v.terrain) {
+      render::fitClipPlanes(camera, v.terrain->bounds()); // wherever the orbit or fly camera went
+    } else {
+      camera.nearPlane = start.nearPlane;
+      camera.farPlane = start.farPlane;
+    }
     timers.beginFrame();
     gl::bindDefaultFramebuffer(size.x, size.y);
     glEnable(GL_DEPTH_TEST);
@@ -272,7 +281,9 @@ void runViewer(const ViewOptions& o) {
       ui.begin();
       ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
       ImGui::SetNextWindowBgAlpha(0.8f);
-      ImGui::Begin("Sylva");
+      // Fixed-width controls in a window that fits its content: labels are never cut off.
+      ImGui::Begin("Sylva", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+      ImGui::PushItemWidth(220.0f);
       ImGui::Text("%s", info.renderer.c_str());
       float sum = 0.0f;
       for (float t : frameTimes) {
@@ -311,7 +322,10 @@ void runViewer(const ViewOptions& o) {
       if (ImGui::Button("reload shaders (F5)")) {
         reload();
       }
-      ImGui::TextWrapped("%s", status.c_str());
+      ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 420.0f);
+      ImGui::TextUnformatted(status.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::PopItemWidth();
       ImGui::End();
       ui.end();
       timers.end();
@@ -345,6 +359,7 @@ void registerView(CLI::App& app) {
       ->check(CLI::IsMember({"terrain", "demo"}))
       ->capture_default_str();
   o->terrain.add(*command);
+  o->camera.add(*command);
   command->add_option("--width", o->width, "Window width")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
@@ -363,7 +378,10 @@ void registerView(CLI::App& app) {
                    "Advance time by this many seconds per frame (deterministic)")
       ->check(finiteRange(0.0, 10.0));
   command->add_flag("--no-ui", o->noUi, "Start with the ImGui panel hidden");
-  command->callback([o] { runViewer(*o); });
+  command->callback([o] {
+    o->camera.check();
+    runViewer(*o);
+  });
 }
 
 } // namespace sylva::app

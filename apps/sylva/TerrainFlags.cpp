@@ -1,9 +1,11 @@
 #include "TerrainFlags.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Log.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace sylva::app {
 
@@ -45,8 +47,119 @@ terrain::TerrainView parseTerrainView(const std::string& name) {
   fail("--view: unknown view '{}' (expected shaded, lod, normals or splat)", name);
 }
 
+void SeaLevelFlag::add(CLI::App& command) {
+  command
+      .add_option("--sea-level", text,
+                  "Sea level in metres, 'auto' (0 m when heights go below 0 m, else none) or 'none': water is "
+                  "drawn there and the default splat rules put sand on the coast and no grass under water")
+      ->capture_default_str();
+}
+
+std::optional<float> SeaLevelFlag::resolve(float minHeight) const {
+  if (text == "auto") {
+    return minHeight < 0.0f ? std::optional<float>(0.0f) : std::nullopt;
+  }
+  if (text == "none") {
+    return std::nullopt;
+  }
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) > 1.0e5) {
+    fail("--sea-level: expected metres in [-100000, 100000], 'auto' or 'none', got '{}'", text);
+  }
+  return static_cast<float>(value);
+}
+
+namespace {
+
+/** "X,Y,Z" → three finite numbers; throws naming the option. */
+glm::vec3 parseVec3(const std::string& option, const std::string& text) {
+  float v[3] = {0.0f, 0.0f, 0.0f};
+  std::size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = k < 2 ? text.find(',', start) : text.size();
+    if (comma == std::string::npos) {
+      fail("{}: expected X,Y,Z (three numbers in metres), got '{}'", option, text);
+    }
+    const std::string item = text.substr(start, comma - start);
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) > 1.0e9) {
+      fail("{}: expected X,Y,Z (three numbers in metres), got '{}'", option, text);
+    }
+    v[k] = static_cast<float>(value);
+    start = comma + 1;
+  }
+  return {v[0], v[1], v[2]};
+}
+
+} // namespace
+
+void CameraFlags::add(CLI::App& command) {
+  command
+      .add_option("--view-from", viewFrom,
+                  "Frame the whole terrain from this side: south-west, south, south-east, east, north-east, "
+                  "north, north-west, west or top (north is row 0 of the DEM)")
+      ->check(CLI::IsMember(render::viewFromNames()))
+      ->capture_default_str();
+  fovOption = command.add_option("--fov", fovDegrees, "Vertical field of view, degrees")
+                  ->check(finiteRange(1.0, 150.0))
+                  ->capture_default_str();
+  command.add_option("--camera-pos", cameraPos,
+                     "Camera position X,Y,Z in metres (x east, y height in the data's metres, z south; "
+                     "default: framed by --view-from)");
+  command.add_option("--look-at", lookAt,
+                     "Point to look at X,Y,Z in metres (default: the centre of the terrain)");
+  command
+      .add_option("--fog", fog,
+                  "Fog at the far side of the terrain, 0 (none) to 0.95; scales with the terrain's size")
+      ->check(finiteRange(0.0, 0.95))
+      ->capture_default_str();
+}
+
+void CameraFlags::check() const {
+  if (!cameraPos.empty()) {
+    (void)parseVec3("--camera-pos", cameraPos);
+  }
+  if (!lookAt.empty()) {
+    (void)parseVec3("--look-at", lookAt);
+  }
+  if (!cameraPos.empty() && !lookAt.empty() && parseVec3("--camera-pos", cameraPos) == parseVec3("--look-at", lookAt)) {
+    fail("--camera-pos and --look-at: the same point ({}); the camera needs a direction", cameraPos);
+  }
+}
+
+render::Camera CameraFlags::camera(const terrain::TerrainScene& scene, float aspect) const {
+  check();
+  const Aabb box = scene.bounds();
+  const float fov = glm::radians(fovDegrees);
+  const float e = scene.exaggeration();
+  // Y is given in the data's metres; the scene is drawn with heights × exaggeration.
+  const auto toWorld = [e](glm::vec3 p) { return glm::vec3(p.x, p.y * e, p.z); };
+  const glm::vec3 target = lookAt.empty() ? box.center() : toWorld(parseVec3("--look-at", lookAt));
+  render::Camera camera = render::frameBox(box, render::parseViewFrom(viewFrom), fov, aspect, target);
+  if (!cameraPos.empty()) {
+    camera.position = toWorld(parseVec3("--camera-pos", cameraPos));
+    camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    const glm::vec3 dir = glm::normalize(camera.target - camera.position);
+    if (std::abs(dir.y) > 0.999f) {
+      camera.up = glm::vec3(0.0f, 0.0f, -1.0f); // straight down or up: keep north at the top of the image
+    }
+  }
+  // A camera inside or beyond the terrain still sees all of it between the clip planes.
+  render::fitClipPlanes(camera, box);
+  return camera;
+}
+
 void TerrainFlags::add(CLI::App& command) {
   source.add(command);
+  command
+      .add_option("--exaggeration", exaggeration,
+                  "Vertical exaggeration: heights are drawn x this (splat rules, sea level and camera "
+                  "heights stay in true metres)")
+      ->check(finiteRange(0.01, 1000.0))
+      ->capture_default_str();
+  seaLevel.add(command);
   command
       .add_option("--layers", layers,
                   "Splat layer rules (JSON); default: sand/grass/snow/rock by height and slope")
@@ -97,13 +210,23 @@ terrain::QuadtreeConfig TerrainFlags::configFor(const terrain::HeightField& fiel
 }
 
 std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library& library) const {
-  terrain::HeightField field = source.load();
-  std::vector<terrain::SplatLayer> rules;
+  terrain::TerrainSceneOptions options;
   if (!layers.empty()) {
-    rules = terrain::loadSplatLayers(layers);
+    options.layers = terrain::loadSplatLayers(layers); // before loading: a bad rules file costs nothing
+  }
+  (void)seaLevel.resolve(0.0f); // a malformed --sea-level fails before the heights are loaded
+  terrain::HeightField field = source.load();
+  const terrain::HeightFieldInfo info = terrain::heightFieldInfo(field);
+  options.exaggeration = exaggeration;
+  options.seaLevel = seaLevel.resolve(info.minHeight);
+  const float relief = info.maxHeight - info.minHeight;
+  const float extent = std::max(field.extentX(), field.extentZ());
+  if (exaggeration == 1.0f && relief > 0.0f && relief < 0.002f * extent) {
+    log::info("relief {:.0f} m is {:.2g} % of the {:.0f} km extent and will look flat; try --exaggeration {:.0f}",
+              relief, 100.0 * relief / extent, extent / 1000.0, std::ceil(0.02f * extent / relief));
   }
   const terrain::QuadtreeConfig config = configFor(field);
-  return std::make_unique<terrain::TerrainScene>(library, std::move(field), config, std::move(rules));
+  return std::make_unique<terrain::TerrainScene>(library, std::move(field), config, std::move(options));
 }
 
 } // namespace sylva::app

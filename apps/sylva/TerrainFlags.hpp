@@ -6,9 +6,21 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
 
 namespace sylva::app {
+
+/**
+ * --sea-level auto|none|METRES: where the water surface and the default coast line are. auto = 0 m when the
+ * heights go below 0 m (bathymetry, coastal DEMs), else none.
+ */
+struct SeaLevelFlag {
+  std::string text = "auto";
+  void add(CLI::App& command);
+  /** The sea level in metres for heights down to `minHeight`, or nullopt for none; throws on a bad value. */
+  std::optional<float> resolve(float minHeight) const;
+};
 
 /** Command-line options that describe a terrain scene to render, view or benchmark. */
 struct TerrainFlags {
@@ -17,10 +29,12 @@ struct TerrainFlags {
   SourceOptions source{terrain::TerrainSource::defaultProcedural(), 1025, 2.0f};
   std::string method = "ours";
   std::string layers;
+  float exaggeration = 1.0f;
+  SeaLevelFlag seaLevel;
   terrain::QuadtreeConfig quadtree = defaultQuadtree();
 
-  /** Adds the source options (SourceOptions) and --layers, --method, --tess, --roots, --max-depth,
-   * --lod-factor. */
+  /** Adds the source options (SourceOptions) and --layers, --exaggeration, --sea-level, --method, --tess,
+   * --roots, --max-depth, --lod-factor. */
   void add(CLI::App& command);
   /** Loads the heights and builds the scene (needs a GL context); errors name the file or option. */
   std::unique_ptr<terrain::TerrainScene> build(const shader::Library& library) const;
@@ -30,6 +44,25 @@ struct TerrainFlags {
   int rootCount = 0;
   CLI::Option* maxDepthOption = nullptr;
   static terrain::QuadtreeConfig defaultQuadtree();
+};
+
+/**
+ * Where the camera of a render or of the viewer's first frame is: --view-from (compass framing), --fov,
+ * --camera-pos and --look-at (world metres: x east, y up in the data's metres, z south), --fog.
+ */
+struct CameraFlags {
+  std::string viewFrom = "south-west";
+  float fovDegrees = 50.0f;
+  std::string cameraPos;
+  std::string lookAt;
+  float fog = 0.5f;
+  CLI::Option* fovOption = nullptr;
+
+  void add(CLI::App& command);
+  /** Throws naming the option when a value is malformed (before any work is done). */
+  void check() const;
+  /** The camera for `scene` at `aspect` (width / height), with clip planes fitted to the scene. */
+  render::Camera camera(const terrain::TerrainScene& scene, float aspect) const;
 };
 
 /** "paper" | "ours" | "none" → CrackMethod; throws sylva::Error naming the option otherwise. */

@@ -7,7 +7,11 @@
 layout(std140, binding = SYLVA_TERRAIN_LAYER_BINDING) uniform RulesBlock {
   SplatRuleGpu rules[SYLVA_TERRAIN_MAX_LAYERS];
 };
-layout(binding = 2) uniform sampler2D normalMap; // rgba32f from normals.comp
+layout(binding = 2) uniform sampler2D normalMap; // from normals.comp
+
+vec3 normalAt(ivec2 p) {
+  return texelFetch(normalMap, p, 0).xyz;
+}
 layout(rgba32f, binding = 0) uniform writeonly image2DArray splatOut;
 
 float ramp(float v, float lo, float hi, float blend) {
@@ -31,7 +35,14 @@ void main() {
     return;
   }
   float height = texelFetch(heightMap, p, 0).r;
-  float slope = degrees(acos(clamp(texelFetch(normalMap, p, 0).y, -1.0, 1.0)));
+  float ny = clamp(normalAt(p).y, -1.0, 1.0);
+  float slope = degrees(acos(ny));
+  float verticalScale = maps.spacing.w;
+  if (verticalScale != 1.0) {
+    // Exaggerated heights, rules in true metres and degrees (see splatMap).
+    height = height / verticalScale;
+    slope = degrees(atan(sqrt(max(0.0, 1.0 - ny * ny)) / (ny * verticalScale)));
+  }
   float total = 0.0;
   for (int l = 0; l < layers; ++l) {
     total += ramp(height, rules[l].height.x, rules[l].height.y, rules[l].height.z) *

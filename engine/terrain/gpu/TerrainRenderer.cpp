@@ -88,12 +88,15 @@ std::vector<gpu::TerrainNode> packTerrainNodes(const QuadtreeSelection& selectio
 }
 
 TerrainRenderer::TerrainRenderer(const shader::Library& library, const HeightField& field,
-                                 std::vector<SplatLayer> layers, const SobelOptions& sobel)
-    : mField(field), mSobel(sobel),
+                                 std::vector<SplatLayer> layers, const SobelOptions& sobel, float verticalScale)
+    : mField(field), mSobel(sobel), mVerticalScale(verticalScale),
       mHeights(gl::Texture::create2D(GL_R32F, std::max(field.width(), 1), std::max(field.height(), 1))),
       mValid(gl::Texture::create2D(GL_R8, std::max(field.width(), 1), std::max(field.height(), 1))),
       mNormalMap(gl::Texture::create2D(GL_RGBA32F, std::max(field.width(), 1), std::max(field.height(), 1))),
       mUniforms(sizeof(gpu::TerrainUniforms)), mRules(sizeof(gpu::SplatRuleGpu) * SYLVA_TERRAIN_MAX_LAYERS) {
+  if (!std::isfinite(verticalScale) || verticalScale <= 0.0f) {
+    fail("terrain: vertical scale {} must be finite and > 0", verticalScale);
+  }
   if (field.width() < 2 || field.height() < 2) {
     fail("terrain: a height field needs at least 2x2 samples (got {}x{})", field.width(), field.height());
   }
@@ -129,6 +132,9 @@ void TerrainRenderer::reloadShaders(const shader::Library& library) {
                 {}});
   gl::Program normals = shader::compileProgram(library, {"terrain normals", {"terrain/normals.comp"}, {}});
   gl::Program splat = shader::compileProgram(library, {"terrain splat", {"terrain/splat.comp"}, {}});
+  gl::Program water =
+      shader::compileProgram(library, {"terrain water", {"terrain/water.vert", "terrain/water.frag"}, {}});
+  mWater = std::move(water);
   mSurface = std::move(surface);
   mNormals = std::move(normals);
   mSplat = std::move(splat);
@@ -143,7 +149,7 @@ void TerrainRenderer::computeMaps(std::vector<SplatLayer> layers) {
   const int h = mField.height();
   gpu::TerrainMapsUniforms u{};
   u.field = glm::ivec4(w, h, static_cast<int>(mLayers.size()), mSobel.border == BorderMode::Constant ? 1 : 0);
-  u.spacing = glm::vec4(mField.spacingX(), mField.spacingZ(), mSobel.constantHeight, 0.0f);
+  u.spacing = glm::vec4(mField.spacingX(), mField.spacingZ(), mSobel.constantHeight, mVerticalScale);
   gl::Buffer mapsUniforms(sizeof(u), &u);
   mapsUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
   mHeights.bind(0);
@@ -246,6 +252,19 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
       mLastCrackSamples = static_cast<std::int64_t>(*mCrackSamples.result(true));
     }
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    if (options.waterLevel && options.view == TerrainView::Shaded && !options.wireframe) {
+      // Blended over the terrain, tested against its depth, writing none (the plane is a single quad).
+      mWater.use();
+      mWater.setUniform("uWaterLevel", *options.waterLevel);
+      mWater.setUniform("uVerticalScale", mVerticalScale);
+      mWater.setUniform("uWaterBottom", std::min(mMinHeight, *options.waterLevel));
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      glDepthMask(GL_FALSE);
+      glDrawArrays(GL_TRIANGLES, 0, 30);
+      glDepthMask(GL_TRUE);
+      glDisable(GL_BLEND);
+    }
   }
   if (timers != nullptr) {
     timers->end();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace sylva::terrain {
 
@@ -19,13 +20,41 @@ HeightField loadTerrainSource(const TerrainSource& source) {
                   source.proceduralSpacing);
 }
 
+namespace {
+
+/** `field` with every height multiplied by `factor` (validated > 0 and finite). */
+HeightField exaggerated(HeightField field, float factor) {
+  if (!std::isfinite(factor) || factor <= 0.0f) {
+    fail("terrain: exaggeration {} must be finite and > 0", factor);
+  }
+  if (factor != 1.0f) {
+    for (float& h : field.samples()) {
+      h *= factor;
+    }
+  }
+  return field;
+}
+
+} // namespace
+
 TerrainScene::TerrainScene(const shader::Library& library, HeightField field, const QuadtreeConfig& config,
                            std::vector<SplatLayer> layers)
-    : mField(std::move(field)), mInfo(heightFieldInfo(mField)), mQuadtree(config, mField) {
-  if (layers.empty()) {
-    layers = defaultSplatLayers(mInfo.minHeight, mInfo.maxHeight);
+    : TerrainScene(library, std::move(field), config, TerrainSceneOptions{std::move(layers), 1.0f, {}}) {}
+
+TerrainScene::TerrainScene(const shader::Library& library, HeightField field, const QuadtreeConfig& config,
+                           TerrainSceneOptions options)
+    : mOptions(std::move(options)), mField(exaggerated(std::move(field), mOptions.exaggeration)),
+      mInfo(heightFieldInfo(mField)), mQuadtree(config, mField) {
+  if (mOptions.seaLevel && !std::isfinite(*mOptions.seaLevel)) {
+    fail("terrain: sea level {} must be finite", *mOptions.seaLevel);
   }
-  mRenderer = std::make_unique<TerrainRenderer>(library, mField, std::move(layers));
+  std::vector<SplatLayer> layers = mOptions.layers;
+  if (layers.empty()) {
+    const float e = mOptions.exaggeration;
+    layers = defaultSplatLayers(mInfo.minHeight / e, mInfo.maxHeight / e, mOptions.seaLevel);
+  }
+  mRenderer = std::make_unique<TerrainRenderer>(library, mField, std::move(layers), SobelOptions{},
+                                                mOptions.exaggeration);
 }
 
 const QuadtreeSelection& TerrainScene::update(const render::Camera& camera, float aspect) {
@@ -53,28 +82,37 @@ void TerrainScene::setQuadtreeConfig(const QuadtreeConfig& config) {
   }
 }
 
-render::Camera TerrainScene::defaultCamera() const {
-  const float ex = mField.extentX();
-  const float ez = mField.extentZ();
-  const float span = std::max(ex, ez);
-  const float relief = std::max(mInfo.maxHeight - mInfo.minHeight, 1.0f);
-  render::Camera camera;
-  camera.position = {0.02f * ex, mInfo.maxHeight + 0.4f * relief + 0.1f * span, 1.0f * ez};
-  camera.target = {0.5f * ex, mInfo.minHeight, 0.42f * ez};
-  camera.nearPlane = std::max(0.1f, 0.0005f * span);
-  camera.farPlane = 4.0f * span + 4.0f * relief;
-  camera.fovY = glm::radians(55.0f);
-  return camera;
+Aabb TerrainScene::bounds() const {
+  float lo = mInfo.minHeight;
+  float hi = mInfo.maxHeight;
+  if (mOptions.seaLevel) {
+    const float water = *mOptions.seaLevel * mOptions.exaggeration;
+    lo = std::min(lo, water);
+    hi = std::max(hi, water);
+  }
+  return Aabb{glm::vec3(0.0f, lo, 0.0f), glm::vec3(mField.extentX(), hi, mField.extentZ())};
 }
 
-} // namespace sylva::terrain
+render::Camera TerrainScene::frameCamera(render::ViewFrom from, float fovY, float aspect) const {
+  const Aabb box = bounds();
+  return render::frameBox(box, from, fovY, aspect, box.center());
+}
 
-namespace sylva::terrain {
-
-render::Environment TerrainScene::environment() const {
+render::Environment TerrainScene::environment(const render::Camera& camera, float fog) const {
   render::Environment environment;
-  environment.fogDensity = 0.9f / std::max(mField.extentX(), mField.extentZ());
+  environment.fogDensity = render::fogDensityFor(camera.position, bounds(), fog);
   return environment;
+}
+
+TerrainDrawOptions TerrainScene::drawOptions(const render::Camera& camera, float fog) const {
+  TerrainDrawOptions options;
+  options.environment = environment(camera, fog);
+  if (mOptions.seaLevel) {
+    options.waterLevel = *mOptions.seaLevel * mOptions.exaggeration;
+  }
+  // Layer textures repeat about every 12 samples, so they stay visible on kilometre-spaced DEMs as well.
+  options.textureTiling = std::max(24.0f, 12.0f * std::min(mField.spacingX(), mField.spacingZ()));
+  return options;
 }
 
 } // namespace sylva::terrain

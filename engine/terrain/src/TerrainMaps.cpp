@@ -132,9 +132,12 @@ float splatWeight(const SplatLayer& layer, float height, float slopeDegrees) {
          ramp(slopeDegrees, layer.minSlope, layer.maxSlope, layer.slopeBlend);
 }
 
-std::vector<Image> splatMap(const HeightField& field, const Image& normals,
-                            std::span<const SplatLayer> layers) {
+std::vector<Image> splatMap(const HeightField& field, const Image& normals, std::span<const SplatLayer> layers,
+                            float verticalScale) {
   validateLayers(layers, "splatMap");
+  if (!std::isfinite(verticalScale) || verticalScale <= 0.0f) {
+    fail("splatMap: vertical scale {} must be finite and > 0", verticalScale);
+  }
   const int w = field.width();
   const int h = field.height();
   if (normals.width() != w || normals.height() != h || normals.type() != PixelType::F32 ||
@@ -163,12 +166,17 @@ std::vector<Image> splatMap(const HeightField& field, const Image& normals,
         for (std::size_t j = begin; j < end; ++j) {
           for (std::size_t i = 0; i < static_cast<std::size_t>(w); ++i) {
             const std::size_t pixel = j * static_cast<std::size_t>(w) + i;
-            const float height = field.samples()[pixel];
+            float height = field.samples()[pixel];
             if (std::isnan(height)) {
               continue; // pages are zero-initialised: no terrain, no texture
             }
             const float ny = std::clamp(normalData[pixel * normalChannels + 1], -1.0f, 1.0f);
-            const float slope = std::acos(ny) * (180.0f / std::numbers::pi_v<float>);
+            float slope = std::acos(ny) * (180.0f / std::numbers::pi_v<float>);
+            if (verticalScale != 1.0f) {
+              height = height / verticalScale;
+              slope = std::atan(std::sqrt(std::max(0.0f, 1.0f - ny * ny)) / (ny * verticalScale)) *
+                      (180.0f / std::numbers::pi_v<float>);
+            }
             float sum = 0.0f;
             for (std::size_t l = 0; l < count; ++l) {
               weights[l] = splatWeight(layers[l], height, slope);
@@ -185,15 +193,29 @@ std::vector<Image> splatMap(const HeightField& field, const Image& normals,
   return pages;
 }
 
-std::vector<SplatLayer> defaultSplatLayers(float minHeight, float maxHeight) {
+std::vector<SplatLayer> defaultSplatLayers(float minHeight, float maxHeight, std::optional<float> seaLevel) {
   float range = maxHeight - minHeight;
   if (!(range > 0.0f)) {
     range = 1.0f;
   }
   const float hb = 0.04f * range;
   const float sb = 6.0f;
-  const float low = minHeight - range;
+  const float low = std::min(minHeight, seaLevel.value_or(minHeight)) - range;
   const float high = maxHeight + range;
+  if (seaLevel) {
+    const float s = *seaLevel;
+    const float land = std::max(maxHeight - s, 1.0f);
+    const float beach = s + std::max(2.0f, 0.02f * land);
+    const float beachBlend = std::max(1.0f, 0.01f * land);
+    const float snowLine = s + 0.7f * land;
+    const float landBlend = 0.04f * land;
+    return {
+        {"sand", low, beach, 0.0f, 35.0f, beachBlend, sb},
+        {"grass", beach, snowLine, 0.0f, 35.0f, beachBlend, sb},
+        {"snow", snowLine, std::max(high, snowLine + 1.0f), 0.0f, 35.0f, landBlend, sb},
+        {"rock", low, std::max(high, snowLine + 1.0f), 35.0f, 90.0f, landBlend, sb},
+    };
+  }
   return {
       {"sand", low, minHeight + 0.12f * range, 0.0f, 35.0f, hb, sb},
       {"grass", minHeight + 0.12f * range, minHeight + 0.7f * range, 0.0f, 35.0f, hb, sb},

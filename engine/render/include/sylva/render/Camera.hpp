@@ -4,6 +4,9 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
+#include <vector>
+
 namespace sylva::render {
 
 /**
@@ -27,12 +30,50 @@ struct Camera {
   glm::vec3 forward() const { return glm::normalize(target - position); }
 };
 
+/**
+ * Compass direction a framing camera looks from, in Sylva's world axes: +x east, +z south (row order of
+ * height fields: row 0 is north), +y up. Top looks straight down with north up in the image.
+ */
+enum class ViewFrom { SouthWest, South, SouthEast, East, NorthEast, North, NorthWest, West, Top };
+
+/** "south-west", "south", ..., "top"; throws sylva::Error naming `option` and the choices otherwise. */
+ViewFrom parseViewFrom(const std::string& name, const std::string& option = "--view-from");
+/** The names parseViewFrom accepts, in enum order. */
+const std::vector<std::string>& viewFromNames();
+
+/**
+ * A camera looking at `target` from `from` (30° above the horizon; Top: straight down), at the smallest
+ * distance at which every corner of `box` is inside the view for `aspect` (width / height) and `fovY`
+ * (radians), times `margin`. Clip planes are fitted with fitClipPlanes. Pure CPU.
+ */
+Camera frameBox(const Aabb& box, ViewFrom from, float fovY, float aspect, const glm::vec3& target,
+                float margin = 1.06f);
+
+/**
+ * Near and far planes for `camera` that keep `box` (world space, metres) in view: far just beyond the box's
+ * farthest corner, near a fraction of the distance to the box's nearest point (never below far / 10⁵, which
+ * keeps a 24-bit depth buffer usable).
+ */
+void fitClipPlanes(Camera& camera, const Aabb& box);
+
+/**
+ * Density (per metre) of exponential fog 1 − exp(−density · d) that reaches `amount` (0..1) at the farthest
+ * corner of `box` seen from `position`: fog that scales with the scene instead of a fixed distance.
+ */
+float fogDensityFor(const glm::vec3& position, const Aabb& box, float amount);
+
 /** Orbit control: yaw/pitch/distance around a target (viewer default). Angles in radians, distance metres. */
 struct OrbitController {
   glm::vec3 target{0.0f};
   float yaw = 0.6f;
   float pitch = 0.45f;
   float distance = 120.0f;
+  /** Zoom limits, metres (the viewer sets them from the scene: the whole terrain fits at maxDistance). */
+  float minDistance = 0.5f;
+  float maxDistance = 1.0e5f;
+
+  /** Orbit parameters that reproduce `camera` (its target, distance and direction). */
+  static OrbitController from(const Camera& camera);
 
   /** Drag by `dx`, `dy` pixels (rotate), scroll `wheel` notches (zoom), pan by `panDx`, `panDy` pixels. */
   void rotate(float dxPixels, float dyPixels);

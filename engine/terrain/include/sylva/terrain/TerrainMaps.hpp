@@ -5,6 +5,7 @@
 #include <sylva/core/Image.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -89,18 +90,31 @@ float splatWeight(const SplatLayer& layer, float height, float slopeDegrees);
  * same size, e.g. sobelNormalMap); height = the field sample. Where no layer applies (all raw weights 0) the
  * first layer gets weight 1 (the base layer). Absent height samples get all weights 0. Float arithmetic:
  * weight / sum of weights.
+ *
+ * `verticalScale` ≠ 1 says the field's heights were exaggerated by that factor (for display) while the rules
+ * are in true metres and degrees: the rules then see height / verticalScale and the true slope
+ * atan(sqrt(1 − n.y²) / (n.y · verticalScale)) in degrees.
+ *
  * Throws sylva::Error for 0 or more than kMaxSplatLayers layers, or a normals image of the wrong size/type.
  */
-std::vector<Image> splatMap(const HeightField& field, const Image& normals,
-                            std::span<const SplatLayer> layers);
+std::vector<Image> splatMap(const HeightField& field, const Image& normals, std::span<const SplatLayer> layers,
+                            float verticalScale = 1.0f);
 
 /**
  * Default sand / grass / snow / rock rules for heights in [minHeight, maxHeight] metres (range r; 1 m if the
- * range is empty), in this layer order: sand up to min + 0.12·r, grass from there to min + 0.7·r, snow above,
- * all three on slopes below 35°; rock on slopes above 35° at any height. Soft edges of 0.04·r metres and 6°;
- * the outer height limits lie r beyond [minHeight, maxHeight] so every sample is covered.
+ * range is empty), in this layer order.
+ *
+ * Without a sea level: sand up to min + 0.12·r, grass from there to min + 0.7·r, snow above, all three on
+ * slopes below 35°; rock on slopes above 35° at any height. Soft edges of 0.04·r metres and 6°.
+ *
+ * With `seaLevel` s (land relief L = max(maxHeight − s, 1 m)): sand covers everything below the beach line
+ * s + max(2 m, 0.02·L) (sea floor and coast: no grass under water), grass from the beach line to s + 0.7·L,
+ * snow above; rock on slopes above 35°. Soft edges of max(1 m, 0.01·L) at the beach line and 0.04·L above.
+ *
+ * The outer height limits lie r beyond [minHeight, maxHeight] so every sample is covered.
  */
-std::vector<SplatLayer> defaultSplatLayers(float minHeight, float maxHeight);
+std::vector<SplatLayer> defaultSplatLayers(float minHeight, float maxHeight,
+                                           std::optional<float> seaLevel = std::nullopt);
 
 /**
  * JSON {"version": 1, "layers": [{"name", "minHeight", "maxHeight", "minSlope", "maxSlope",

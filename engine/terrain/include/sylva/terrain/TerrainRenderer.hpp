@@ -16,6 +16,7 @@
 #include <shared/Terrain.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace sylva::terrain {
@@ -49,6 +50,11 @@ struct TerrainDrawOptions {
   /** Count tessellation-evaluation invocations (GL_ARB_pipeline_statistics_query) when available. */
   bool countVertices = false;
   render::Environment environment{};
+  /**
+   * World height (metres, already exaggerated) of a still water surface drawn over the samples below it, in
+   * the Shaded view; nullopt = no water.
+   */
+  std::optional<float> waterLevel;
 };
 
 /**
@@ -70,8 +76,12 @@ Image proceduralLayerTexture(const SplatLayer& layer, int index, int size = 256)
  */
 class TerrainRenderer {
 public:
+  /**
+   * `verticalScale`: the factor by which `field`'s heights were exaggerated for display (1 = true heights);
+   * the splat rules and the water's depth colours use true metres and slopes (see splatMap).
+   */
   TerrainRenderer(const shader::Library& library, const HeightField& field, std::vector<SplatLayer> layers,
-                  const SobelOptions& sobel = {});
+                  const SobelOptions& sobel = {}, float verticalScale = 1.0f);
 
   /** Recompiles all programs (viewer hot reload); keeps the old ones and throws on error. */
   void reloadShaders(const shader::Library& library);
@@ -104,6 +114,8 @@ private:
   gl::Program mSurface{gl::NoCreate};
   gl::Program mNormals{gl::NoCreate};
   gl::Program mSplat{gl::NoCreate};
+  gl::Program mWater{gl::NoCreate};
+  float mVerticalScale = 1.0f;
   gl::Texture mHeights;
   gl::Texture mValid;
   gl::Texture mNormalMap;

@@ -29,6 +29,16 @@ struct TerrainSource {
 /** Loads or generates the heights of `source`; errors name the file or the field. */
 HeightField loadTerrainSource(const TerrainSource& source);
 
+/** How a TerrainScene presents its heights. */
+struct TerrainSceneOptions {
+  /** Splat rules in true metres and degrees; empty = defaultSplatLayers over the height range and sea level. */
+  std::vector<SplatLayer> layers;
+  /** Vertical exaggeration: heights are drawn multiplied by this (> 0; 1 = true scale). */
+  float exaggeration = 1.0f;
+  /** Sea level in true metres: sets the default splat rules' coast line and draws water; nullopt = none. */
+  std::optional<float> seaLevel;
+};
+
 /**
  * A terrain ready to draw: heights, quadtree LOD (CPU) and renderer (GPU). update() selects the patches for a
  * camera (optionally against a frozen frustum, to inspect culling from outside), draw() renders them.
@@ -40,6 +50,9 @@ public:
    */
   TerrainScene(const shader::Library& library, HeightField field, const QuadtreeConfig& config,
                std::vector<SplatLayer> layers = {});
+  /** `field` in true metres; it is exaggerated here (options.exaggeration) before the quadtree and GPU see it. */
+  TerrainScene(const shader::Library& library, HeightField field, const QuadtreeConfig& config,
+               TerrainSceneOptions options);
 
   /** Runs LOD selection and neighbour levels for `camera` at `aspect`; returns the selection. */
   const QuadtreeSelection& update(const render::Camera& camera, float aspect);
@@ -54,10 +67,30 @@ public:
   void setFrozenFrustum(std::optional<Frustum> frustum) { mFrozen = frustum; }
   bool frustumFrozen() const { return mFrozen.has_value(); }
 
-  /** A camera looking across the terrain from its south-west, for renders and the viewer's start. */
-  render::Camera defaultCamera() const;
-  /** Sun and fog suited to the terrain's size (fog reaches ~70 % at the far side of the terrain). */
-  render::Environment environment() const;
+  /**
+   * World bounds of what is drawn, metres: the footprint [0, extentX] × [0, extentZ] and the (exaggerated)
+   * height range, including the water surface.
+   */
+  Aabb bounds() const;
+  /**
+   * The framing camera of renders and the viewer's start: looks at the centre of bounds() from `from`, just
+   * far enough to see all of it at `aspect` (render::frameBox).
+   */
+  render::Camera frameCamera(render::ViewFrom from = render::ViewFrom::SouthWest,
+                             float fovY = glm::radians(50.0f), float aspect = 16.0f / 9.0f) const;
+  /** frameCamera() from the south-west at 16:9 (kept for callers that need one fixed view). */
+  render::Camera defaultCamera() const { return frameCamera(); }
+  /**
+   * Sun and fog for `camera`: exponential fog scaled so that the farthest corner of bounds() is `fog` fogged
+   * (0 = no fog), whatever the terrain's size.
+   */
+  render::Environment environment(const render::Camera& camera, float fog = 0.5f) const;
+  /** Vertical exaggeration the scene was built with. */
+  float exaggeration() const { return mOptions.exaggeration; }
+  /** Sea level, true metres; nullopt when there is no water. */
+  std::optional<float> seaLevel() const { return mOptions.seaLevel; }
+  /** Draw options for a shaded frame from `camera`: environment, water at the (exaggerated) sea level. */
+  TerrainDrawOptions drawOptions(const render::Camera& camera, float fog = 0.5f) const;
   /** CPU time of the last update() (selection + neighbour levels), milliseconds. */
   double lastUpdateMs() const { return mLastUpdateMs; }
 
@@ -65,11 +98,12 @@ public:
   Quadtree& quadtree() { return mQuadtree; }
   TerrainRenderer& renderer() { return *mRenderer; }
   const QuadtreeSelection& selection() const { return mSelection; }
-  /** Height range of the valid samples, metres. */
+  /** Height range of the valid samples, metres as drawn (× exaggeration). */
   float minHeight() const { return mInfo.minHeight; }
   float maxHeight() const { return mInfo.maxHeight; }
 
 private:
+  TerrainSceneOptions mOptions;
   HeightField mField;
   HeightFieldInfo mInfo;
   Quadtree mQuadtree;
