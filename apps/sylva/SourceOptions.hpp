@@ -234,7 +234,8 @@ struct SourceOptions {
    * Loads or generates the height field; throws sylva::Error naming the file or option. `report` (may be
    * null) receives what the DEM loader assumed; a procedural field reports metres.
    */
-  terrain::HeightField load(terrain::LoadReport* report = nullptr) const {
+  terrain::HeightField load(terrain::LoadReport* report = nullptr,
+                            const terrain::LoadOptions* limits = nullptr) const {
     check();
     if (!procedural()) {
       if (pngScaleOption->count() > 0 && lowerExtension(dem) != ".png") {
@@ -244,7 +245,7 @@ struct SourceOptions {
       if (npzArrayOption->count() > 0 && lowerExtension(dem) != ".npz") {
         log::warn("--npz-array {}: ignored, {} is not an .npz archive", npzArray, dem);
       }
-      return terrain::loadHeightField(dem, loadOptions(), report);
+      return terrain::loadHeightField(dem, limits != nullptr ? *limits : loadOptions(), report);
     }
     if (report != nullptr) {
       *report = terrain::LoadReport{};

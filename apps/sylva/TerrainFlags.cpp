@@ -1,11 +1,15 @@
 #include "TerrainFlags.hpp"
 
+#include <epoxy/gl.h>
+
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
+#include <sylva/core/Progress.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 
 namespace sylva::app {
 
@@ -45,6 +49,30 @@ terrain::TerrainView parseTerrainView(const std::string& name) {
     return terrain::TerrainView::Splat;
   }
   fail("--view: unknown view '{}' (expected shaded, lod, normals or splat)", name);
+}
+
+std::size_t affordableSamples() {
+  // MemAvailable from /proc/meminfo, kB; unknown (not Linux) = no limit beyond the loader's own.
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::size_t kb = 0;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit) {
+    if (key == "MemAvailable:") {
+      return std::max<std::size_t>(4, kb * 1024 / kRenderBytesPerSample);
+    }
+  }
+  return terrain::kMaxHeightFieldSamples;
+}
+
+void checkMemoryFor(std::size_t samples, const std::string& option) {
+  const std::size_t affordable = affordableSamples();
+  if (samples > affordable) {
+    fail("{}: {} samples need about {:.1f} GiB to render ({} bytes each: heights, GPU textures), {:.1f} GiB "
+         "is available",
+         option, samples, static_cast<double>(samples) * kRenderBytesPerSample / (1u << 30), kRenderBytesPerSample,
+         static_cast<double>(affordable) * kRenderBytesPerSample / (1u << 30));
+  }
 }
 
 void SeaLevelFlag::add(CLI::App& command) {
@@ -215,7 +243,22 @@ std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library
     options.layers = terrain::loadSplatLayers(layers); // before loading: a bad rules file costs nothing
   }
   (void)seaLevel.resolve(0.0f); // a malformed --sea-level fails before the heights are loaded
-  terrain::HeightField field = source.load();
+  // Limits known before any work: the GPU's largest texture, and memory for a procedural field.
+  GLint maxTexture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  const std::string textureReason = fmt::format("the GPU's largest texture side is {}", maxTexture);
+  if (source.procedural()) {
+    if (source.size > maxTexture) {
+      fail("--size {}: larger than the GPU's largest texture side ({}); use --size {} or less", source.size,
+           maxTexture, maxTexture);
+    }
+    checkMemoryFor(static_cast<std::size_t>(source.size) * static_cast<std::size_t>(source.size), "--size");
+  }
+  terrain::LoadOptions limits = source.loadOptions();
+  limits.maxSide = maxTexture;
+  limits.maxSideReason = textureReason;
+  limits.maxSamples = std::min(limits.maxSamples, affordableSamples());
+  terrain::HeightField field = source.load(nullptr, &limits);
   const terrain::HeightFieldInfo info = terrain::heightFieldInfo(field);
   options.exaggeration = exaggeration;
   options.seaLevel = seaLevel.resolve(info.minHeight);
@@ -226,7 +269,15 @@ std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library
               relief, 100.0 * relief / extent, extent / 1000.0, std::ceil(0.02f * extent / relief));
   }
   const terrain::QuadtreeConfig config = configFor(field);
-  return std::make_unique<terrain::TerrainScene>(library, std::move(field), config, std::move(options));
+  std::optional<Progress> progress;
+  if (field.samples().size() > kProgressSamples) {
+    progress.emplace("building terrain (min/max tree, GPU normal and splat maps)", 1);
+  }
+  auto scene = std::make_unique<terrain::TerrainScene>(library, std::move(field), config, std::move(options));
+  if (progress) {
+    progress->advance();
+  }
+  return scene;
 }
 
 } // namespace sylva::app

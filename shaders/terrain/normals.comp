@@ -5,7 +5,8 @@
 //   n = normalize(-gx, 1, -gz).
 #include "maps.glsl"
 
-layout(rgba32f, binding = 0) uniform writeonly image2D normalsOut;
+// Stored as (x, z) in rg16_snorm: y = sqrt(1 - x² - z²) is positive for every height-field normal.
+layout(rg16_snorm, binding = 0) uniform writeonly image2D normalsOut;
 
 float neighbour(ivec2 centre, ivec2 offset, float centreHeight) {
   ivec2 p = centre + offset;
@@ -24,7 +25,7 @@ void main() {
     return;
   }
   if (!sampleValid(p)) {
-    imageStore(normalsOut, p, vec4(0.0, 1.0, 0.0, 0.0));
+    imageStore(normalsOut, p, vec4(0.0));
     return;
   }
   float c = texelFetch(heightMap, p, 0).r;
@@ -38,5 +39,6 @@ void main() {
   float hpp = neighbour(p, ivec2(1, 1), c);
   float gx = (hpm + 2.0 * hp0 + hpp - hmm - 2.0 * hm0 - hmp) / (8.0 * maps.spacing.x);
   float gz = (hmp + 2.0 * h0p + hpp - hmm - 2.0 * h0m - hpm) / (8.0 * maps.spacing.y);
-  imageStore(normalsOut, p, vec4(normalize(vec3(-gx, 1.0, -gz)), 0.0));
+  vec3 n = normalize(vec3(-gx, 1.0, -gz));
+  imageStore(normalsOut, p, vec4(n.x, n.z, 0.0, 0.0));
 }

@@ -35,7 +35,8 @@ void main() {
     return;
   }
   vec2 uv = terrainUv(xz);
-  vec3 normal = normalize(texture(normalMap, uv).xyz);
+  vec2 nxz = texture(normalMap, uv).xy; // rg16_snorm (x, z), filtered
+  vec3 normal = normalize(vec3(nxz.x, sqrt(max(0.0, 1.0 - dot(nxz, nxz))), nxz.y));
   if (view == 2) {
     outColor = vec4(normal * 0.5 + 0.5, 1.0);
     return;

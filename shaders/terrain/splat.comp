@@ -1,7 +1,7 @@
 #version 450 core
 // Rule-based splat map; the CPU reference is sylva::terrain::splatMap (TerrainMaps.hpp). Each layer's raw weight
 // is ramp(height) * ramp(slope); weights are normalised to sum 1, the first layer taking weight 1 where no rule
-// applies, and written 4 layers per page of an rgba32f array (page k, channel c = layer 4k + c).
+// applies, and written 4 layers per page of an rgba8 array (page k, channel c = layer 4k + c).
 #include "maps.glsl"
 
 layout(std140, binding = SYLVA_TERRAIN_LAYER_BINDING) uniform RulesBlock {
@@ -10,9 +10,10 @@ layout(std140, binding = SYLVA_TERRAIN_LAYER_BINDING) uniform RulesBlock {
 layout(binding = 2) uniform sampler2D normalMap; // from normals.comp
 
 vec3 normalAt(ivec2 p) {
-  return texelFetch(normalMap, p, 0).xyz;
+  vec2 xz = texelFetch(normalMap, p, 0).xy; // rg16_snorm (x, z)
+  return vec3(xz.x, sqrt(max(0.0, 1.0 - dot(xz, xz))), xz.y);
 }
-layout(rgba32f, binding = 0) uniform writeonly image2DArray splatOut;
+layout(rgba8, binding = 0) uniform writeonly image2DArray splatOut;
 
 float ramp(float v, float lo, float hi, float blend) {
   if (blend > 0.0) {

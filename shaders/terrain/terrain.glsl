@@ -16,7 +16,7 @@ layout(std430, binding = SYLVA_TERRAIN_NODE_BINDING) readonly buffer TerrainNode
 
 layout(binding = 0) uniform sampler2D heightMap;  // r32f metres, absent samples filled from valid neighbours
 layout(binding = 1) uniform sampler2D validMask;  // r8: 1 where the source sample exists
-layout(binding = 2) uniform sampler2D normalMap;  // rgba16f/32f world normal (xyz)
+layout(binding = 2) uniform sampler2D normalMap;  // rg16_snorm world normal (x, z); y = sqrt(1 - x² - z²)
 layout(binding = 3) uniform sampler2DArray splatMap; // page k holds layers 4k..4k+3
 layout(binding = 4) uniform sampler2DArray layerAlbedo; // one tileable albedo texture per splat layer
 

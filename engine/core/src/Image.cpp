@@ -142,6 +142,11 @@ Image loadImage(const std::filesystem::path& path) {
 }
 
 void saveImage(const std::filesystem::path& path, const Image& image) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    fail("{}: cannot write: it is a directory (give a file name, e.g. {})", path.string(),
+         (path / "image.png").string());
+  }
   const std::string ext = lowerExtension(path);
   if (ext == ".png") {
     savePng(path, image);

@@ -60,6 +60,23 @@ bool decode(PngIo& io, Allocate allocate, void* context) {
     png_destroy_read_struct(&png, &info, nullptr);
     return false;
   }
+  // Our own size message before libpng's generic "Invalid IHDR data": width and height are the big-endian
+  // words at bytes 16..23 (signature, IHDR length and type come first).
+  if (io.data != nullptr && io.size >= 24) {
+    const auto word = [&](std::size_t at) {
+      return std::uint32_t{static_cast<unsigned char>(io.data[at])} << 24 |
+             std::uint32_t{static_cast<unsigned char>(io.data[at + 1])} << 16 |
+             std::uint32_t{static_cast<unsigned char>(io.data[at + 2])} << 8 |
+             std::uint32_t{static_cast<unsigned char>(io.data[at + 3])};
+    };
+    const std::uint32_t w = word(16);
+    const std::uint32_t h = word(20);
+    if (w > 65536 || h > 65536) {
+      std::snprintf(io.message, sizeof(io.message), "absurd size %ux%u pixels (at most 65536 per side)", w, h);
+      png_destroy_read_struct(&png, &info, nullptr);
+      return false;
+    }
+  }
   png_set_read_fn(png, &io, readBytes);
   png_set_user_limits(png, 65536, 65536);
   png_read_info(png, info);

@@ -14,20 +14,34 @@ namespace sylva::terrain {
 
 namespace {
 
-/** Heights with every absent sample replaced by its nearest valid sample (breadth-first), for geometry. */
-std::vector<float> filledHeights(const HeightField& field, std::vector<std::uint8_t>& valid) {
+/**
+ * Heights with every absent sample replaced by its nearest valid sample (breadth-first), for geometry, and
+ * the validity mask (255 = present). Fields without absent samples (the common case) need neither copy nor
+ * queue: `filled` stays empty and the caller uploads the field itself.
+ */
+void fillAbsent(const HeightField& field, std::vector<float>& filled, std::vector<std::uint8_t>& valid) {
   const int w = field.width();
   const int h = field.height();
-  std::vector<float> out = field.samples();
-  valid.assign(out.size(), 0);
+  const std::vector<float>& in = field.samples();
+  valid.assign(in.size(), 0);
+  std::size_t present = 0;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    if (!std::isnan(in[i])) {
+      valid[i] = 255;
+      ++present;
+    }
+  }
+  if (present == in.size()) {
+    return;
+  }
+  filled = in;
   std::deque<int> queue;
   for (int i = 0; i < w * h; ++i) {
-    if (!std::isnan(out[static_cast<std::size_t>(i)])) {
-      valid[static_cast<std::size_t>(i)] = 255;
+    if (valid[static_cast<std::size_t>(i)] != 0) {
       queue.push_back(i);
     }
   }
-  std::vector<std::uint8_t> seen(valid);
+  // `valid` doubles as the visited set: 1 marks a filled (absent) sample, which the shaders read as absent.
   while (!queue.empty()) {
     const int i = queue.front();
     queue.pop_front();
@@ -39,14 +53,13 @@ std::vector<float> filledHeights(const HeightField& field, std::vector<std::uint
         continue;
       }
       const int j = n[1] * w + n[0];
-      if (seen[static_cast<std::size_t>(j)] == 0) {
-        seen[static_cast<std::size_t>(j)] = 1;
-        out[static_cast<std::size_t>(j)] = out[static_cast<std::size_t>(i)];
+      if (valid[static_cast<std::size_t>(j)] == 0) {
+        valid[static_cast<std::size_t>(j)] = 1;
+        filled[static_cast<std::size_t>(j)] = filled[static_cast<std::size_t>(i)];
         queue.push_back(j);
       }
     }
   }
-  return out;
 }
 
 constexpr GLuint kGroup = SYLVA_TERRAIN_GROUP_SIZE;
@@ -89,10 +102,11 @@ std::vector<gpu::TerrainNode> packTerrainNodes(const QuadtreeSelection& selectio
 
 TerrainRenderer::TerrainRenderer(const shader::Library& library, const HeightField& field,
                                  std::vector<SplatLayer> layers, const SobelOptions& sobel, float verticalScale)
-    : mField(field), mSobel(sobel), mVerticalScale(verticalScale),
+    : mField{field.width(), field.height(), field.spacingX(), field.spacingZ(), field.extentX(), field.extentZ()},
+      mSobel(sobel), mVerticalScale(verticalScale),
       mHeights(gl::Texture::create2D(GL_R32F, std::max(field.width(), 1), std::max(field.height(), 1))),
       mValid(gl::Texture::create2D(GL_R8, std::max(field.width(), 1), std::max(field.height(), 1))),
-      mNormalMap(gl::Texture::create2D(GL_RGBA32F, std::max(field.width(), 1), std::max(field.height(), 1))),
+      mNormalMap(gl::Texture::create2D(GL_RG16_SNORM, std::max(field.width(), 1), std::max(field.height(), 1))),
       mUniforms(sizeof(gpu::TerrainUniforms)), mRules(sizeof(gpu::SplatRuleGpu) * SYLVA_TERRAIN_MAX_LAYERS) {
   if (!std::isfinite(verticalScale) || verticalScale <= 0.0f) {
     fail("terrain: vertical scale {} must be finite and > 0", verticalScale);
@@ -107,10 +121,13 @@ TerrainRenderer::TerrainRenderer(const shader::Library& library, const HeightFie
   mMinHeight = info.minHeight;
   mMaxHeight = info.maxHeight;
   std::vector<std::uint8_t> valid;
-  const std::vector<float> heights = filledHeights(field, valid);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(mHeights.id(), 0, 0, 0, field.width(), field.height(), GL_RED, GL_FLOAT,
-                      heights.data());
+  {
+    std::vector<float> filled;
+    fillAbsent(field, filled, valid);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(mHeights.id(), 0, 0, 0, field.width(), field.height(), GL_RED, GL_FLOAT,
+                        filled.empty() ? field.samples().data() : filled.data());
+  }
   glTextureSubImage2D(mValid.id(), 0, 0, 0, field.width(), field.height(), GL_RED, GL_UNSIGNED_BYTE,
                       valid.data());
   mHeights.setSampler({GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE});
@@ -145,11 +162,11 @@ void TerrainRenderer::computeMaps(std::vector<SplatLayer> layers) {
     fail("terrain: {} splat layers (expected 1..{})", layers.size(), kMaxSplatLayers);
   }
   mLayers = std::move(layers);
-  const int w = mField.width();
-  const int h = mField.height();
+  const int w = mField.width;
+  const int h = mField.height;
   gpu::TerrainMapsUniforms u{};
   u.field = glm::ivec4(w, h, static_cast<int>(mLayers.size()), mSobel.border == BorderMode::Constant ? 1 : 0);
-  u.spacing = glm::vec4(mField.spacingX(), mField.spacingZ(), mSobel.constantHeight, mVerticalScale);
+  u.spacing = glm::vec4(mField.spacingX, mField.spacingZ, mSobel.constantHeight, mVerticalScale);
   gl::Buffer mapsUniforms(sizeof(u), &u);
   mapsUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
   mHeights.bind(0);
@@ -169,7 +186,7 @@ void TerrainRenderer::computeMaps(std::vector<SplatLayer> layers) {
   mRules.setSubData(std::span<const gpu::SplatRuleGpu>(rules));
   mRules.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_LAYER_BINDING);
   const int pages = (static_cast<int>(mLayers.size()) + 3) / 4;
-  mSplatMap = gl::Texture::create2DArray(GL_RGBA32F, w, h, pages);
+  mSplatMap = gl::Texture::create2DArray(GL_RGBA8, w, h, pages);
   mSplatMap.setSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
   mSplat.use();
   mNormalMap.bind(2);
@@ -195,7 +212,7 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
                            int height, double time, render::GpuTimers* timers,
                            const TerrainDrawOptions& options) {
   const std::vector<gpu::TerrainNode> nodes =
-      packTerrainNodes(selection, mField.extentX(), mField.extentZ(), options.skirts);
+      packTerrainNodes(selection, mField.extentX, mField.extentZ, options.skirts);
   if (timers != nullptr) {
     timers->begin("terrain");
   }
@@ -209,9 +226,9 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
 
     gpu::TerrainUniforms u{};
     u.field =
-        glm::ivec4(mField.width(), mField.height(), mSplatMap.layers(), static_cast<int>(mLayers.size()));
-    u.spacing = glm::vec4(mField.spacingX(), mField.spacingZ(), options.textureTiling, options.skirtDepth);
-    u.extent = glm::vec4(mField.extentX(), mField.extentZ(), static_cast<float>(options.view), 0.0f);
+        glm::ivec4(mField.width, mField.height, mSplatMap.layers(), static_cast<int>(mLayers.size()));
+    u.spacing = glm::vec4(mField.spacingX, mField.spacingZ, options.textureTiling, options.skirtDepth);
+    u.extent = glm::vec4(mField.extentX, mField.extentZ, static_cast<float>(options.view), 0.0f);
     u.heightRange = glm::vec4(mMinHeight, mMaxHeight, 0.0f, 0.0f);
     mUniforms.setSubData(0, sizeof(u), &u);
     mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
@@ -272,13 +289,15 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
 }
 
 Image TerrainRenderer::downloadNormals() const {
-  const Image rgba = mNormalMap.download(4, PixelType::F32);
-  Image rgb(rgba.width(), rgba.height(), 3, PixelType::F32);
-  for (int y = 0; y < rgba.height(); ++y) {
-    for (int x = 0; x < rgba.width(); ++x) {
-      for (int c = 0; c < 3; ++c) {
-        rgb.set(x, y, c, rgba.get(x, y, c));
-      }
+  const Image rg = mNormalMap.download(2, PixelType::F32);
+  Image rgb(rg.width(), rg.height(), 3, PixelType::F32);
+  for (int y = 0; y < rg.height(); ++y) {
+    for (int x = 0; x < rg.width(); ++x) {
+      const float nx = rg.get(x, y, 0);
+      const float nz = rg.get(x, y, 1);
+      rgb.set(x, y, 0, nx);
+      rgb.set(x, y, 1, std::sqrt(std::max(0.0f, 1.0f - nx * nx - nz * nz)));
+      rgb.set(x, y, 2, nz);
     }
   }
   return rgb;

@@ -6,6 +6,7 @@
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
+#include <sylva/core/Progress.hpp>
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -37,13 +38,18 @@ namespace sylva::terrain {
 namespace detail {
 
 void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height,
-                          std::size_t maxSamples) {
+                          const LoadOptions& limits) {
+  const std::size_t maxSamples = limits.maxSamples;
   if (width > kMaxHeightFieldSide || height > kMaxHeightFieldSide) {
     fail("{}: absurd size {}x{} samples (at most {} per side)", path.string(), width, height,
          kMaxHeightFieldSide);
   }
   if (width < 2 || height < 2) {
     fail("{}: {}x{} samples; a height field needs at least 2x2", path.string(), width, height);
+  }
+  if (width > limits.maxSide || height > limits.maxSide) {
+    fail("{}: {}x{} samples is more than {} per side{}", path.string(), width, height, limits.maxSide,
+         limits.maxSideReason.empty() ? "" : " (" + limits.maxSideReason + ")");
   }
   if (static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > maxSamples) {
     fail("{}: absurd size {}x{} samples (at most {} in all)", path.string(), width, height, maxSamples);
@@ -52,7 +58,7 @@ void checkHeightFieldSize(const std::filesystem::path& path, long long width, lo
 
 void finishHeightField(const std::filesystem::path& path, HeightField& field, const LoadOptions& options,
                        LoadReport& report) {
-  checkHeightFieldSize(path, field.width(), field.height(), options.maxSamples);
+  checkHeightFieldSize(path, field.width(), field.height(), options);
   if (options.spacing > 0.0f) {
     field.setSpacing(options.spacing, options.spacing);
     report.units = "metres";
@@ -212,6 +218,9 @@ void validateOptions(const std::filesystem::path& path, const LoadOptions& optio
     fail("{}: absurd maxSamples {} (must be 4..{})", path.string(), options.maxSamples,
          kMaxHeightFieldSamples);
   }
+  if (options.maxSide < 2) {
+    fail("{}: absurd maxSide {} (must be >= 2)", path.string(), options.maxSide);
+  }
   if (!std::isfinite(options.heightScale) || options.heightScale <= 0.0f) {
     fail("{}: absurd heightScale {} (must be finite and > 0 metres)", path.string(), options.heightScale);
   }
@@ -322,7 +331,7 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
   if (image.channels() > 2) {
     fail("{}: height images must be grey (or grey+alpha), got {} channels", path.string(), image.channels());
   }
-  detail::checkHeightFieldSize(path, image.width(), image.height(), options.maxSamples);
+  detail::checkHeightFieldSize(path, image.width(), image.height(), options);
   const std::optional<Sidecar> sidecar = readSidecar(path);
   HeightField field(image.width(), image.height());
   detail::FileCoordinates coordinates;
@@ -537,7 +546,7 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   }
   const int width = GDALGetRasterXSize(dataset.get());
   const int height = GDALGetRasterYSize(dataset.get());
-  detail::checkHeightFieldSize(path, width, height, options.maxSamples);
+  detail::checkHeightFieldSize(path, width, height, options);
   GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
   if (GDALDataTypeIsComplex(GDALGetRasterDataType(band))) {
     fail("{}: band 1 holds complex numbers, not heights", name);
@@ -598,7 +607,17 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   HeightField field(width, height);
   std::vector<double> row(static_cast<std::size_t>(width));
   std::vector<unsigned char> maskRow(static_cast<std::size_t>(width), 1);
+  std::optional<Progress> progress;
+  if (static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > (std::size_t{1} << 20)) {
+    progress.emplace(fmt::format("reading {}", path.filename().string()), static_cast<std::size_t>(height));
+  }
   for (int y = 0; y < height; ++y) {
+    if (progress) {
+      if (progress->cancelled()) {
+        fail("{}: reading cancelled", name);
+      }
+      progress->advance();
+    }
     // Some drivers report a failed block read without failing the request (the rows come back as zeros).
     if (GDALRasterIO(band, GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_Float64, 0, 0) != CE_None ||
         CPLGetLastErrorType() >= CE_Failure) {

@@ -346,7 +346,7 @@ const std::byte* dataOf(std::span<const std::byte> bytes, const NpyHeader& heade
 
 /** A 2D array as a HeightField with 1 m spacing (rows = shape[0] north to south, columns = shape[1]). */
 HeightField toHeightField(std::span<const std::byte> bytes, const std::string& where,
-                          const std::filesystem::path& path, std::size_t maxSamples) {
+                          const std::filesystem::path& path, const LoadOptions& limits) {
   const NpyHeader header = parseHeader(bytes, where);
   if (header.shape.size() != 2) {
     fail("{}: expected a 2D array, got shape {}", where, header.shapeText());
@@ -354,7 +354,7 @@ HeightField toHeightField(std::span<const std::byte> bytes, const std::string& w
   const long long rows = header.shape[0];
   const long long cols = header.shape[1];
   try {
-    checkHeightFieldSize(path, cols, rows, maxSamples);
+    checkHeightFieldSize(path, cols, rows, limits);
   } catch (const Error& e) {
     // Re-label with the array name for .npz members; checkHeightFieldSize names only the file.
     const std::string message = e.what();
@@ -714,7 +714,7 @@ FileCoordinates coordinatesFromSteps(const NpzArchive& archive, const HeightFiel
 
 HeightField loadNpy(const std::filesystem::path& path, const LoadOptions& options, LoadReport& report) {
   const std::vector<std::byte> bytes = readWholeFile(path);
-  HeightField field = toHeightField(bytes, path.string(), path, options.maxSamples);
+  HeightField field = toHeightField(bytes, path.string(), path, options);
   applyCoordinates(path, field, FileCoordinates{}, options, report);
   finishHeightField(path, field, options, report);
   return field;
@@ -746,7 +746,7 @@ HeightField loadNpz(const std::filesystem::path& path, const LoadOptions& option
     }
   }
   const std::vector<std::byte> bytes = archive.read(member);
-  HeightField field = toHeightField(bytes, archive.label(archive.names()[member]), path, options.maxSamples);
+  HeightField field = toHeightField(bytes, archive.label(archive.names()[member]), path, options);
   std::optional<FileCoordinates> coordinates = coordinatesFromArrays(archive, field, path, report);
   if (!coordinates) {
     coordinates = coordinatesFromSteps(archive, field, path.string());

@@ -8,8 +8,16 @@
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/TerrainRenderer.hpp>
 
+#include <sylva/render/RenderTarget.hpp>
+
 #include "GlTest.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cstdlib>
+#include <optional>
+
+#include <algorithm>
 #include <cmath>
 
 namespace sylva::terrain {
@@ -44,6 +52,21 @@ float maxDifference(const Image& a, const Image& b, int channels) {
   return worst;
 }
 
+/** CPU normals as the GPU stores them: x and z in 16-bit snorm, y rebuilt from them. */
+Image snorm16Normals(Image normals) {
+  const auto q = [](float v) { return std::round(std::clamp(v, -1.0f, 1.0f) * 32767.0f) / 32767.0f; };
+  for (int y = 0; y < normals.height(); ++y) {
+    for (int x = 0; x < normals.width(); ++x) {
+      const float nx = q(normals.get(x, y, 0));
+      const float nz = q(normals.get(x, y, 2));
+      normals.set(x, y, 0, nx);
+      normals.set(x, y, 1, std::sqrt(std::max(0.0f, 1.0f - nx * nx - nz * nz)));
+      normals.set(x, y, 2, nz);
+    }
+  }
+  return normals;
+}
+
 TEST_F(TerrainGpu, SobelNormalsMatchCpuForBothBorders) {
   const HeightField field = testField();
   for (BorderMode border : {BorderMode::Clamp, BorderMode::Constant}) {
@@ -52,11 +75,12 @@ TEST_F(TerrainGpu, SobelNormalsMatchCpuForBothBorders) {
     options.constantHeight = 12.5f;
     const TerrainRenderer renderer(shaders(), field, defaultSplatLayers(0.0f, 80.0f), options);
     const Image gpu = renderer.downloadNormals();
-    const Image cpu = sobelNormalMap(field, options);
+    const Image cpu = snorm16Normals(sobelNormalMap(field, options));
     ASSERT_EQ(gpu.width(), cpu.width());
     ASSERT_EQ(gpu.height(), cpu.height());
-    // Same formula in float; GPU normalize() may use an approximate inverse square root (~2 ulp).
-    EXPECT_LT(maxDifference(gpu, cpu, 3), 1e-5f) << "border mode " << static_cast<int>(border);
+    // Same formula in float, stored in 16-bit: one quantisation step (3e-5) where rounding tips the other way
+    // (GPU normalize() may use an approximate inverse square root), amplified in y rebuilt on steep slopes.
+    EXPECT_LT(maxDifference(gpu, cpu, 3), 5e-4f) << "border mode " << static_cast<int>(border);
   }
 }
 
@@ -72,9 +96,100 @@ TEST_F(TerrainGpu, SplatWeightsMatchCpuForManyLayers) {
   ASSERT_EQ(gpu.size(), 2u);
   ASSERT_EQ(cpu.size(), 2u);
   for (std::size_t page = 0; page < 2; ++page) {
-    // acos and the normal differ by a few ulp; the weights are Lipschitz in both with soft edges.
-    EXPECT_LT(maxDifference(gpu[page], cpu[page], 4), 1e-3f) << "page " << page;
+    // Weights are stored in 8 bits (half a step: 0.002); acos and the 16-bit normal add a little.
+    EXPECT_LT(maxDifference(gpu[page], cpu[page], 4), 3e-3f) << "page " << page;
   }
+}
+
+TEST_F(TerrainGpu, SplatWithVerticalScaleMatchesCpu) {
+  HeightField field = testField();
+  for (float& h : field.samples()) {
+    h *= 6.0f; // drawn 6x taller; the rules stay in true metres and degrees
+  }
+  const std::vector<SplatLayer> layers = defaultSplatLayers(0.0f, 80.0f, 20.0f);
+  const TerrainRenderer renderer(shaders(), field, layers, SobelOptions{}, 6.0f);
+  const std::vector<Image> gpu = renderer.downloadSplat();
+  const std::vector<Image> cpu = splatMap(field, sobelNormalMap(field), layers, 6.0f);
+  ASSERT_EQ(gpu.size(), 1u);
+  EXPECT_LT(maxDifference(gpu[0], cpu[0], 4), 5e-3f); // slopes x6: the 16-bit normal weighs more
+}
+
+// The water surface: drawn over samples below the sea level, never over dry ground or nodata.
+TEST_F(TerrainGpu, WaterCoversExactlyTheSamplesBelowSeaLevel) {
+  // A ramp from -30 m (west) to +30 m (east), seen from straight above: the west half is sea.
+  HeightField field(129, 129, 2.0f, 2.0f);
+  for (int j = 0; j < 129; ++j) {
+    for (int i = 0; i < 129; ++i) {
+      field.at(i, j) = -30.0f + 60.0f * static_cast<float>(i) / 128.0f;
+    }
+  }
+  for (int j = 100; j < 129; ++j) {
+    for (int i = 0; i < 30; ++i) {
+      field.at(i, j) = std::nanf(""); // a nodata corner in the sea: no water there either
+    }
+  }
+  QuadtreeConfig config;
+  config.rootSize = 64.0f;
+  config.maxDepth = 2;
+  Quadtree quadtree(config, field);
+  TerrainRenderer renderer(shaders(), field, defaultSplatLayers(-30.0f, 30.0f, 0.0f));
+  render::Camera camera;
+  camera.position = {128.0f, 900.0f, 128.0f};
+  camera.target = {128.0f, 0.0f, 128.0f};
+  camera.up = {0.0f, 0.0f, -1.0f};
+  camera.fovY = glm::radians(20.0f);
+  camera.nearPlane = 100.0f;
+  camera.farPlane = 2000.0f;
+  QuadtreeSelection selection;
+  quadtree.select(camera.position, nullptr, selection);
+  const auto render = [&](std::optional<float> water) {
+    render::RenderTarget target(128, 128);
+    target.begin(glm::vec4(1.0f, 0.0f, 1.0f, 1.0f));
+    TerrainDrawOptions options;
+    options.environment.fogDensity = 0.0f;
+    options.waterLevel = water;
+    renderer.draw(selection, camera, 128, 128, 0.0, nullptr, options);
+    return target.readColor();
+  };
+  const Image dry = render(std::nullopt);
+  const Image wet = render(0.0f);
+  if (std::getenv("SYLVA_DUMP") != nullptr) {
+    saveImage("/tmp/exp/dry.png", dry);
+    saveImage("/tmp/exp/wet.png", wet);
+  }
+  // World x of a pixel column: the view spans 2·900·tan(10°) = 317 m around x = 128 m.
+  const float span = 2.0f * 900.0f * std::tan(glm::radians(10.0f));
+  int waterPixels = 0;
+  for (int y = 0; y < 128; ++y) {
+    for (int x = 0; x < 128; ++x) {
+      // Offsets at y = 0, then scaled to the ground's depth below the camera (the ramp's height there).
+      const float ox = (static_cast<float>(x) + 0.5f - 64.0f) / 128.0f * span;
+      const float oz = (static_cast<float>(y) + 0.5f - 64.0f) / 128.0f * span;
+      const float depthScale = (900.0f - (-30.0f + 60.0f * (128.0f + ox) / 256.0f)) / 900.0f;
+      const float wx = 128.0f + ox * depthScale;
+      const float wz = 128.0f + oz * depthScale;
+      if (wx < 8.0f || wz < 8.0f || wx > 248.0f || wz > 248.0f) {
+        continue; // outside the footprint, or on its edge
+      }
+      const bool changed = std::abs(wet.get(x, y, 0) - dry.get(x, y, 0)) + std::abs(wet.get(x, y, 2) - dry.get(x, y, 2)) > 0.02f;
+      // Fragments are cut by their nearest sample: absent columns 0..29 and rows 100.. end at x = 59, z = 199.
+      if ((std::abs(wx - 59.0f) < 3.0f && wz > 196.0f) || (std::abs(wz - 199.0f) < 3.0f && wx < 62.0f)) {
+        continue;
+      }
+      const bool nodata = wx < 59.0f && wz > 199.0f;
+      const float ground = -30.0f + 60.0f * wx / 256.0f;
+      if (nodata) {
+        EXPECT_FALSE(changed) << "water over nodata at " << wx << ", " << wz;
+      } else if (ground < -2.0f) {
+        EXPECT_TRUE(changed) << "no water over the sea floor at " << ground << " m";
+        EXPECT_GT(wet.get(x, y, 2), wet.get(x, y, 0)) << "water is blue";
+        ++waterPixels;
+      } else if (ground > 2.0f) {
+        EXPECT_FALSE(changed) << "water over dry ground at " << ground << " m";
+      }
+    }
+  }
+  EXPECT_GT(waterPixels, 3000);
 }
 
 // What is drawn agrees with heightAt: render world positions into a float target from a camera standing on

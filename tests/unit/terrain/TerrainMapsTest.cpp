@@ -250,5 +250,81 @@ TEST(TerrainMaps, LayerJsonRoundTripAndFieldErrors) {
   expectError(bad, "unknown field 'extra'");
 }
 
+TEST(TerrainMaps, SeaLevelRulesPutSandOnCoastsAndNoGrassUnderWater) {
+  // A coastal profile: sea floor at -200 m rising to a 900 m hill at a gentle 5.7 degrees (10 m per 100 m).
+  HeightField field(111, 3, 100.0f, 100.0f);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 111; ++i) {
+      field.at(i, j) = -200.0f + 10.0f * static_cast<float>(i);
+    }
+  }
+  const std::vector<SplatLayer> layers = defaultSplatLayers(-200.0f, 900.0f, 0.0f);
+  ASSERT_EQ(layers.size(), 4u);
+  ASSERT_EQ(layers[0].name, "sand");
+  ASSERT_EQ(layers[1].name, "grass");
+  const std::vector<Image> pages = splatMap(field, sobelNormalMap(field), layers);
+  for (int i = 1; i < 110; ++i) {
+    const float h = field.at(i, 1);
+    const float sand = pages[0].get(i, 1, 0);
+    const float grass = pages[0].get(i, 1, 1);
+    if (h < 0.0f) {
+      EXPECT_EQ(grass, 0.0f) << "grass under water at " << h << " m";
+      EXPECT_GT(sand, 0.99f) << "sea floor at " << h << " m";
+    }
+    if (h >= 0.0f && h <= 10.0f) {
+      EXPECT_GT(sand, 0.5f) << "the beach at " << h << " m is sand";
+    }
+    if (h >= 100.0f && h <= 500.0f) {
+      EXPECT_GT(grass, 0.99f) << "land at " << h << " m is grass";
+    }
+  }
+  // Without a sea level the lowest 12 % are sand, wherever 0 m is.
+  const std::vector<SplatLayer> inland = defaultSplatLayers(-200.0f, 900.0f);
+  EXPECT_NEAR(inland[0].maxHeight, -200.0f + 0.12f * 1100.0f, 1e-3f);
+}
+
+TEST(TerrainMaps, VerticalScaleKeepsRulesInTrueMetresAndDegrees) {
+  // Splat of an exaggerated field with verticalScale = e equals the splat of the true field (tolerance for
+  // the float round trip through the normals): rules see true heights and true slopes.
+  HeightField field(40, 30, 5.0f, 5.0f);
+  for (int j = 0; j < 30; ++j) {
+    for (int i = 0; i < 40; ++i) {
+      field.at(i, j) = 8.0f * std::sin(0.2f * static_cast<float>(i)) + 0.5f * static_cast<float>(j); // <= 18 degrees
+    }
+  }
+  const std::vector<SplatLayer> layers = defaultSplatLayers(-8.0f, 23.0f, 0.0f);
+  const std::vector<Image> truth = splatMap(field, sobelNormalMap(field), layers);
+  for (const float e : {0.5f, 4.0f}) {
+    HeightField tall = field;
+    for (float& h : tall.samples()) {
+      h *= e;
+    }
+    const std::vector<Image> scaled = splatMap(tall, sobelNormalMap(tall), layers, e);
+    float worst = 0.0f;
+    for (int j = 0; j < 30; ++j) {
+      for (int i = 0; i < 40; ++i) {
+        for (int c = 0; c < 4; ++c) {
+          worst = std::max(worst, std::abs(scaled[0].get(i, j, c) - truth[0].get(i, j, c)));
+        }
+      }
+    }
+    EXPECT_LT(worst, 2e-3f) << "exaggeration " << e;
+    // Without the scale the exaggerated slopes would turn far more of it to rock.
+    const std::vector<Image> naive = splatMap(tall, sobelNormalMap(tall), layers);
+    double rockTruth = 0.0;
+    double rockNaive = 0.0;
+    for (int j = 0; j < 30; ++j) {
+      for (int i = 0; i < 40; ++i) {
+        rockTruth += truth[0].get(i, j, 3);
+        rockNaive += naive[0].get(i, j, 3);
+      }
+    }
+    if (e > 1.0f) {
+      EXPECT_GT(rockNaive, rockTruth + 10.0) << "the test field must have slopes the scale changes";
+    }
+  }
+  EXPECT_THROW(splatMap(field, sobelNormalMap(field), layers, 0.0f), Error);
+}
+
 } // namespace
 } // namespace sylva::terrain

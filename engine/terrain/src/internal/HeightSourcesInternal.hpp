@@ -10,10 +10,10 @@
 
 namespace sylva::terrain::detail {
 
-/** Throws `<file>: ...` unless width × height is within 2..kMaxHeightFieldSide per side and `maxSamples`
- * (LoadOptions::maxSamples) in all. */
+/** Throws `<file>: ...` unless width × height is within 2..kMaxHeightFieldSide (and LoadOptions::maxSide) per
+ * side and LoadOptions::maxSamples in all. */
 void checkHeightFieldSize(const std::filesystem::path& path, long long width, long long height,
-                          std::size_t maxSamples = kMaxHeightFieldSamples);
+                          const LoadOptions& limits = {});
 
 /**
  * Common last step of every loader: applies LoadOptions::spacing and flipY, turns non-finite samples into

@@ -9,7 +9,8 @@ namespace sylva {
 
 /**
  * Progress of long work (preprocessing, synthesis, batch renders). Prints a single updating line to stderr
- * when it is a terminal (at most 10 times a second), and nothing otherwise. cancel() may be called from
+ * when it is a terminal (at most 10 times a second); otherwise (logs, CI) a line at 25, 50 and 75 % and one
+ * when the step ends. cancel() may be called from
  * another thread (e.g. a SIGINT handler); the worker checks cancelled() and stops.
  */
 class Progress {
@@ -44,6 +45,7 @@ private:
   std::atomic<std::size_t> mDone{0};
   std::atomic<bool> mCancelled{false};
   std::atomic<long long> mLastPrintNs{0};
+  std::atomic<std::size_t> mQuartersPrinted{0};
   std::chrono::steady_clock::time_point mStart;
   bool mInteractive;
 };

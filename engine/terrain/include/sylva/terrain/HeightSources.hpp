@@ -95,6 +95,12 @@ struct LoadOptions {
    * memory guard for services and fuzzing, where a small file may legitimately claim a huge sparse raster.
    */
   std::size_t maxSamples = kMaxHeightFieldSamples;
+  /**
+   * Largest accepted side, samples, also checked before anything is allocated: e.g. the GPU's largest
+   * texture for a renderer. `maxSideReason` says why, in the error message.
+   */
+  int maxSide = kMaxHeightFieldSide;
+  std::string maxSideReason;
 };
 
 /**

@@ -96,17 +96,28 @@ public:
   std::int64_t lastCrackSamples() const { return mLastCrackSamples; }
   /** Tessellation-evaluation invocations of the last draw with countVertices (-1 when not supported). */
   std::int64_t lastVertexInvocations() const { return mLastInvocations; }
-  /** The GPU normal map as an RGB F32 image (pixel (i, j) = sample (i, j)), for tests and exports. */
+  /**
+   * The GPU normal map as an RGB F32 image (pixel (i, j) = sample (i, j)), for tests and exports. Stored as
+   * RG16_SNORM (x, z; y = sqrt(1 − x² − z²) ≥ 0, as every height-field normal points up): 4 bytes a sample.
+   */
   Image downloadNormals() const;
-  /** The GPU splat pages as RGBA F32 images (page k = layers 4k..4k+3). */
+  /** The GPU splat pages as RGBA F32 images (page k = layers 4k..4k+3), stored as RGBA8 (steps of 1/255). */
   std::vector<Image> downloadSplat() const;
   const std::vector<SplatLayer>& layers() const { return mLayers; }
-  const HeightField& field() const { return mField; }
 
 private:
   void uploadLayerTextures();
 
-  HeightField mField;
+  /** The field's shape only: its heights live in the textures (no CPU copy is kept). */
+  struct Shape {
+    int width = 0;
+    int height = 0;
+    float spacingX = 1.0f;
+    float spacingZ = 1.0f;
+    float extentX = 0.0f;
+    float extentZ = 0.0f;
+  };
+  Shape mField;
   std::vector<SplatLayer> mLayers;
   SobelOptions mSobel;
   float mMinHeight = 0.0f;
