@@ -1,4 +1,5 @@
 // Runs the built `sylva` binary as a user would: exit codes, stdout/stderr, and the files it writes.
+#include "CliRun.hpp"
 #include "TempDir.hpp"
 
 #include <sylva/core/Files.hpp>
@@ -27,41 +28,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string quote(const std::string& text) {
-  std::string quoted = "'";
-  for (const char c : text) {
-    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return quoted + "'";
-}
-
-std::string readAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+using test::quote;
+using test::readAll;
+using test::RunResult;
 
 /** Runs `sylva <args>` (args already shell-quoted where needed) with stdout and stderr captured. */
 RunResult runSylva(const test::TempDir& dir, const std::string& args) {
-  const fs::path out = dir / "stdout.txt";
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = quote(SYLVA_EXE) + " " + args + " >" + quote(out.string()) + " 2>" +
-                              quote(err.string()) + " </dev/null";
-  const int raw = std::system(command.c_str());
-  RunResult result;
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  result.out = readAll(out);
-  result.err = readAll(err);
-  fs::remove(out);
-  fs::remove(err);
-  return result;
+  return test::runProgram(SYLVA_EXE, dir.path(), args);
 }
 
 std::size_t lineCount(const std::string& text) {
