@@ -3,6 +3,7 @@
 #   out/terrain.png       the procedural demo landscape, shaded (multi-textured, lit, fogged)
 #   out/terrain-lod.png   the same view in wireframe with quadtree LOD colours
 #   out/jacksboro.png     a real DEM (Jacksboro fault, Tennessee) fetched from a Debian package
+#   out/coast.png         a real coastal DEM with bathymetry (British Columbia): sea level, water, 3x relief
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup-debian.sh
@@ -13,3 +14,4 @@ mkdir -p out
 "$sylva" render --out out/terrain.png
 "$sylva" render --view lod --wireframe --out out/terrain-lod.png
 "$sylva" render --dem data/external/jacksboro_fault_dem.npz --out out/jacksboro.png
+"$sylva" render --dem data/external/topobathy.npz --exaggeration 3 --out out/coast.png

@@ -14,6 +14,7 @@ mkdir -p "${dest}"
 entries=(
   "r-cran-terra|usr/lib/R/site-library/terra/ex/elev.tif|elev.tif"
   "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz|jacksboro_fault_dem.npz"
+  "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/topobathy.npz|topobathy.npz"
 )
 
 work="$(mktemp -d)"

@@ -144,7 +144,8 @@ void runViewer(const ViewOptions& o) {
                                                                  : 1;
     // The same framing as `sylva render` with the same flags; fog stays fixed from there on.
     const glm::ivec2 size = window.framebufferSize();
-    start = o.camera.camera(*v.terrain, static_cast<float>(std::max(size.x, 1)) / static_cast<float>(std::max(size.y, 1)));
+    start = o.camera.camera(*v.terrain, static_cast<float>(std::max(size.x, 1)) /
+                                            static_cast<float>(std::max(size.y, 1)));
     v.draw = v.terrain->drawOptions(start, o.camera.fog);
     v.draw.countVertices = true;
   } else {
@@ -156,7 +157,8 @@ void runViewer(const ViewOptions& o) {
     // Zoom out until the whole terrain is a small part of the view, in until a few samples fill it.
     const Aabb box = v.terrain->bounds();
     orbit.maxDistance = std::max(4.0f * orbit.distance, 2.0f * glm::length(box.max - box.min));
-    orbit.minDistance = std::max(0.5f, 2.0f * std::min(v.terrain->field().spacingX(), v.terrain->field().spacingZ()));
+    orbit.minDistance =
+        std::max(0.5f, 2.0f * std::min(v.terrain->field().spacingX(), v.terrain->field().spacingZ()));
   }
   render::FlyController fly;
   fly.speed = std::max(10.0f, 0.05f * orbit.distance);

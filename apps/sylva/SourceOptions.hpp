@@ -151,9 +151,10 @@ struct SourceOptions {
         "--geographic", geographic,
         "The DEM's coordinates are longitude/latitude degrees, whatever the file says (converted to metres "
         "at the centre latitude; see docs/terrain-data.md)");
-    flipYOption = command.add_flag("--flip-y", flipY,
-                                   "Reverse the DEM's rows after reading (when its coordinates are missing or "
-                                   "wrong about which edge is north)");
+    flipYOption =
+        command.add_flag("--flip-y", flipY,
+                         "Reverse the DEM's rows after reading (when its coordinates are missing or "
+                         "wrong about which edge is north)");
   }
 
   /** True when the heights come from the generator (--seed/--spec, or no --dem with defaultToProcedural). */

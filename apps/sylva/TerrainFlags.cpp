@@ -70,16 +70,17 @@ void checkMemoryFor(std::size_t samples, const std::string& option) {
   if (samples > affordable) {
     fail("{}: {} samples need about {:.1f} GiB to render ({} bytes each: heights, GPU textures), {:.1f} GiB "
          "is available",
-         option, samples, static_cast<double>(samples) * kRenderBytesPerSample / (1u << 30), kRenderBytesPerSample,
-         static_cast<double>(affordable) * kRenderBytesPerSample / (1u << 30));
+         option, samples, static_cast<double>(samples) * kRenderBytesPerSample / (1u << 30),
+         kRenderBytesPerSample, static_cast<double>(affordable) * kRenderBytesPerSample / (1u << 30));
   }
 }
 
 void SeaLevelFlag::add(CLI::App& command) {
   command
-      .add_option("--sea-level", text,
-                  "Sea level in metres, 'auto' (0 m when heights go below 0 m, else none) or 'none': water is "
-                  "drawn there and the default splat rules put sand on the coast and no grass under water")
+      .add_option(
+          "--sea-level", text,
+          "Sea level in metres, 'auto' (0 m when heights go below 0 m, else none) or 'none': water is "
+          "drawn there and the default splat rules put sand on the coast and no grass under water")
       ->capture_default_str();
 }
 
@@ -152,7 +153,8 @@ void CameraFlags::check() const {
   if (!lookAt.empty()) {
     (void)parseVec3("--look-at", lookAt);
   }
-  if (!cameraPos.empty() && !lookAt.empty() && parseVec3("--camera-pos", cameraPos) == parseVec3("--look-at", lookAt)) {
+  if (!cameraPos.empty() && !lookAt.empty() &&
+      parseVec3("--camera-pos", cameraPos) == parseVec3("--look-at", lookAt)) {
     fail("--camera-pos and --look-at: the same point ({}); the camera needs a direction", cameraPos);
   }
 }
@@ -265,8 +267,9 @@ std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library
   const float relief = info.maxHeight - info.minHeight;
   const float extent = std::max(field.extentX(), field.extentZ());
   if (exaggeration == 1.0f && relief > 0.0f && relief < 0.002f * extent) {
-    log::info("relief {:.0f} m is {:.2g} % of the {:.0f} km extent and will look flat; try --exaggeration {:.0f}",
-              relief, 100.0 * relief / extent, extent / 1000.0, std::ceil(0.02f * extent / relief));
+    log::info(
+        "relief {:.0f} m is {:.2g} % of the {:.0f} km extent and will look flat; try --exaggeration {:.0f}",
+        relief, 100.0 * relief / extent, extent / 1000.0, std::ceil(0.02f * extent / relief));
   }
   const terrain::QuadtreeConfig config = configFor(field);
   std::optional<Progress> progress;

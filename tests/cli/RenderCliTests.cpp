@@ -1,6 +1,6 @@
 // `sylva render` on real-world shaped terrains: framing from the real extent, camera options, exaggeration,
-// sea level and water, limits checked before work, and the one-line errors of bad camera options. They render,
-// so they need a GL context (label gl).
+// sea level and water, limits checked before work, and the one-line errors of bad camera options. They
+// render, so they need a GL context (label gl).
 #include "CliRun.hpp"
 #include "TempDir.hpp"
 
@@ -72,14 +72,16 @@ std::size_t waterPixels(const Image& image) {
   return count;
 }
 
-/** A w×h DEM saved as .npy: a Gaussian hill of `relief` metres on a slope from −base (west) to +base (east). */
+/** A w×h DEM saved as .npy: a Gaussian hill of `relief` metres on a slope from −base (west) to +base (east).
+ */
 fs::path writeDem(const test::TempDir& dir, const std::string& name, int w, int h, float relief, float base) {
   terrain::HeightField field(w, h);
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
       const float u = static_cast<float>(i) / static_cast<float>(w - 1) - 0.6f;
       const float v = static_cast<float>(j) / static_cast<float>(h - 1) - 0.5f;
-      field.at(i, j) = relief * std::exp(-8.0f * (u * u + v * v)) + base * (2.0f * static_cast<float>(i) / static_cast<float>(w - 1) - 1.0f);
+      field.at(i, j) = relief * std::exp(-8.0f * (u * u + v * v)) +
+                       base * (2.0f * static_cast<float>(i) / static_cast<float>(w - 1) - 1.0f);
     }
   }
   const fs::path path = dir / name;
@@ -121,14 +123,14 @@ TEST(CliRender, FramingShowsTheWholeTerrainWhateverItsShape) {
   const fs::path wide = writeDem(dir, "wide.npy", 200, 100, 2000.0f, 0.0f);
   for (const std::string view : {"south-west", "north"}) {
     // Relief 8 times the extent: the mountain must reach from near the bottom of the image to near the top.
-    EXPECT_GT(rowSpan(render(dir, "--dem " + quote(tall.string()) + " --spacing 10 --view-from " + view, "t.png")),
-              0.8)
+    EXPECT_GT(
+        rowSpan(render(dir, "--dem " + quote(tall.string()) + " --spacing 10 --view-from " + view, "t.png")),
+        0.8)
         << view;
   }
   for (const std::string view : {"south-west", "north", "top"}) {
-    EXPECT_GT(terrainFraction(render(dir,
-                                     "--dem " + quote(wide.string()) + " --spacing 50000 --view-from " + view,
-                                     "w.png")),
+    EXPECT_GT(terrainFraction(render(
+                  dir, "--dem " + quote(wide.string()) + " --spacing 50000 --view-from " + view, "w.png")),
               0.15)
         << view;
   }
@@ -150,7 +152,8 @@ TEST(CliRender, CameraOptionsMoveTheView) {
   EXPECT_TRUE(differs("--exaggeration 3"));
   EXPECT_TRUE(differs("--fog 0"));
   // A close look from the ground still sees terrain (clip planes follow the camera).
-  EXPECT_GT(terrainFraction(render(dir, source + " --camera-pos 500,420,500 --look-at 700,300,700", "g.png")), 0.3);
+  EXPECT_GT(terrainFraction(render(dir, source + " --camera-pos 500,420,500 --look-at 700,300,700", "g.png")),
+            0.3);
 }
 
 TEST(CliRender, SeaLevelDrawsWaterOnlyWhenThereIsSea) {
@@ -165,7 +168,8 @@ TEST(CliRender, SeaLevelDrawsWaterOnlyWhenThereIsSea) {
   EXPECT_GT(high, low) << "a higher sea covers more";
   // Inland terrain (all heights above 0 m) has no sea unless asked for.
   const fs::path hill = writeDem(dir, "hill.npy", 60, 60, 300.0f, 0.0f);
-  EXPECT_EQ(waterPixels(render(dir, "--dem " + quote(hill.string()) + " --spacing 20 --view-from top --fog 0", "h.png")),
+  EXPECT_EQ(waterPixels(render(dir, "--dem " + quote(hill.string()) + " --spacing 20 --view-from top --fog 0",
+                               "h.png")),
             0u);
 }
 
@@ -177,7 +181,8 @@ TEST(CliRender, BadCameraOptionsAndLimitsFailBeforeWork) {
         std::string("--fov 0"), std::string("--fog 2"), std::string("--sea-level deep"),
         std::string("--exaggeration 0"), std::string("--camera-pos 1,2,3 --look-at 1,2,3"),
         std::string("--size 32768"), std::string("--seed 18446744073709551616")}) {
-    const test::RunResult r = runSylva(dir, "render --seed 1 --size 65 " + args + " -o " + quote(out.string()));
+    const test::RunResult r =
+        runSylva(dir, "render --seed 1 --size 65 " + args + " -o " + quote(out.string()));
     EXPECT_NE(r.status, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << args;

@@ -20,7 +20,8 @@ std::string quote(const std::string& text);
 /** A whole file as bytes ("" if it cannot be read). */
 std::string readAll(const std::filesystem::path& path);
 
-/** Runs `<exe> <args>` (args already shell-quoted) in the current directory, capturing into files in `dir`. */
+/** Runs `<exe> <args>` (args already shell-quoted) in the current directory, capturing into files in `dir`.
+ */
 RunResult runProgram(const std::string& exe, const std::filesystem::path& dir, const std::string& args);
 
 } // namespace sylva::test

@@ -72,7 +72,8 @@ bool decode(PngIo& io, Allocate allocate, void* context) {
     const std::uint32_t w = word(16);
     const std::uint32_t h = word(20);
     if (w > 65536 || h > 65536) {
-      std::snprintf(io.message, sizeof(io.message), "absurd size %ux%u pixels (at most 65536 per side)", w, h);
+      std::snprintf(io.message, sizeof(io.message), "absurd size %ux%u pixels (at most 65536 per side)", w,
+                    h);
       png_destroy_read_struct(&png, &info, nullptr);
       return false;
     }

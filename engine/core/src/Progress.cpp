@@ -45,13 +45,18 @@ void Progress::print(bool final) {
   const auto now = std::chrono::steady_clock::now();
   const long long ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - mStart).count();
   if (!mInteractive) {
-    // Logs and CI: one line per quarter and one when the step ends, never a carriage-return animation.
+    // Logs and CI: one line per quarter and one when the step ends, never a carriage-return animation; steps
+    // shorter than a second stay quiet.
+    if (ns < 1'000'000'000LL) {
+      return;
+    }
     const std::size_t quarter = mTotal == 0 ? 4 : std::min<std::size_t>(4, 4 * mDone.load() / mTotal);
     std::size_t printed = mQuartersPrinted.load();
     if (final) {
       std::fprintf(stderr, "%s: %s (%zu/%zu) in %.1fs\n", mLabel.c_str(), cancelled() ? "cancelled" : "done",
                    mDone.load(), mTotal, static_cast<double>(ns) * 1e-9);
-    } else if (quarter > printed && quarter < 4 && mQuartersPrinted.compare_exchange_strong(printed, quarter)) {
+    } else if (quarter > printed && quarter < 4 &&
+               mQuartersPrinted.compare_exchange_strong(printed, quarter)) {
       std::fprintf(stderr, "%s: %zu%% (%zu/%zu) %.1fs\n", mLabel.c_str(), quarter * 25, mDone.load(), mTotal,
                    static_cast<double>(ns) * 1e-9);
     }

@@ -49,8 +49,8 @@ OrbitController OrbitController::from(const Camera& camera) {
 }
 
 const std::vector<std::string>& viewFromNames() {
-  static const std::vector<std::string> names = {"south-west", "south", "south-east", "east", "north-east",
-                                                 "north",      "north-west", "west", "top"};
+  static const std::vector<std::string> names = {
+      "south-west", "south", "south-east", "east", "north-east", "north", "north-west", "west", "top"};
   return names;
 }
 
@@ -78,7 +78,8 @@ glm::vec3 viewOffset(ViewFrom from) {
   static constexpr float kBearing[] = {225.0f, 180.0f, 135.0f, 90.0f, 45.0f, 0.0f, 315.0f, 270.0f};
   const float bearing = glm::radians(kBearing[static_cast<int>(from)]);
   const float elevation = glm::radians(30.0f);
-  return {std::cos(elevation) * std::sin(bearing), std::sin(elevation), -std::cos(elevation) * std::cos(bearing)};
+  return {std::cos(elevation) * std::sin(bearing), std::sin(elevation),
+          -std::cos(elevation) * std::cos(bearing)};
 }
 
 std::array<glm::vec3, 8> corners(const Aabb& box) {
@@ -114,7 +115,8 @@ Camera frameBox(const Aabb& box, ViewFrom from, float fovY, float aspect, const 
     for (const glm::vec3& c : points) {
       const glm::vec3 r = c - aim;
       const float z = glm::dot(r, forward);
-      distance = std::max({distance, std::abs(glm::dot(r, right)) / tanX - z, std::abs(glm::dot(r, up)) / tanY - z});
+      distance =
+          std::max({distance, std::abs(glm::dot(r, right)) / tanX - z, std::abs(glm::dot(r, up)) / tanY - z});
     }
     distance = std::max(distance, 1e-3f);
     if (pass == 3) {

@@ -101,12 +101,15 @@ std::vector<gpu::TerrainNode> packTerrainNodes(const QuadtreeSelection& selectio
 }
 
 TerrainRenderer::TerrainRenderer(const shader::Library& library, const HeightField& field,
-                                 std::vector<SplatLayer> layers, const SobelOptions& sobel, float verticalScale)
-    : mField{field.width(), field.height(), field.spacingX(), field.spacingZ(), field.extentX(), field.extentZ()},
+                                 std::vector<SplatLayer> layers, const SobelOptions& sobel,
+                                 float verticalScale)
+    : mField{field.width(),    field.height(),  field.spacingX(),
+             field.spacingZ(), field.extentX(), field.extentZ()},
       mSobel(sobel), mVerticalScale(verticalScale),
       mHeights(gl::Texture::create2D(GL_R32F, std::max(field.width(), 1), std::max(field.height(), 1))),
       mValid(gl::Texture::create2D(GL_R8, std::max(field.width(), 1), std::max(field.height(), 1))),
-      mNormalMap(gl::Texture::create2D(GL_RG16_SNORM, std::max(field.width(), 1), std::max(field.height(), 1))),
+      mNormalMap(
+          gl::Texture::create2D(GL_RG16_SNORM, std::max(field.width(), 1), std::max(field.height(), 1))),
       mUniforms(sizeof(gpu::TerrainUniforms)), mRules(sizeof(gpu::SplatRuleGpu) * SYLVA_TERRAIN_MAX_LAYERS) {
   if (!std::isfinite(verticalScale) || verticalScale <= 0.0f) {
     fail("terrain: vertical scale {} must be finite and > 0", verticalScale);
@@ -225,8 +228,7 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
     mNodes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TERRAIN_NODE_BINDING);
 
     gpu::TerrainUniforms u{};
-    u.field =
-        glm::ivec4(mField.width, mField.height, mSplatMap.layers(), static_cast<int>(mLayers.size()));
+    u.field = glm::ivec4(mField.width, mField.height, mSplatMap.layers(), static_cast<int>(mLayers.size()));
     u.spacing = glm::vec4(mField.spacingX, mField.spacingZ, options.textureTiling, options.skirtDepth);
     u.extent = glm::vec4(mField.extentX, mField.extentZ, static_cast<float>(options.view), 0.0f);
     u.heightRange = glm::vec4(mMinHeight, mMaxHeight, 0.0f, 0.0f);

@@ -107,8 +107,8 @@ void flipColumns(HeightField& field) {
   }
 }
 
-void applyCoordinates(const std::filesystem::path& path, HeightField& field, const FileCoordinates& coordinates,
-                      const LoadOptions& options, LoadReport& report) {
+void applyCoordinates(const std::filesystem::path& path, HeightField& field,
+                      const FileCoordinates& coordinates, const LoadOptions& options, LoadReport& report) {
   using Kind = FileCoordinates::Kind;
   Kind kind = coordinates.kind;
   std::string reason = coordinates.reason;
@@ -139,11 +139,11 @@ void applyCoordinates(const std::filesystem::path& path, HeightField& field, con
     report.reason = fmt::format("{}; units unknown, taken as metres", reason);
     field.setSpacing(static_cast<float>(coordinates.stepX), static_cast<float>(coordinates.stepZ));
     warn(path, report,
-         fmt::format("horizontal units unknown ({}): spacing {:g} x {:g} taken as metres{}; pass --geographic "
-                     "for degrees or --spacing for metres",
-                     reason, coordinates.stepX, coordinates.stepZ,
-                     coordinates.looksLikeDegrees ? ", although the coordinates look like longitude/latitude"
-                                                  : ""));
+         fmt::format(
+             "horizontal units unknown ({}): spacing {:g} x {:g} taken as metres{}; pass --geographic "
+             "for degrees or --spacing for metres",
+             reason, coordinates.stepX, coordinates.stepZ,
+             coordinates.looksLikeDegrees ? ", although the coordinates look like longitude/latitude" : ""));
     return;
   case Kind::Degrees:
     break;
@@ -167,7 +167,8 @@ void applyCoordinates(const std::filesystem::path& path, HeightField& field, con
     fail("{}: the grid is centred on a pole (latitude {:g}); reproject it to a polar projection first",
          path.string(), centre);
   }
-  double error = std::max(std::abs(cosDeg(south) / cosCentre - 1.0), std::abs(cosDeg(north) / cosCentre - 1.0));
+  double error =
+      std::max(std::abs(cosDeg(south) / cosCentre - 1.0), std::abs(cosDeg(north) / cosCentre - 1.0));
   if (south < 0.0 && north > 0.0) {
     error = std::max(error, 1.0 / cosCentre - 1.0);
   }
@@ -181,10 +182,11 @@ void applyCoordinates(const std::filesystem::path& path, HeightField& field, con
                    static_cast<float>(coordinates.stepZ * kMetresPerDegree));
   if (error > 0.05) {
     warn(path, report,
-         fmt::format("spans latitudes {:.4g} to {:.4g} degrees: with one east-west spacing (at {:.4g} degrees) "
-                     "distances are off by up to {:.0f} % on the outer rows; reproject to a projected CRS for "
-                     "true distances",
-                     south, north, centre, 100.0 * error));
+         fmt::format(
+             "spans latitudes {:.4g} to {:.4g} degrees: with one east-west spacing (at {:.4g} degrees) "
+             "distances are off by up to {:.0f} % on the outer rows; reproject to a projected CRS for "
+             "true distances",
+             south, north, centre, 100.0 * error));
   }
 }
 
@@ -341,9 +343,10 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
     coordinates.stepZ = sidecar->spacingZ;
     coordinates.reason = fmt::format("sidecar {}", sidecarPath(path).filename().string());
     if (png && options.heightScale != LoadOptions{}.heightScale) {
-      detail::warn(path, report,
-                   fmt::format("height scale {:g} m (--png-scale) ignored: the sidecar {} gives heights in metres",
-                               options.heightScale, sidecarPath(path).filename().string()));
+      detail::warn(
+          path, report,
+          fmt::format("height scale {:g} m (--png-scale) ignored: the sidecar {} gives heights in metres",
+                      options.heightScale, sidecarPath(path).filename().string()));
     }
   }
   const double base = png && sidecar ? sidecar->minHeight : 0.0;
@@ -428,10 +431,10 @@ std::string lower(std::string text) {
  * projected x/y axis is, else "".
  */
 std::string cfGeographicAxes(GDALDatasetH dataset) {
-  static const std::set<std::string> kEast = {"degrees_east", "degree_east", "degrees_e", "degree_e",
-                                              "degreese",     "degreee"};
-  static const std::set<std::string> kNorth = {"degrees_north", "degree_north", "degrees_n", "degree_n",
-                                               "degreesn",      "degreen"};
+  static const std::set<std::string> kEast = {"degrees_east", "degree_east", "degrees_e",
+                                              "degree_e",     "degreese",    "degreee"};
+  static const std::set<std::string> kNorth = {"degrees_north", "degree_north", "degrees_n",
+                                               "degree_n",      "degreesn",     "degreen"};
   std::string lon;
   std::string lat;
   bool projectedAxis = false;
@@ -447,7 +450,8 @@ std::string cfGeographicAxes(GDALDatasetH dataset) {
     const std::string value = lower(std::string(entry.substr(equals + 1)));
     if ((key == "units" && kEast.contains(value)) || (key == "standard_name" && value == "longitude")) {
       lon = fmt::format("{} ({} {})", variable, key, value);
-    } else if ((key == "units" && kNorth.contains(value)) || (key == "standard_name" && value == "latitude")) {
+    } else if ((key == "units" && kNorth.contains(value)) ||
+               (key == "standard_name" && value == "latitude")) {
       lat = fmt::format("{} ({} {})", variable, key, value);
     } else if (key == "standard_name" &&
                (value == "projection_x_coordinate" || value == "projection_y_coordinate")) {
@@ -567,8 +571,9 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   const bool flipX = haveTransform && axisAligned && gt[1] < 0.0;
   const bool flipZ = haveTransform && axisAligned && gt[5] > 0.0;
   if (flipZ || flipX) {
-    report.orientation = fmt::format("{}{}{} (the geotransform says so)", flipZ ? "rows flipped: south-up" : "",
-                                     flipZ && flipX ? "; " : "", flipX ? "columns flipped: east-left" : "");
+    report.orientation =
+        fmt::format("{}{}{} (the geotransform says so)", flipZ ? "rows flipped: south-up" : "",
+                    flipZ && flipX ? "; " : "", flipX ? "columns flipped: east-left" : "");
   }
 
   // GDAL decodes whole blocks (strips or tiles, all bands at once for pixel-interleaved files) into buffers

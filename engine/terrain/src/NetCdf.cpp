@@ -191,11 +191,13 @@ void checkNetCdfClassicSize(const std::filesystem::path& path) {
     }
   }
 
-  const auto records = std::count_if(variables.begin(), variables.end(), [](const Variable& v) { return v.record; });
+  const auto records =
+      std::count_if(variables.begin(), variables.end(), [](const Variable& v) { return v.record; });
   if (records == 1) {
     // The one exception in the layout: a single record variable's records are not padded to 4 bytes.
-    recordSize = std::find_if(variables.begin(), variables.end(), [](const Variable& v) { return v.record; })
-                     ->bytesPerRecord;
+    recordSize = std::find_if(variables.begin(), variables.end(), [](const Variable& v) {
+                   return v.record;
+                 })->bytesPerRecord;
   }
   // The smallest file that holds every variable's values (ignoring the padding after the last one).
   std::uint64_t needed = 0;
@@ -210,8 +212,9 @@ void checkNetCdfClassicSize(const std::filesystem::path& path) {
     needed = std::max(needed, end);
   }
   if (fileSize < needed) {
-    fail("{}: truncated netCDF file: its header declares {} bytes of data, the file has {} ({:.1f} % missing)",
-         name, needed, fileSize, 100.0 * static_cast<double>(needed - fileSize) / static_cast<double>(needed));
+    fail(
+        "{}: truncated netCDF file: its header declares {} bytes of data, the file has {} ({:.1f} % missing)",
+        name, needed, fileSize, 100.0 * static_cast<double>(needed - fileSize) / static_cast<double>(needed));
   }
 }
 

@@ -566,8 +566,8 @@ std::optional<std::vector<double>> coordinateArray(const NpzArchive& archive, co
   const NpyHeader head = archive.header(*member);
   if (head.shape.size() != 1 || head.shape[0] != length) {
     warn(path, report,
-         fmt::format("array '{}' has shape {}; a coordinate array needs ({},): ignored", name, head.shapeText(),
-                     length));
+         fmt::format("array '{}' has shape {}; a coordinate array needs ({},): ignored", name,
+                     head.shapeText(), length));
     return std::nullopt;
   }
   const std::vector<std::byte> bytes = archive.read(*member);
@@ -653,7 +653,8 @@ std::optional<FileCoordinates> coordinatesFromArrays(const NpzArchive& archive, 
     std::vector<std::string> flips;
     if (stepY > 0.0) {
       flipRows(field);
-      flips.push_back(fmt::format("rows flipped: '{}' rises with the row index, so the last row is north", yName));
+      flips.push_back(
+          fmt::format("rows flipped: '{}' rises with the row index, so the last row is north", yName));
     }
     if (stepX < 0.0) {
       flipColumns(field);
@@ -702,7 +703,8 @@ FileCoordinates coordinatesFromSteps(const NpzArchive& archive, const HeightFiel
     const bool lonLat = std::abs(*xmin) <= 180.0 && std::abs(*xmax) <= 180.0 && std::abs(*ymin) <= 90.0 &&
                         std::abs(*ymax) <= 90.0;
     c.looksLikeDegrees = lonLat;
-    if (lonLat && spans(*xmin, *xmax, field.width(), c.stepX) && spans(*ymin, *ymax, field.height(), c.stepZ)) {
+    if (lonLat && spans(*xmin, *xmax, field.width(), c.stepX) &&
+        spans(*ymin, *ymax, field.height(), c.stepZ)) {
       c.kind = FileCoordinates::Kind::Degrees;
       c.reason = "scalar members 'dx'/'dy' with a longitude/latitude box 'xmin'..'ymax' of that size";
     }

@@ -132,8 +132,8 @@ float splatWeight(const SplatLayer& layer, float height, float slopeDegrees) {
          ramp(slopeDegrees, layer.minSlope, layer.maxSlope, layer.slopeBlend);
 }
 
-std::vector<Image> splatMap(const HeightField& field, const Image& normals, std::span<const SplatLayer> layers,
-                            float verticalScale) {
+std::vector<Image> splatMap(const HeightField& field, const Image& normals,
+                            std::span<const SplatLayer> layers, float verticalScale) {
   validateLayers(layers, "splatMap");
   if (!std::isfinite(verticalScale) || verticalScale <= 0.0f) {
     fail("splatMap: vertical scale {} must be finite and > 0", verticalScale);

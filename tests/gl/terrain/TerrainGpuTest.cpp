@@ -171,8 +171,11 @@ TEST_F(TerrainGpu, WaterCoversExactlyTheSamplesBelowSeaLevel) {
       if (wx < 8.0f || wz < 8.0f || wx > 248.0f || wz > 248.0f) {
         continue; // outside the footprint, or on its edge
       }
-      const bool changed = std::abs(wet.get(x, y, 0) - dry.get(x, y, 0)) + std::abs(wet.get(x, y, 2) - dry.get(x, y, 2)) > 0.02f;
-      // Fragments are cut by their nearest sample: absent columns 0..29 and rows 100.. end at x = 59, z = 199.
+      const bool changed =
+          std::abs(wet.get(x, y, 0) - dry.get(x, y, 0)) + std::abs(wet.get(x, y, 2) - dry.get(x, y, 2)) >
+          0.02f;
+      // Fragments are cut by their nearest sample: absent columns 0..29 and rows 100.. end at x = 59, z =
+      // 199.
       if ((std::abs(wx - 59.0f) < 3.0f && wz > 196.0f) || (std::abs(wz - 199.0f) < 3.0f && wx < 62.0f)) {
         continue;
       }

@@ -1,5 +1,6 @@
-// Framing cameras (render::frameBox and friends): every corner of the framed box is in view, the fit is tight,
-// directions follow the compass of height fields (row 0 north = -z), clip planes and fog follow the scene.
+// Framing cameras (render::frameBox and friends): every corner of the framed box is in view, the fit is
+// tight, directions follow the compass of height fields (row 0 north = -z), clip planes and fog follow the
+// scene.
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Geometry.hpp>
 #include <sylva/render/Camera.hpp>

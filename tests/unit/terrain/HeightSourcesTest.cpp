@@ -656,7 +656,6 @@ TEST(HeightSourcesRealData, JacksboroFaultNpz) {
   expectLoadError(path, "expected a 2D array", options);
 }
 
-
 // ---- real-world coordinates: geographic grids, coordinate arrays, truncated netCDF ----
 
 namespace geo {
@@ -711,7 +710,8 @@ void writeCfNetCdf(const std::filesystem::path& path, bool netcdf4, const char* 
       values[static_cast<std::size_t>(j * w + i)] = testHeight(i, j);
     }
   }
-  ASSERT_TRUE(z->Write(start, count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32), values.data()));
+  ASSERT_TRUE(
+      z->Write(start, count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32), values.data()));
 }
 
 /** A 6x5 GeoTIFF with geotransform (x0, step, 0, y0, 0, -step) and, if `epsg` > 0, that CRS. */
@@ -731,9 +731,9 @@ void writeGeoTiff(const std::filesystem::path& path, double x0, double y0, doubl
   for (int k = 0; k < 30; ++k) {
     values[static_cast<std::size_t>(k)] = static_cast<float>(k);
   }
-  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 6, 5, values.data(), 6, 5, GDT_Float32, 0, 0,
-                                            nullptr),
-            CE_None);
+  ASSERT_EQ(
+      ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 6, 5, values.data(), 6, 5, GDT_Float32, 0, 0, nullptr),
+      CE_None);
 }
 
 } // namespace geo
@@ -873,8 +873,9 @@ TEST(HeightSourcesGeo, NpzCoordinateArraysGiveSpacingAndOrientation) {
   ASSERT_EQ(report.warnings.size(), 1u);
   EXPECT_NE(report.warnings[0].find("units unknown"), std::string::npos);
   // Unusable coordinate arrays are named: wrong length (ignored with a warning), not monotonic (an error).
-  writeBytes(dir / "short.npz",
-             makeZip({{"z.npy", heights}, {"lon.npy", axis({1.0, 2.0})}, {"lat.npy", axis({1.0, 2.0, 3.0})}}));
+  writeBytes(
+      dir / "short.npz",
+      makeZip({{"z.npy", heights}, {"lon.npy", axis({1.0, 2.0})}, {"lat.npy", axis({1.0, 2.0, 3.0})}}));
   (void)loadHeightField(dir / "short.npz", {}, &report);
   EXPECT_EQ(report.units, "none");
   ASSERT_FALSE(report.warnings.empty());

@@ -289,7 +289,8 @@ TEST(TerrainMaps, VerticalScaleKeepsRulesInTrueMetresAndDegrees) {
   HeightField field(40, 30, 5.0f, 5.0f);
   for (int j = 0; j < 30; ++j) {
     for (int i = 0; i < 40; ++i) {
-      field.at(i, j) = 8.0f * std::sin(0.2f * static_cast<float>(i)) + 0.5f * static_cast<float>(j); // <= 18 degrees
+      field.at(i, j) =
+          8.0f * std::sin(0.2f * static_cast<float>(i)) + 0.5f * static_cast<float>(j); // <= 18 degrees
     }
   }
   const std::vector<SplatLayer> layers = defaultSplatLayers(-8.0f, 23.0f, 0.0f);

@@ -47,8 +47,8 @@ struct FileCoordinates {
  * Sets `field`'s spacing in metres from `coordinates` and LoadOptions::horizontal, and fills `report` (units,
  * reason, latitudes, east-west error, warnings). Throws for --geographic on a file without coordinates.
  */
-void applyCoordinates(const std::filesystem::path& path, HeightField& field, const FileCoordinates& coordinates,
-                      const LoadOptions& options, LoadReport& report);
+void applyCoordinates(const std::filesystem::path& path, HeightField& field,
+                      const FileCoordinates& coordinates, const LoadOptions& options, LoadReport& report);
 
 /** Appends a warning to `report` and logs it as `<file>: <text>`. */
 void warn(const std::filesystem::path& path, LoadReport& report, const std::string& text);

@@ -10,7 +10,7 @@ namespace sylva {
 /**
  * Progress of long work (preprocessing, synthesis, batch renders). Prints a single updating line to stderr
  * when it is a terminal (at most 10 times a second); otherwise (logs, CI) a line at 25, 50 and 75 % and one
- * when the step ends. cancel() may be called from
+ * when the step ends, for steps that run longer than a second. cancel() may be called from
  * another thread (e.g. a SIGINT handler); the worker checks cancelled() and stops.
  */
 class Progress {

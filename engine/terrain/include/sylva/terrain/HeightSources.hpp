@@ -34,8 +34,8 @@ namespace sylva::terrain {
  *
  * Conventions (all formats): sample (i, j) is column i from the west and row j from the north; row 0 is the
  * first row of the file for PNG/EXR/`.npy`, and the northern row for GDAL rasters (south-up rasters are
- * flipped) and `.npz` archives with coordinate arrays. Non-finite samples (NaN, ±inf) and values beyond the float range become absent (NaN); absent
- * samples are never height 0.
+ * flipped) and `.npz` archives with coordinate arrays. Non-finite samples (NaN, ±inf) and values beyond the
+ * float range become absent (NaN); absent samples are never height 0.
  *
  * PNG/EXR channels: 1 channel = heights; 2 channels = heights + alpha, where alpha 0 marks an absent sample;
  * RGB/RGBA images are rejected (a colour image is almost always the wrong file).
@@ -112,7 +112,8 @@ struct LoadReport {
   std::string units = "none";
   /** Why, in words: "CRS 'WGS 84' is geographic", "netCDF/CF axes lon (degrees_east), lat ...", ... */
   std::string reason = "the file holds no coordinates";
-  /** Degrees only: the latitude at which degrees became metres, and the rows' latitude range; NaN if unknown. */
+  /** Degrees only: the latitude at which degrees became metres, and the rows' latitude range; NaN if unknown.
+   */
   double centreLatitude = std::numeric_limits<double>::quiet_NaN();
   double southLatitude = std::numeric_limits<double>::quiet_NaN();
   double northLatitude = std::numeric_limits<double>::quiet_NaN();

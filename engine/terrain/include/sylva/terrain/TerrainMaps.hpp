@@ -97,8 +97,8 @@ float splatWeight(const SplatLayer& layer, float height, float slopeDegrees);
  *
  * Throws sylva::Error for 0 or more than kMaxSplatLayers layers, or a normals image of the wrong size/type.
  */
-std::vector<Image> splatMap(const HeightField& field, const Image& normals, std::span<const SplatLayer> layers,
-                            float verticalScale = 1.0f);
+std::vector<Image> splatMap(const HeightField& field, const Image& normals,
+                            std::span<const SplatLayer> layers, float verticalScale = 1.0f);
 
 /**
  * Default sand / grass / snow / rock rules for heights in [minHeight, maxHeight] metres (range r; 1 m if the

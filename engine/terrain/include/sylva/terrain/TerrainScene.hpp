@@ -31,7 +31,8 @@ HeightField loadTerrainSource(const TerrainSource& source);
 
 /** How a TerrainScene presents its heights. */
 struct TerrainSceneOptions {
-  /** Splat rules in true metres and degrees; empty = defaultSplatLayers over the height range and sea level. */
+  /** Splat rules in true metres and degrees; empty = defaultSplatLayers over the height range and sea level.
+   */
   std::vector<SplatLayer> layers;
   /** Vertical exaggeration: heights are drawn multiplied by this (> 0; 1 = true scale). */
   float exaggeration = 1.0f;
@@ -50,7 +51,8 @@ public:
    */
   TerrainScene(const shader::Library& library, HeightField field, const QuadtreeConfig& config,
                std::vector<SplatLayer> layers = {});
-  /** `field` in true metres; it is exaggerated here (options.exaggeration) before the quadtree and GPU see it. */
+  /** `field` in true metres; it is exaggerated here (options.exaggeration) before the quadtree and GPU see
+   * it. */
   TerrainScene(const shader::Library& library, HeightField field, const QuadtreeConfig& config,
                TerrainSceneOptions options);
 
