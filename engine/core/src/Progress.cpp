@@ -53,8 +53,10 @@ void Progress::print(bool final) {
     const std::size_t quarter = mTotal == 0 ? 4 : std::min<std::size_t>(4, 4 * mDone.load() / mTotal);
     std::size_t printed = mQuartersPrinted.load();
     if (final) {
-      std::fprintf(stderr, "%s: %s (%zu/%zu) in %.1fs\n", mLabel.c_str(), cancelled() ? "cancelled" : "done",
-                   mDone.load(), mTotal, static_cast<double>(ns) * 1e-9);
+      if (!cancelled()) { // a cancelled step is reported once, by the error that ends the command
+        std::fprintf(stderr, "%s: done (%zu/%zu) in %.1fs\n", mLabel.c_str(), mDone.load(), mTotal,
+                     static_cast<double>(ns) * 1e-9);
+      }
     } else if (quarter > printed && quarter < 4 &&
                mQuartersPrinted.compare_exchange_strong(printed, quarter)) {
       std::fprintf(stderr, "%s: %zu%% (%zu/%zu) %.1fs\n", mLabel.c_str(), quarter * 25, mDone.load(), mTotal,
