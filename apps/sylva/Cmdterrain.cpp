@@ -47,28 +47,6 @@ void requireExtension(const std::string& option, const std::string& path,
   }
 }
 
-/** Parses "a,b,c" into exactly `count` finite numbers; throws naming the option. */
-std::vector<float> parseNumbers(const std::string& option, const std::string& text, std::size_t count,
-                                const char* shape) {
-  std::vector<float> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
-    char* end = nullptr;
-    const double value = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) > 3.0e38) {
-      fail("{}: expected {} ({} finite numbers), got '{}'", option, shape, count, text);
-    }
-    values.push_back(static_cast<float>(value));
-    start = comma + 1;
-  }
-  if (values.size() != count) {
-    fail("{}: expected {} ({} finite numbers), got '{}'", option, shape, count, text);
-  }
-  return values;
-}
-
 /**
  * Where the heights come from: a DEM file (--dem) or a procedural spec (--seed and/or --spec, with --type,
  * --size, --spacing, --height-scale). Shared by every terrain subcommand; check() enforces exactly one source

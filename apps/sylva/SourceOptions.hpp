@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace sylva::app {
 
@@ -33,6 +34,28 @@ constexpr double kMinSpacing = 1.0e-6;
 constexpr double kMaxHeightScale = 1.0e5;
 /** Procedural fields with more samples than this are generated in strips with a progress line. */
 constexpr std::size_t kProgressSamples = std::size_t{1} << 20;
+
+/** Parses "a,b,c" into exactly `count` finite numbers; throws naming the option. */
+inline std::vector<float> parseNumbers(const std::string& option, const std::string& text, std::size_t count,
+                                       const char* shape) {
+  std::vector<float> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) > 3.0e38) {
+      fail("{}: expected {} ({} finite numbers), got '{}'", option, shape, count, text);
+    }
+    values.push_back(static_cast<float>(value));
+    start = comma + 1;
+  }
+  if (values.size() != count) {
+    fail("{}: expected {} ({} finite numbers), got '{}'", option, shape, count, text);
+  }
+  return values;
+}
 
 /** A CLI11 check: a finite number in [lo, hi]; CLI11 prefixes the message with the option name. */
 inline CLI::Validator finiteRange(double lo, double hi) {

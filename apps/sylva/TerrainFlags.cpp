@@ -101,24 +101,9 @@ std::optional<float> SeaLevelFlag::resolve(float minHeight) const {
 
 namespace {
 
-/** "X,Y,Z" → three finite numbers; throws naming the option. */
+/** "X,Y,Z" → a point in metres; throws naming the option. */
 glm::vec3 parseVec3(const std::string& option, const std::string& text) {
-  float v[3] = {0.0f, 0.0f, 0.0f};
-  std::size_t start = 0;
-  for (int k = 0; k < 3; ++k) {
-    const std::size_t comma = k < 2 ? text.find(',', start) : text.size();
-    if (comma == std::string::npos) {
-      fail("{}: expected X,Y,Z (three numbers in metres), got '{}'", option, text);
-    }
-    const std::string item = text.substr(start, comma - start);
-    char* end = nullptr;
-    const double value = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) > 1.0e9) {
-      fail("{}: expected X,Y,Z (three numbers in metres), got '{}'", option, text);
-    }
-    v[k] = static_cast<float>(value);
-    start = comma + 1;
-  }
+  const std::vector<float> v = parseNumbers(option, text, 3, "X,Y,Z in metres");
   return {v[0], v[1], v[2]};
 }
 
