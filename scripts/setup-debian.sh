@@ -8,7 +8,7 @@ packages=(
   g++ cmake make pkg-config
   # engine libraries
   libglm-dev libepoxy-dev libglfw3-dev libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
-  libfmt-dev libpng-dev libopenexr-dev libgdal-dev libzip-dev
+  libfmt-dev libpng-dev libopenexr-dev libgdal-dev libzip-dev libgif-dev
   # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests

@@ -1,0 +1,140 @@
+#pragma once
+
+#include <sylva/core/Image.hpp>
+#include <sylva/folding/Field.hpp>
+#include <sylva/folding/Project.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sylva {
+class Progress;
+}
+
+namespace sylva::folding {
+
+/** Integer pixel rectangle [min, max) (max exclusive). */
+struct Rect {
+  glm::ivec2 min{0};
+  glm::ivec2 max{0};
+  int width() const { return max.x - min.x; }
+  int height() const { return max.y - min.y; }
+  bool empty() const { return max.x <= min.x || max.y <= min.y; }
+  bool contains(glm::ivec2 p) const { return p.x >= min.x && p.y >= min.y && p.x < max.x && p.y < max.y; }
+  bool operator==(const Rect&) const = default;
+};
+
+/** Where one input image lives in the atlas. */
+struct AtlasEntry {
+  std::string id;
+  glm::ivec2 imageSize{0}; ///< full input image size, pixels
+  Rect crop;               ///< the part kept, image pixels
+  glm::ivec2 atlasPos{0};  ///< atlas texel of the crop's top-left
+  /** Atlas texel of image pixel (0, 0) (may lie outside the atlas when the crop starts past it). */
+  glm::ivec2 origin() const { return atlasPos - crop.min; }
+  Rect atlasRect() const { return {atlasPos, atlasPos + glm::ivec2(crop.width(), crop.height())}; }
+  bool operator==(const AtlasEntry&) const = default;
+};
+
+/** The loaded input images (RGBA8) and masks of a project, in project order. */
+struct ProjectImages {
+  std::vector<Image> images;                   ///< images[i] for project.images[i], RGBA8
+  std::vector<std::vector<float>> freezeMasks; ///< per zone, empty when it has none
+  std::vector<std::vector<float>> foldMasks;   ///< per zone, empty unless folding.type == Mask
+};
+/**
+ * Loads every image and mask a project names (relative to its baseDir) and validates the project against
+ * their sizes. Errors name the project file `where` and the JSON path, or the image file.
+ */
+ProjectImages loadProjectImages(const Project& project, const std::string& where);
+
+/**
+ * Algorithm 1 of the thesis: crops each image to what its zones and their jump paths read (the canvas and
+ * images with crop = false stay whole; fly-over objects go where their tool puts them relative to their
+ * zone's image), then packs the crops into one atlas with `gutter` pixels between them, filled by repeating
+ * edge pixels. Deterministic. Throws sylva::Error when the atlas would exceed kMaxAtlasSide.
+ */
+struct Atlas {
+  Image color;                     ///< RGBA8, width × height
+  std::vector<AtlasEntry> entries; ///< per project image
+};
+Atlas packAtlas(const Project& project, const ProjectImages& images);
+
+/**
+ * The folding textures in float (the CPU reference and the GPU renderer read these; encodings below).
+ * All images are atlas-sized, 4 channels F32:
+ *  init  = (x0, y0, dt, profile): base read texel (atlas pixels), phase offset (cycles, [0, 1)),
+ *          profile index k, or −1 for a still texel (outside every zone);
+ *  jump[k] = (Jx, Jy, t0, t1) of jump layer k: backward jump (atlas pixels), first fold interval;
+ *  fold[k] = (t0, t1, t0', t1'): second and third fold intervals of layer k (empty: t0 = t1 = 1).
+ */
+struct Textures {
+  Atlas atlas;
+  Image init;
+  std::vector<Image> jump;
+  std::vector<Image> fold;
+  int width() const { return init.width(); }
+  int height() const { return init.height(); }
+  /** Largest |J| component over all layers (pixels): the scale of the 16-bit encoding. */
+  double jumpMax() const;
+};
+
+/** Per-zone statistics of a synthesis, for reports. */
+struct SynthesisStats {
+  std::size_t anchors = 0;       ///< over all zones
+  std::size_t zonePixels = 0;    ///< texels inside zones
+  std::size_t foldedPixels = 0;  ///< texels with a fold interval other than (0, 1]
+  std::size_t multiInterval = 0; ///< texels that need the extra fold layer
+};
+
+/**
+ * Synthesises all textures (Algorithms 1–3). Deterministic: same project, images and seed give identical
+ * textures on any thread count. `progress` (optional) counts rows.
+ */
+Textures synthesize(const Project& project, const ProjectImages& images, Progress* progress = nullptr,
+                    SynthesisStats* stats = nullptr);
+
+/**
+ * Re-synthesises the texels of `region` (atlas pixels) in place, e.g. after an edit that moved one anchor:
+ * the result equals a full synthesis inside the region. The atlas layout must be unchanged (same crops).
+ */
+void resynthesize(const Project& project, const ProjectImages& images, Textures& textures, Rect region);
+
+/**
+ * The atlas region a change to `zone` between two project states can affect: its zone's bounding box
+ * (both states), as atlas pixels. Modified-Shepard edits of one anchor could be bounded tighter by R; the
+ * editor passes the union of R-disks around the moved anchor instead.
+ */
+Rect zoneAtlasRect(const Project& project, const Atlas& atlas, int zone);
+
+/** 16-bit encoding (docs/folding.md "Encoding"): J ↔ 32767 + round(32767·J/jumpMax); zero is exact. */
+std::uint16_t encodeJump(double j, double jumpMax);
+double decodeJump(std::uint16_t v, double jumpMax);
+/** Progress values in [0, 1] ↔ round(65535·t). */
+std::uint16_t encodeUnit(double t);
+double decodeUnit(std::uint16_t v);
+/** init.profile: k + 1 (0 = still); positions as texel indices (exact); dt as a unit value. */
+
+/** File names and scale of an encoded set, written as `folding.json` next to the textures. */
+struct EncodedInfo {
+  Outputs::Encoding encoding = Outputs::Encoding::Rgba16;
+  double jumpMax = 0.0;
+  int layers = 1;
+  bool foldLayer = false;
+};
+/**
+ * Writes color (8-bit PNG), init, jump (and jump1…, fold0… when used) with the project's encoding into `dir`,
+ * plus `folding.json` (format, encoding, sizes, jumpMax, profiles, atlas entries). Atomic per file.
+ */
+void saveTextures(const std::filesystem::path& dir, const Project& project, const Textures& textures);
+/** Reads a set written by saveTextures back into float textures (decoding as documented). */
+Textures loadTextures(const std::filesystem::path& dir, std::vector<Profile>* profiles = nullptr,
+                      std::vector<double>* jumpLayers = nullptr);
+
+/** Down-sampled arrows of layer `layer`'s jump field drawn over the atlas (RGBA8), every `step` texels. */
+Image vectorFieldPicture(const Textures& textures, int step, int layer = 0);
+/** Heat map of t0 (which = 0) or t1 (which = 1) of layer `layer` over a grey atlas (RGBA8). */
+Image thresholdHeatMap(const Textures& textures, int which, int layer = 0);
+
+} // namespace sylva::folding
