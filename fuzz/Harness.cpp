@@ -3,6 +3,8 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
+#include <sylva/folding/Renderer.hpp>
+#include <sylva/folding/Synthesis.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/shader/Preprocessor.hpp>
 #include <sylva/terrain/HeightSources.hpp>
@@ -135,6 +137,48 @@ void shader(std::span<const std::uint8_t> bytes) {
   expectCleanRejection([&] { (void)shader::preprocess(library, "a.glsl", {{"SYLVA_A", "1"}, {"B", ""}}); });
 }
 
+/**
+ * Folding projects: parsed, validated against two small images in the scratch folder ("img.png" 24×16 and
+ * "obj.png" 6×4, also usable as masks of their own size), synthesised and rendered at one time. File names
+ * with a directory part are skipped so the fuzzer cannot point the loader at arbitrary system files.
+ */
+void fold(std::span<const std::uint8_t> bytes) {
+  static const bool images = [] {
+    Image img(24, 16, 3, PixelType::U8);
+    Image obj(6, 4, 4, PixelType::U8);
+    for (int y = 0; y < 16; ++y) {
+      for (int x = 0; x < 24; ++x) {
+        img.set(x, y, 0, static_cast<float>(x) / 24.0f);
+        img.set(x, y, 1, static_cast<float>(y) / 16.0f);
+        if (x < 6 && y < 4) {
+          obj.set(x, y, 3, (x + y) % 2 ? 1.0f : 0.0f);
+        }
+      }
+    }
+    savePng(scratch() / "img.png", img);
+    savePng(scratch() / "obj.png", obj);
+    return true;
+  }();
+  (void)images;
+  const fs::path path = writeInput("project.json", bytes);
+  expectCleanRejection([&] {
+    const folding::Project project = folding::loadProject(path);
+    for (const folding::ImageEntry& image : project.images) {
+      if (image.file.has_parent_path()) {
+        return;
+      }
+    }
+    for (const folding::Zone& zone : project.zones) {
+      if (zone.freezeMask.has_parent_path() || zone.folding.mask.has_parent_path()) {
+        return;
+      }
+    }
+    const folding::ProjectImages loaded = folding::loadProjectImages(project, path.string());
+    const folding::Textures textures = folding::synthesize(project, loaded);
+    (void)folding::renderFrame(textures, project.profiles, project.jumpLayers, 0.37);
+  });
+}
+
 } // namespace
 
 const std::vector<Target>& targets() {
@@ -146,6 +190,7 @@ const std::vector<Target>& targets() {
       {"gdal", "rasters opened through GDAL (GeoTIFF and every format GDAL identifies)", gdal},
       {"json", "Sylva JSON files: procedural spec, splat layers, height-map sidecar", json},
       {"shader", "the shader preprocessor's #include, #pragma once, #version and #line handling", shader},
+      {"fold", "folding projects: parsing, validation against images, synthesis and one CPU frame", fold},
 #ifdef SYLVA_FUZZ_HAVE_CLI
       {"cli", "the sylva command line's option parsing and validation (commands not run)", runCliArguments},
 #endif

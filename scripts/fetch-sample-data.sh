@@ -15,6 +15,7 @@ entries=(
   "r-cran-terra|usr/lib/R/site-library/terra/ex/elev.tif|elev.tif"
   "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz|jacksboro_fault_dem.npz"
   "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/topobathy.npz|topobathy.npz"
+  "python3-skimage|usr/lib/python3/dist-packages/skimage/data/chelsea.png|chelsea.png"
 )
 
 work="$(mktemp -d)"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes Sylva's loaders and parsers with libFuzzer (+ ASan/UBSan):
 #   scripts/fuzz.sh [TARGET|all] [SECONDS] [--merge]
-# TARGET: png exr npy npz gdal json shader cli (default all); SECONDS per target (default 60).
+# TARGET: png exr npy npz gdal json shader fold cli (default all); SECONDS per target (default 60).
 # Each run starts from the committed seeds (fuzz/corpus/TARGET) and regression inputs (fuzz/regressions/TARGET) and
 # works in build/fuzz-work/TARGET. A crash, leak, sanitizer report, timeout (>10 s) or allocation over the limit
 # writes the input there as crash-*/leak-*/timeout-*/oom-* and makes the script fail; copy it into
@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 target="${1:-all}"
 seconds="${2:-60}"
 merge="${3:-}"
-all=(png exr npy npz gdal json shader cli)
+all=(png exr npy npz gdal json shader fold cli)
 if [ "$target" = all ]; then targets=("${all[@]}"); else targets=("$target"); fi
 for t in "${targets[@]}"; do
   [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (targets: ${all[*]})" >&2; exit 2; }
