@@ -1,6 +1,7 @@
 // The `sylva` command line as a library: every subcommand registered on one CLI11 app, and the error policy
 // (one line on stderr, exit 2; internal errors exit 3). Main.cpp and the CLI fuzz target share it.
 #include "Commands.hpp"
+#include "SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
@@ -26,6 +27,15 @@ platform::ContextOptions ContextFlags::options() const {
   options.eglPlatform = eglPlatform;
   options.eglDevice = eglDevice;
   return options;
+}
+
+void addScriptedWindowOptions(CLI::App& command, int& frames, std::string& screenshot, double& fixedStep) {
+  command.add_option("--frames", frames, "Quit after this many frames (0: run until closed)")
+      ->check(CLI::Range(0, 1000000));
+  command.add_option("--screenshot", screenshot, "Save the last frame (with --frames) to this PNG");
+  command
+      .add_option("--fixed-step", fixedStep, "Advance time by this many seconds per frame (deterministic)")
+      ->check(finiteRange(0.0, 10.0));
 }
 
 MachineInfo machineInfo() {
@@ -68,6 +78,9 @@ std::unique_ptr<Cli> makeCli() {
   registerImgdiff(app);
 #ifdef SYLVA_HAVE_TERRAIN
   registerTerrain(app);
+#endif
+#ifdef SYLVA_HAVE_FOLDING
+  registerFold(app);
 #endif
   Cli* raw = cli.get();
   app.parse_complete_callback([raw] { log::setLevel(log::parseLevel(raw->logLevel)); });

@@ -10,6 +10,18 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
 
+#ifdef SYLVA_HAVE_FOLDING
+#include <folding/FoldingCase.hpp>
+#include <sylva/core/Parallel.hpp>
+#include <sylva/folding/Renderer.hpp>
+#ifdef SYLVA_HAVE_FOLDING_GPU
+#include <sylva/folding/gpu/FoldRenderer.hpp>
+#endif
+#endif
+
+#include <algorithm>
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -375,6 +387,159 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
   }
 }
 
+#ifdef SYLVA_HAVE_FOLDING
+/** Seconds of each of `runs` calls of `fn` after `warmup` unmeasured calls. */
+std::vector<double> timeRuns(int warmup, int runs, const std::function<void()>& fn) {
+  std::vector<double> seconds;
+  for (int i = 0; i < warmup + runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    fn();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (i >= warmup) {
+      seconds.push_back(s);
+    }
+  }
+  return seconds;
+}
+
+/**
+ * `bench fold`: the folding targets of docs/folding.md on the generated 1024x1024 case (FoldingCase.hpp):
+ * synthesis per megapixel (modified Shepard with 100 and 1,000 anchors, Shepard IDW with 100; all worker
+ * threads), thresholds of a 64-vertex polygon (all workers), re-synthesis of the region one moved anchor
+ * affects, the CPU reference render on one thread, and the GL renderer's frame rate at 1 MP (skipped with the
+ * reason when no GL context can be made). Medians of 5 runs after 1 warm-up (render: `frames` frames after
+ * `warmup`). Prints measured against target per row.
+ */
+void benchFold(const BenchOptions& o, nlohmann::json& report) {
+  using namespace folding;
+  using namespace folding::bench;
+  const MachineInfo machine = machineInfo();
+  const ProjectImages images = benchImages();
+  const double mp = static_cast<double>(kCaseSide) * kCaseSide / 1048576.0;
+  constexpr int kRuns = 5;
+  volatile int sink = 0; // results are used, so no call is optimised away
+  std::atomic<std::size_t> hits{0};
+  struct Row {
+    std::string metric;
+    double value;
+    std::string unit;
+    double target;
+    bool atMost; // the target is an upper bound (else a lower bound)
+    unsigned threads;
+    std::string note;
+  };
+  std::vector<Row> rows;
+  const auto interp = [](Interpolation::Type type) {
+    Interpolation i;
+    i.type = type;
+    i.radius = 64.0;
+    return i;
+  };
+  const auto synthesisRow = [&](const std::string& name, int anchors, Interpolation::Type type,
+                                double target) {
+    const Project p = benchProject(anchors, interp(type));
+    const render::Stats s =
+        render::Stats::of(timeRuns(1, kRuns, [&] { sink = synthesize(p, images).width(); }));
+    rows.push_back({name, s.median / mp, "s/MP", target, true, workerCount(), ""});
+  };
+  std::printf("fold: %dx%d generated case, %s, %u cores, %u worker threads\n", kCaseSide, kCaseSide,
+              machine.cpu.c_str(), machine.cores, workerCount());
+  synthesisRow("synthesis, modified Shepard, 100 anchors", 100, Interpolation::Type::ModifiedShepard, 0.25);
+  synthesisRow("synthesis, modified Shepard, 1,000 anchors", 1000, Interpolation::Type::ModifiedShepard,
+               0.25);
+  synthesisRow("synthesis, Shepard IDW, 100 anchors", 100, Interpolation::Type::Shepard, 0.3);
+  {
+    const std::array<std::vector<Vec2>, 1> polygons{benchStar()};
+    const render::Stats s = render::Stats::of(timeRuns(1, kRuns, [&] {
+      parallelFor(kCaseSide, [&](std::size_t begin, std::size_t end) {
+        std::size_t count = 0;
+        for (std::size_t y = begin; y < end; ++y) {
+          for (int x = 0; x < kCaseSide; ++x) {
+            count += foldIntervals(polygons, Vec2(x + 0.5, static_cast<double>(y) + 0.5),
+                                   benchJump(x, static_cast<int>(y)))
+                         .size();
+          }
+        }
+        hits += count;
+      });
+    }));
+    rows.push_back({"thresholds, 64-vertex polygon", s.median / mp, "s/MP", 0.2, true, workerCount(), ""});
+  }
+  const Project p = benchProject(1000, interp(Interpolation::Type::ModifiedShepard));
+  Textures textures = synthesize(p, images);
+  {
+    Rect region;
+    const Project moved = movedAnchor(p, 500, Vec2(5.0, 3.0), textures.atlas.entries[0], region);
+    const render::Stats s =
+        render::Stats::of(timeRuns(1, kRuns, [&] { resynthesize(moved, images, textures, region); }));
+    rows.push_back({"re-synthesis after moving one anchor (R = 64 px)", 1000.0 * s.median, "ms", 50.0, true,
+                    workerCount(), fmt::format("region {}x{} px", region.width(), region.height())});
+    textures = synthesize(p, images);
+  }
+  {
+    const double atlasMp = static_cast<double>(textures.width()) * textures.height() / 1048576.0;
+    int frame = 0;
+    const render::Stats s = render::Stats::of(timeRuns(o.warmup, std::max(3, o.frames / 6), [&] {
+      sink = renderFrame(textures, p.profiles, p.jumpLayers, frame++ / 30.0, 1).width();
+    }));
+    rows.push_back({"CPU reference render, one thread", 1000.0 * s.median / atlasMp, "ms/MP per frame", 40.0,
+                    true, 1, ""});
+  }
+  nlohmann::json gpuJson = nullptr;
+#ifdef SYLVA_HAVE_FOLDING_GPU
+  try {
+    auto context = platform::createHeadlessContext(o.context.options());
+    const gl::ContextInfo info = gl::queryContextInfo();
+    shader::Library library;
+    folding::gpu::FoldRenderer renderer(library);
+    renderer.upload(textures, p.profiles, p.jumpLayers);
+    const folding::gpu::GpuBenchResult g = folding::gpu::benchmarkGpu(renderer, o.frames);
+    rows.push_back(
+        {"GPU preview at 1 MP", g.fps, "frames/s", 30.0, false, 0,
+         fmt::format("{}x{}, {}, {:.2f} ms/frame", g.width, g.height, info.renderer, g.msPerFrame)});
+    gpuJson = {{"vendor", info.vendor},
+               {"renderer", info.renderer},
+               {"version", info.version},
+               {"context", context->description()}};
+  } catch (const Error& e) {
+    rows.push_back({"GPU preview at 1 MP", std::nan(""), "frames/s", 30.0, false, 0,
+                    std::string("skipped: ") + e.what()});
+  }
+#else
+  rows.push_back({"GPU preview at 1 MP", std::nan(""), "frames/s", 30.0, false, 0,
+                  "skipped: built without the folding GPU renderer"});
+#endif
+  std::printf("  %-50s %12s %-16s %8s %5s %7s  %s\n", "metric", "measured", "unit", "target", "", "threads",
+              "note");
+  nlohmann::json rowsJson = nlohmann::json::array();
+  for (const Row& r : rows) {
+    const bool measured = !std::isnan(r.value);
+    const bool pass = measured && (r.atMost ? r.value <= r.target : r.value >= r.target);
+    std::printf("  %-50s %12.4g %-16s %2s %5g %5s %7s  %s\n", r.metric.c_str(), r.value, r.unit.c_str(),
+                r.atMost ? "<=" : ">=", r.target,
+                !measured ? "-"
+                : pass    ? "ok"
+                          : "MISS",
+                r.threads == 0 ? "gpu" : std::to_string(r.threads).c_str(), r.note.c_str());
+    rowsJson.push_back({{"metric", r.metric},
+                        {"value", measured ? nlohmann::json(r.value) : nlohmann::json(nullptr)},
+                        {"unit", r.unit},
+                        {"target", r.target},
+                        {"target_is", r.atMost ? "at most" : "at least"},
+                        {"met", measured ? nlohmann::json(pass) : nlohmann::json(nullptr)},
+                        {"threads", r.threads},
+                        {"note", r.note}});
+  }
+  report = {{"benchmark", "fold"},
+            {"machine", {{"host", machine.host}, {"cpu", machine.cpu}, {"cores", machine.cores}}},
+            {"worker_threads", workerCount()},
+            {"renderer", gpuJson},
+            {"case", {{"size", {kCaseSide, kCaseSide}}, {"radius_px", 64}, {"polygon_vertices", 64}}},
+            {"runs", kRuns},
+            {"rows", rowsJson}};
+}
+#endif
+
 } // namespace
 
 void registerBench(CLI::App& app) {
@@ -384,8 +549,9 @@ void registerBench(CLI::App& app) {
   command
       ->add_option("area", o->area,
                    "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or soak (long "
-                   "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure)")
-      ->check(CLI::IsMember({"demo", "terrain", "soak"}))
+                   "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure) "
+                   "or fold (folding-texture targets on a generated 1 MP case)")
+      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -408,8 +574,20 @@ void registerBench(CLI::App& app) {
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   command->callback([o] {
-    auto context = platform::createHeadlessContext(o->context.options());
     nlohmann::json report;
+    if (o->area == "fold") {
+#ifdef SYLVA_HAVE_FOLDING
+      // CPU rows need no GL; the GPU row makes its own context (and says why when it cannot).
+      benchFold(*o, report);
+#else
+      fail("bench fold: this sylva was built without the folding module");
+#endif
+      const std::string out = o->out.empty() ? "out/bench-fold.json" : o->out;
+      saveJsonFile(out, report);
+      std::printf("%s\n", out.c_str());
+      return;
+    }
+    auto context = platform::createHeadlessContext(o->context.options());
     if (o->area == "terrain") {
       benchTerrain(*o, *context, report);
     } else if (o->area == "soak") {

@@ -1,4 +1,5 @@
 #include "Commands.hpp"
+#include "ImGuiLayer.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
@@ -15,8 +16,6 @@
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
-#include <imgui_impl_glfw.h>
-#include <imgui_impl_opengl3.h>
 
 #include <cstdio>
 #include <cmath>
@@ -37,35 +36,6 @@ struct ViewOptions {
   std::string screenshot;
   bool noUi = false;
   double fixedStep = 0.0;
-};
-
-/** ImGui context bound to a window; torn down in reverse order. */
-class ImGuiLayer {
-public:
-  explicit ImGuiLayer(platform::GlfwWindow& window) {
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;
-    ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
-    ImGui_ImplOpenGL3_Init("#version 450 core");
-  }
-  ~ImGuiLayer() {
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
-  }
-  ImGuiLayer(const ImGuiLayer&) = delete;
-  ImGuiLayer& operator=(const ImGuiLayer&) = delete;
-  void begin() {
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-  }
-  void end() {
-    ImGui::Render();
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  }
 };
 
 /** What the viewer draws: the terrain (with its LOD panel) or the built-in demo scene. */
@@ -281,17 +251,7 @@ void runViewer(const ViewOptions& o) {
     if (showUi) {
       timers.begin("ui");
       ui.begin();
-      ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-      ImGui::SetNextWindowBgAlpha(0.8f);
-      // Fixed-width controls in a window that fits its content: labels are never cut off.
-      ImGui::Begin("Sylva", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-      ImGui::PushItemWidth(220.0f);
-      ImGui::Text("%s", info.renderer.c_str());
-      float sum = 0.0f;
-      for (float t : frameTimes) {
-        sum += t;
-      }
-      const float avg = frameTimes.empty() ? 0.0f : sum / static_cast<float>(frameTimes.size());
+      const float avg = beginPanel("Sylva", info.renderer, frameTimes);
       ImGui::Text("frame %.2f ms (%.0f fps)", avg, avg > 0.0f ? 1000.0f / avg : 0.0f);
       std::vector<float> plot(frameTimes.begin(), frameTimes.end());
       ImGui::PlotLines("##frametimes", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, 50.0f,
@@ -333,18 +293,7 @@ void runViewer(const ViewOptions& o) {
       timers.end();
     }
     timers.endFrame();
-    if (!o.screenshot.empty() && o.frames > 0 && frame + 1 == o.frames) {
-      glFinish();
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-      saveImage(o.screenshot, render::readFramebuffer(size.x, size.y));
-      std::printf("%s\n", o.screenshot.c_str());
-    }
-    window.swapBuffers();
-    frameTimes.push_back(static_cast<float>(dt * 1000.0));
-    if (frameTimes.size() > 120) {
-      frameTimes.pop_front();
-    }
-    if (o.frames > 0 && ++frame >= o.frames) {
+    if (endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes)) {
       break;
     }
   }
@@ -372,13 +321,7 @@ void registerView(CLI::App& app) {
       ->add_option("--shader-dir", o->shaderDir,
                    "Load shaders from this directory (default: embedded; F5 reloads from the source tree)")
       ->check(CLI::ExistingDirectory);
-  command->add_option("--frames", o->frames, "Quit after this many frames (0: run until closed)")
-      ->check(CLI::Range(0, 1000000));
-  command->add_option("--screenshot", o->screenshot, "Save the last frame (with --frames) to this PNG");
-  command
-      ->add_option("--fixed-step", o->fixedStep,
-                   "Advance time by this many seconds per frame (deterministic)")
-      ->check(finiteRange(0.0, 10.0));
+  addScriptedWindowOptions(*command, o->frames, o->screenshot, o->fixedStep);
   command->add_flag("--no-ui", o->noUi, "Start with the ImGui panel hidden");
   command->callback([o] {
     o->camera.check();

@@ -18,6 +18,12 @@ struct ContextFlags {
   platform::ContextOptions options() const;
 };
 
+/**
+ * Adds the options of a scripted window run (tests, screenshots): --frames N (quit after N frames),
+ * --screenshot F (save the last frame), --fixed-step S (advance time S seconds per frame).
+ */
+void addScriptedWindowOptions(CLI::App& command, int& frames, std::string& screenshot, double& fixedStep);
+
 /** Each register* adds one subcommand whose callback runs it; errors are thrown as sylva::Error. */
 void registerInfo(CLI::App& app);
 void registerRender(CLI::App& app);
@@ -25,6 +31,8 @@ void registerView(CLI::App& app);
 void registerBench(CLI::App& app);
 void registerImgdiff(CLI::App& app);
 void registerTerrain(CLI::App& app);
+/** `sylva fold synth|render|view|export-shader|info` (folding textures, docs/folding.md). */
+void registerFold(CLI::App& app);
 
 /** Host name, CPU model and core count, for benchmark reports. */
 struct MachineInfo {

@@ -341,26 +341,44 @@ std::vector<Interval> unionOf(std::vector<Interval> all) {
 } // namespace
 
 std::vector<Interval> foldIntervals(std::span<const std::vector<Vec2>> polygons, Vec2 q, Vec2 jump) {
-  std::vector<Interval> all;
-  std::vector<double> hits;
+  // One pass per polygon: the even-odd ray test of q and the path-edge hits share the edge loop; a miss costs
+  // no division (signs are compared with den instead), and a polygon whose box the path cannot reach is
+  // skipped. Scratch storage is per thread, so the per-pixel call allocates only its result.
+  thread_local std::vector<double> hits;
+  thread_local std::vector<Interval> all;
+  all.clear();
+  const Vec2 lo = glm::min(q, q + jump);
+  const Vec2 hi = glm::max(q, q + jump);
   for (const std::vector<Vec2>& poly : polygons) {
-    hits.clear();
     const std::size_t n = poly.size();
-    for (std::size_t i = 0; i < n; ++i) {
+    hits.clear();
+    bool inside = false;
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
       const Vec2 a = poly[i];
-      const Vec2 e = poly[(i + 1) % n] - a;
+      const Vec2 b = poly[j];
+      // Even-odd crossing of the ray from q towards +x (the same rule as insidePolygon).
+      if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x) {
+        inside = !inside;
+      }
+      // Edge (b → a) against the path; skip edges whose box misses the path's box.
+      if (std::max(a.x, b.x) < lo.x || std::min(a.x, b.x) > hi.x || std::max(a.y, b.y) < lo.y ||
+          std::min(a.y, b.y) > hi.y) {
+        continue;
+      }
+      const Vec2 e = a - b;
       const double den = cross(jump, e);
       if (std::abs(den) < 1e-12) {
         continue; // parallel: the path runs along the edge or misses it
       }
-      const double s = cross(a - q, e) / den;
-      const double r = cross(a - q, jump) / den;
-      if (s >= 0.0 && s <= 1.0 && r >= 0.0 && r < 1.0) {
-        hits.push_back(s);
+      const double ns = cross(b - q, e);
+      const double nr = cross(b - q, jump);
+      const double sign = den > 0.0 ? 1.0 : -1.0;
+      const double ad = std::abs(den);
+      if (ns * sign >= 0.0 && ns * sign <= ad && nr * sign >= 0.0 && nr * sign < ad) {
+        hits.push_back(ns / den);
       }
     }
     std::sort(hits.begin(), hits.end());
-    bool inside = insidePolygon(poly, q);
     double start = 0.0;
     for (double s : hits) {
       if (inside && s > start) {
@@ -375,7 +393,10 @@ std::vector<Interval> foldIntervals(std::span<const std::vector<Vec2>> polygons,
       all.push_back({0.0, 1.0});
     }
   }
-  return unionOf(std::move(all));
+  if (all.size() <= 1) {
+    return {all.begin(), all.end()};
+  }
+  return unionOf({all.begin(), all.end()});
 }
 
 std::vector<Interval> foldIntervalsFromMask(std::span<const float> mask, int width, int height, Vec2 q,

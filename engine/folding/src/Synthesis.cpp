@@ -446,6 +446,9 @@ SynthesisStats synthesizeZone(const Project& project, const ProjectImages& image
           }
           if (progress) {
             progress->advance();
+            if (progress->cancelled()) {
+              fail("synthesis cancelled");
+            }
           }
         }
         zonePixels += localZone;
@@ -520,7 +523,11 @@ void resynthesize(const Project& project, const ProjectImages& images, Textures&
   if (region.empty()) {
     return;
   }
-  synthesizeRegion(project, images, textures, region, nullptr);
+  const bool hadFold = !textures.fold.empty();
+  const SynthesisStats stats = synthesizeRegion(project, images, textures, region, nullptr);
+  if (!hadFold && stats.multiInterval == 0) {
+    textures.fold.clear(); // as a full synthesis: no extra layer unless a texel needs one
+  }
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <sylva/folding/Renderer.hpp>
 #include <sylva/folding/Synthesis.hpp>
 
+#include "Patterns.hpp"
 #include "TempDir.hpp"
 
 #include <gmock/gmock.h>
@@ -21,20 +22,8 @@ namespace {
 
 using nlohmann::json;
 
-/** A test image whose pixels are all distinguishable. */
 Image pattern(int w, int h) {
-  Image img(w, h, 4, PixelType::U8);
-  auto* d = reinterpret_cast<std::uint8_t*>(img.data());
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      std::uint8_t* p = d + (static_cast<std::size_t>(y) * w + x) * 4;
-      p[0] = static_cast<std::uint8_t>(x * 7 + y * 3);
-      p[1] = static_cast<std::uint8_t>(y * 13 + x);
-      p[2] = static_cast<std::uint8_t>((x * y) & 255);
-      p[3] = 255;
-    }
-  }
-  return img;
+  return test::patternImage(w, h, false);
 }
 
 std::array<std::uint8_t, 4> pixel(const Image& img, int x, int y) {
@@ -656,10 +645,11 @@ TEST(FoldingProject, BadInputNamesTheField) {
 }
 
 TEST(FoldingProject, NaNAndInfinityAreRefused) {
-  // JSON text has no NaN literal and a number that overflows a double fails to parse; both are one line naming
-  // the file. A NaN built in memory (e.g. by an editor) is refused by the validation.
+  // JSON text has no NaN literal and a number that overflows a double fails to parse; both are one line
+  // naming the file. A NaN built in memory (e.g. by an editor) is refused by the validation.
   test::TempDir dir;
-  std::ofstream(dir / "inf.json") << R"({"format":"sylva-fold","version":1,"atlas":{"images":[{"id":"a","file":"a.png"}]},
+  std::ofstream(dir / "inf.json")
+      << R"({"format":"sylva-fold","version":1,"atlas":{"images":[{"id":"a","file":"a.png"}]},
     "profiles":[{"id":"p","period_s":1e999}],"zones":[]})";
   try {
     loadProject(dir / "inf.json");

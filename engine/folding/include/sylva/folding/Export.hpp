@@ -1,0 +1,47 @@
+#pragma once
+
+#include <sylva/core/Image.hpp>
+
+#include <filesystem>
+#include <span>
+#include <string>
+
+namespace sylva::folding {
+
+/**
+ * Writes an animated GIF89a of `frames` (RGBA8, all the same size; alpha is ignored). One global palette of
+ * at most 256 colours is quantised (median cut, giflib's GifQuantizeBuffer) from a deterministic sample of
+ * the frames (at most 8 evenly spaced frames, at most ~1 M pixels in all); every pixel then takes its nearest
+ * palette colour (no dithering), so the same frames give a byte-identical file. `delayCs` is the delay of
+ * each frame in hundredths of a second (1..65535); `loop` adds the NETSCAPE2.0 "loop forever" block.
+ * Written to a temporary file and renamed. Throws sylva::Error naming the file (no frames, sizes that differ,
+ * giflib errors).
+ */
+void writeGif(const std::filesystem::path& path, std::span<const Image> frames, int delayCs,
+              bool loop = true);
+
+/**
+ * Writes a sprite sheet: `frames` (RGBA8, all the same size w×h) laid out row by row in `columns` columns
+ * (fewer when there are fewer frames) into one PNG at `imagePath`, and `jsonPath` describing it:
+ * {"format":"sylva-fold-sprites","version":1,"image":<file name>,"size":[W,H],"columns","rows","fps",
+ *  "frames":[{"index","x","y","w","h","t"}]} with rectangles in sheet pixels (top-left origin) and t the
+ * frame's time in seconds (index / fps). Both files are written atomically. Throws sylva::Error naming the
+ * file (no frames, sizes that differ, a sheet wider or taller than 65536 pixels).
+ */
+void writeSpriteSheet(const std::filesystem::path& imagePath, const std::filesystem::path& jsonPath,
+                      std::span<const Image> frames, int columns, double fps);
+
+/** True when an executable `ffmpeg` is on PATH. */
+bool ffmpegAvailable();
+
+/**
+ * Encodes `frames` (RGBA8, same size) at `fps` frames per second into a video by piping raw RGBA frames to
+ * the `ffmpeg` program found on PATH: `.mp4` with libx264 (yuv420p, CRF 18), `.webm` with libvpx-vp9
+ * (CRF 30); odd sizes are padded to even. ffmpeg writes a temporary file next to `path`, renamed when it
+ * succeeds. Throws sylva::Error: "ffmpeg not found on PATH: install it (apt install ffmpeg) or write
+ * --gif/--sprites/--frames instead" when it is absent, or one line with ffmpeg's exit status and the last
+ * line it printed when it fails (nothing is left at `path` then).
+ */
+void writeVideo(const std::filesystem::path& path, std::span<const Image> frames, double fps);
+
+} // namespace sylva::folding

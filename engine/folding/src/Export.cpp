@@ -1,0 +1,511 @@
+// Exports of rendered frames: animated GIF (giflib), sprite sheet (PNG + JSON) and video through the `ffmpeg`
+// program. Every output is written to a temporary file and renamed, so a failure leaves nothing behind.
+#include <sylva/folding/Export.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+
+#include <gif_lib.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace sylva::folding {
+
+namespace {
+
+/** Checks that `frames` is non-empty and every frame is RGBA8 of the first frame's size. */
+void checkFrames(const std::filesystem::path& path, std::span<const Image> frames) {
+  if (frames.empty()) {
+    fail("{}: no frames to write", path.string());
+  }
+  const Image& first = frames.front();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const Image& f = frames[i];
+    if (f.channels() != 4 || f.type() != PixelType::U8) {
+      fail("{}: frame {} is not RGBA8", path.string(), i);
+    }
+    if (f.width() != first.width() || f.height() != first.height()) {
+      fail("{}: frame {} is {}x{}, frame 0 is {}x{}", path.string(), i, f.width(), f.height(), first.width(),
+           first.height());
+    }
+  }
+}
+
+/** Closes a giflib encoder (it frees the handle whatever happens). */
+struct GifCloser {
+  void operator()(GifFileType* gif) const {
+    int error = 0;
+    EGifCloseFile(gif, &error);
+  }
+};
+
+/** Nearest palette entry per 24-bit colour, computed on first use (squared RGB distance, lowest index wins).
+ */
+class NearestColour {
+public:
+  explicit NearestColour(std::span<const GifColorType> palette)
+      : mPalette(palette), mCache(std::size_t{1} << 24, -1) {}
+
+  GifPixelType operator()(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    const std::size_t key = (std::size_t{r} << 16) | (std::size_t{g} << 8) | b;
+    std::int16_t& cached = mCache[key];
+    if (cached < 0) {
+      int best = 0;
+      int bestDistance = 1 << 30;
+      for (std::size_t i = 0; i < mPalette.size(); ++i) {
+        const int dr = int{mPalette[i].Red} - r;
+        const int dg = int{mPalette[i].Green} - g;
+        const int db = int{mPalette[i].Blue} - b;
+        const int d = dr * dr + dg * dg + db * db;
+        if (d < bestDistance) {
+          bestDistance = d;
+          best = static_cast<int>(i);
+        }
+      }
+      cached = static_cast<std::int16_t>(best);
+    }
+    return static_cast<GifPixelType>(cached);
+  }
+
+private:
+  std::span<const GifColorType> mPalette;
+  std::vector<std::int16_t> mCache;
+};
+
+/**
+ * Median-cut palette of a deterministic sample: at most 8 evenly spaced frames, every k-th pixel so that at
+ * most ~1 M pixels are quantised. giflib works on 5 bits per channel and returns bucket means rounded down,
+ * so each entry is then replaced by the exact mean of the sample pixels it was given (no darkening bias).
+ */
+std::vector<GifColorType> quantisePalette(const std::filesystem::path& path, std::span<const Image> frames) {
+  const std::size_t frameCount = std::min<std::size_t>(frames.size(), 8);
+  const std::size_t pixels = static_cast<std::size_t>(frames[0].width()) * frames[0].height();
+  const std::size_t budget = 1 << 20;
+  const std::size_t step = std::max<std::size_t>(1, (frameCount * pixels + budget - 1) / budget);
+  std::vector<GifByteType> red;
+  std::vector<GifByteType> green;
+  std::vector<GifByteType> blue;
+  for (std::size_t k = 0; k < frameCount; ++k) {
+    const std::size_t index = frameCount == 1 ? 0 : k * (frames.size() - 1) / (frameCount - 1);
+    const auto values = frames[index].values<std::uint8_t>();
+    for (std::size_t p = 0; p < pixels; p += step) {
+      red.push_back(values[4 * p]);
+      green.push_back(values[4 * p + 1]);
+      blue.push_back(values[4 * p + 2]);
+    }
+  }
+  std::array<GifColorType, 256> map{};
+  std::vector<GifByteType> assigned(red.size());
+  int size = 256;
+  if (GifQuantizeBuffer(static_cast<unsigned>(red.size()), 1, &size, red.data(), green.data(), blue.data(),
+                        assigned.data(), map.data()) != GIF_OK) {
+    fail("{}: colour quantisation failed (out of memory)", path.string());
+  }
+  size = std::clamp(size, 1, 256);
+  std::vector<std::array<std::uint64_t, 4>> sums(256, {0, 0, 0, 0});
+  for (std::size_t i = 0; i < red.size(); ++i) {
+    auto& s = sums[assigned[i]];
+    s[0] += red[i];
+    s[1] += green[i];
+    s[2] += blue[i];
+    s[3] += 1;
+  }
+  std::vector<GifColorType> palette(map.begin(), map.begin() + size);
+  for (int i = 0; i < size; ++i) {
+    const auto& s = sums[static_cast<std::size_t>(i)];
+    if (s[3] > 0) {
+      palette[static_cast<std::size_t>(i)] = {static_cast<GifByteType>((s[0] + s[3] / 2) / s[3]),
+                                              static_cast<GifByteType>((s[1] + s[3] / 2) / s[3]),
+                                              static_cast<GifByteType>((s[2] + s[3] / 2) / s[3])};
+    }
+  }
+  return palette;
+}
+
+/** The executable `name` in a directory of PATH, or an empty path. */
+std::filesystem::path findOnPath(const std::string& name) {
+  const char* env = std::getenv("PATH");
+  const std::string path = env != nullptr ? env : "";
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    const std::size_t end = std::min(path.find(':', start), path.size());
+    const std::string dir = path.substr(start, end - start);
+    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
+    struct stat st {};
+    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+        ::access(candidate.c_str(), X_OK) == 0) {
+      return candidate;
+    }
+    start = end + 1;
+  }
+  return {};
+}
+
+/** The last non-empty line of a text file, trimmed ("" when there is none). */
+std::string lastLine(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::string last;
+  while (std::getline(in, line)) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos) {
+      last = line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
+    }
+  }
+  return last;
+}
+
+/** Writes all of `size` bytes; false when the reader has gone (EPIPE) or another error occurs. */
+bool writeAll(int fd, const std::byte* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0) {
+      if (errno == EINTR) {
+        continue;
+      }
+      return false;
+    }
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+/** Ignores SIGPIPE while it lives (a dead ffmpeg must give EPIPE, not end Sylva), then restores it. */
+class IgnoreSigpipe {
+public:
+  IgnoreSigpipe() {
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    ::sigaction(SIGPIPE, &ignore, &mPrevious);
+  }
+  ~IgnoreSigpipe() { ::sigaction(SIGPIPE, &mPrevious, nullptr); }
+  IgnoreSigpipe(const IgnoreSigpipe&) = delete;
+  IgnoreSigpipe& operator=(const IgnoreSigpipe&) = delete;
+
+private:
+  struct sigaction mPrevious {};
+};
+
+/** A file descriptor closed on destruction. */
+struct Fd {
+  int fd = -1;
+  ~Fd() { reset(); }
+  void reset() {
+    if (fd >= 0) {
+      ::close(fd);
+    }
+    fd = -1;
+  }
+};
+
+} // namespace
+
+void writeGif(const std::filesystem::path& path, std::span<const Image> frames, int delayCs, bool loop) {
+  checkFrames(path, frames);
+  if (delayCs < 1 || delayCs > 65535) {
+    fail("{}: frame delay {} cs is outside 1..65535", path.string(), delayCs);
+  }
+  const int width = frames[0].width();
+  const int height = frames[0].height();
+  if (width > 65535 || height > 65535) {
+    fail("{}: {}x{} is larger than a GIF can hold (65535)", path.string(), width, height);
+  }
+  const std::vector<GifColorType> palette = quantisePalette(path, frames);
+  const int bits = std::max(1, GifBitSize(static_cast<int>(palette.size())));
+  std::vector<GifColorType> padded(std::size_t{1} << bits, GifColorType{0, 0, 0});
+  std::copy(palette.begin(), palette.end(), padded.begin());
+  NearestColour nearest(palette);
+
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    const auto gifError = [&](int code) {
+      fail("{}: writing GIF failed: {}", path.string(), GifErrorString(code) ? GifErrorString(code) : "?");
+    };
+    int error = 0;
+    // Opened here rather than by EGifOpenFileName, which creates files readable by their owner only.
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) {
+      fail("{}: cannot write: {}", path.string(), std::strerror(errno));
+    }
+    std::unique_ptr<GifFileType, GifCloser> gif(EGifOpenFileHandle(fd, &error));
+    if (!gif) {
+      ::close(fd);
+      gifError(error);
+    }
+    EGifSetGifVersion(gif.get(), true);
+    std::unique_ptr<ColorMapObject, void (*)(ColorMapObject*)> map(
+        GifMakeMapObject(static_cast<int>(padded.size()), padded.data()), GifFreeMapObject);
+    if (!map || EGifPutScreenDesc(gif.get(), width, height, bits, 0, map.get()) != GIF_OK) {
+      gifError(gif->Error);
+    }
+    if (loop) {
+      // NETSCAPE2.0 application block: sub-block 1, loop count 0 = forever.
+      static const char kApp[] = "NETSCAPE2.0";
+      const std::array<GifByteType, 3> loopBlock{1, 0, 0};
+      if (EGifPutExtensionLeader(gif.get(), APPLICATION_EXT_FUNC_CODE) != GIF_OK ||
+          EGifPutExtensionBlock(gif.get(), 11, kApp) != GIF_OK ||
+          EGifPutExtensionBlock(gif.get(), 3, loopBlock.data()) != GIF_OK ||
+          EGifPutExtensionTrailer(gif.get()) != GIF_OK) {
+        gifError(gif->Error);
+      }
+    }
+    // Every frame is mapped to palette indices; frames after the first store only the rectangle that changed
+    // since the previous one (drawn over it: disposal "do not dispose"), so a cinemagraph whose motion covers
+    // a small part of the picture costs little more than its moving part.
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    std::vector<GifPixelType> previous(pixels);
+    std::vector<GifPixelType> current(pixels);
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      const auto values = frames[f].values<std::uint8_t>();
+      for (std::size_t i = 0; i < pixels; ++i) {
+        current[i] = nearest(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
+      }
+      int x0 = 0;
+      int y0 = 0;
+      int x1 = width;
+      int y1 = height;
+      if (f > 0) {
+        x0 = width;
+        y0 = height;
+        x1 = 0;
+        y1 = 0;
+        for (int y = 0; y < height; ++y) {
+          for (int x = 0; x < width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            if (current[i] != previous[i]) {
+              x0 = std::min(x0, x);
+              y0 = std::min(y0, y);
+              x1 = std::max(x1, x + 1);
+              y1 = std::max(y1, y + 1);
+            }
+          }
+        }
+        if (x1 <= x0) {
+          x0 = y0 = 0; // nothing changed: one unchanged pixel keeps the frame and its delay
+          x1 = y1 = 1;
+        }
+      }
+      GraphicsControlBlock gcb{};
+      gcb.DisposalMode = DISPOSE_DO_NOT;
+      gcb.UserInputFlag = false;
+      gcb.DelayTime = delayCs;
+      gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+      std::array<GifByteType, 4> ext{};
+      const std::size_t extSize = EGifGCBToExtension(&gcb, ext.data());
+      if (EGifPutExtension(gif.get(), GRAPHICS_EXT_FUNC_CODE, static_cast<int>(extSize), ext.data()) !=
+              GIF_OK ||
+          EGifPutImageDesc(gif.get(), x0, y0, x1 - x0, y1 - y0, false, nullptr) != GIF_OK) {
+        gifError(gif->Error);
+      }
+      for (int y = y0; y < y1; ++y) {
+        if (EGifPutLine(gif.get(), current.data() + static_cast<std::size_t>(y) * width + x0, x1 - x0) !=
+            GIF_OK) {
+          gifError(gif->Error);
+        }
+      }
+      std::swap(previous, current);
+    }
+    GifFileType* raw = gif.release();
+    if (EGifCloseFile(raw, &error) != GIF_OK) {
+      gifError(error);
+    }
+  });
+}
+
+void writeSpriteSheet(const std::filesystem::path& imagePath, const std::filesystem::path& jsonPath,
+                      std::span<const Image> frames, int columns, double fps) {
+  checkFrames(imagePath, frames);
+  if (columns < 1) {
+    fail("{}: sprite sheet columns must be at least 1 (got {})", imagePath.string(), columns);
+  }
+  if (!(fps > 0.0) || !std::isfinite(fps)) {
+    fail("{}: frames per second must be positive (got {})", imagePath.string(), fps);
+  }
+  const int count = static_cast<int>(frames.size());
+  const int cols = std::min(columns, count);
+  const int rows = (count + cols - 1) / cols;
+  const int w = frames[0].width();
+  const int h = frames[0].height();
+  if (static_cast<long long>(cols) * w > 65536 || static_cast<long long>(rows) * h > 65536) {
+    fail("{}: a {}x{} sheet of {}x{} frames is larger than 65536 pixels; use fewer frames or more/fewer "
+         "columns",
+         imagePath.string(), cols, rows, w, h);
+  }
+  Image sheet(cols * w, rows * h, 4, PixelType::U8);
+  nlohmann::json rects = nlohmann::json::array();
+  for (int i = 0; i < count; ++i) {
+    const int x0 = (i % cols) * w;
+    const int y0 = (i / cols) * h;
+    const Image& frame = frames[static_cast<std::size_t>(i)];
+    for (int y = 0; y < h; ++y) {
+      std::memcpy(sheet.data() + static_cast<std::size_t>(y0 + y) * sheet.rowBytes() +
+                      static_cast<std::size_t>(x0) * 4,
+                  frame.data() + static_cast<std::size_t>(y) * frame.rowBytes(), frame.rowBytes());
+    }
+    rects.push_back({{"index", i}, {"x", x0}, {"y", y0}, {"w", w}, {"h", h}, {"t", i / fps}});
+  }
+  const std::filesystem::path relative =
+      std::filesystem::absolute(imagePath).lexically_normal().lexically_relative(
+          std::filesystem::absolute(jsonPath).lexically_normal().parent_path());
+  const nlohmann::json json = {{"format", "sylva-fold-sprites"},
+                               {"version", 1},
+                               {"image", relative.empty() ? imagePath.string() : relative.generic_string()},
+                               {"size", {sheet.width(), sheet.height()}},
+                               {"columns", cols},
+                               {"rows", rows},
+                               {"fps", fps},
+                               {"frames", rects}};
+  saveImage(imagePath, sheet);
+  saveJsonFile(jsonPath, json);
+}
+
+bool ffmpegAvailable() {
+  return !findOnPath("ffmpeg").empty();
+}
+
+void writeVideo(const std::filesystem::path& path, std::span<const Image> frames, double fps) {
+  const std::string ext = lowerExtension(path);
+  if (ext != ".mp4" && ext != ".webm") {
+    fail("{}: unsupported video extension '{}' (use .mp4 or .webm)", path.string(), ext);
+  }
+  checkFrames(path, frames);
+  if (!(fps > 0.0) || !std::isfinite(fps)) {
+    fail("{}: frames per second must be positive (got {})", path.string(), fps);
+  }
+  const std::filesystem::path ffmpeg = findOnPath("ffmpeg");
+  if (ffmpeg.empty()) {
+    fail("ffmpeg not found on PATH: install it (apt install ffmpeg) or write --gif/--sprites/--frames "
+         "instead");
+  }
+  const int width = frames[0].width();
+  const int height = frames[0].height();
+
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::vector<std::string> args = {ffmpeg.string(),
+                                     "-hide_banner",
+                                     "-loglevel",
+                                     "error",
+                                     "-y",
+                                     "-f",
+                                     "rawvideo",
+                                     "-pix_fmt",
+                                     "rgba",
+                                     "-s",
+                                     fmt::format("{}x{}", width, height),
+                                     "-r",
+                                     fmt::format("{}", fps),
+                                     "-i",
+                                     "pipe:0",
+                                     "-an",
+                                     "-vf",
+                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                     "-pix_fmt",
+                                     "yuv420p",
+                                     "-fflags",
+                                     "+bitexact"};
+    if (ext == ".mp4") {
+      args.insert(args.end(), {"-c:v", "libx264", "-crf", "18", "-movflags", "+faststart", "-f", "mp4"});
+    } else {
+      args.insert(args.end(), {"-c:v", "libvpx-vp9", "-crf", "30", "-b:v", "0", "-f", "webm"});
+    }
+    args.push_back(tmp.string());
+    std::vector<char*> argv;
+    for (std::string& a : args) {
+      argv.push_back(a.data());
+    }
+    argv.push_back(nullptr);
+
+    // ffmpeg's messages go to a temporary file: read after it ends, so a chatty ffmpeg can never block on a
+    // full stderr pipe while Sylva blocks writing frames to it.
+    std::string errTemplate = (std::filesystem::temp_directory_path() / "sylva-ffmpeg-XXXXXX").string();
+    Fd err{::mkstemp(errTemplate.data())};
+    if (err.fd < 0) {
+      fail("{}: cannot create a temporary file for ffmpeg's messages: {}", path.string(),
+           std::strerror(errno));
+    }
+    const std::filesystem::path errPath = errTemplate;
+    struct RemoveFile {
+      std::filesystem::path p;
+      ~RemoveFile() {
+        std::error_code ignored;
+        std::filesystem::remove(p, ignored);
+      }
+    } removeErr{errPath};
+    ::fcntl(err.fd, F_SETFD, FD_CLOEXEC);
+    int fds[2] = {-1, -1};
+    if (::pipe2(fds, O_CLOEXEC) != 0) {
+      fail("{}: cannot create a pipe to ffmpeg: {}", path.string(), std::strerror(errno));
+    }
+    Fd readEnd{fds[0]};
+    Fd writeEnd{fds[1]};
+
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, readEnd.fd, STDIN_FILENO);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, err.fd, STDERR_FILENO);
+    pid_t pid = -1;
+    const int spawned = ::posix_spawn(&pid, ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) {
+      fail("{}: cannot start {}: {}", path.string(), ffmpeg.string(), std::strerror(spawned));
+    }
+    readEnd.reset();
+    bool fed = true;
+    {
+      const IgnoreSigpipe ignore;
+      for (const Image& frame : frames) {
+        if (!writeAll(writeEnd.fd, frame.data(), frame.byteSize())) {
+          fed = false; // ffmpeg stopped reading: its exit status and message say why
+          break;
+        }
+      }
+      writeEnd.reset();
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0) {
+      if (errno != EINTR) {
+        fail("{}: waiting for ffmpeg failed: {}", path.string(), std::strerror(errno));
+      }
+    }
+    const std::string message = lastLine(errPath);
+    if (WIFSIGNALED(status)) {
+      fail("{}: ffmpeg was killed by signal {}{}{}", path.string(), WTERMSIG(status),
+           message.empty() ? "" : ": ", message);
+    }
+    if (WEXITSTATUS(status) != 0) {
+      fail("{}: ffmpeg failed (exit {}): {}", path.string(), WEXITSTATUS(status),
+           message.empty() ? "no message" : message);
+    }
+    if (!fed) {
+      fail("{}: ffmpeg stopped reading frames{}{}", path.string(), message.empty() ? "" : ": ", message);
+    }
+    std::error_code ec;
+    if (!std::filesystem::exists(tmp, ec) || std::filesystem::file_size(tmp, ec) == 0) {
+      fail("{}: ffmpeg exited without writing the video", path.string());
+    }
+  });
+}
+
+} // namespace sylva::folding
