@@ -310,6 +310,29 @@ TEST(CliFold, VideoPipesRawFramesToFfmpegAndRenamesItsOutput) {
   EXPECT_EQ(entriesUnder(dir / "out").size(), 2u);
 }
 
+TEST(CliFold, RealFfmpegWritesPlayableVideos) {
+  // ffmpeg is optional at run time and not installed on CI; where it is, the encodes must really decode.
+  if (std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "ffmpeg/ffprobe not installed";
+  }
+  const test::TempDir dir;
+  const fs::path file = writeProject(dir, project());
+  const fs::path mp4 = dir / "anim.mp4";
+  const fs::path webm = dir / "anim.webm";
+  const test::RunResult r =
+      runSylva(dir, "fold render " + quote(file.string()) + " --frames 6 --fps 12 --mp4 " +
+                        quote(mp4.string()) + " --webm " + quote(webm.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const fs::path& video : {mp4, webm}) {
+    const test::RunResult probe = test::runProgram("ffprobe", dir.path(),
+                                                   "-v error -count_frames -select_streams v:0 -show_entries "
+                                                   "stream=width,height,nb_read_frames -of csv=p=0 " +
+                                                       quote(video.string()));
+    ASSERT_EQ(probe.status, 0) << probe.err;
+    EXPECT_EQ(probe.out, "72,56,6\n") << video;
+  }
+}
+
 TEST(CliFold, FfmpegFailureIsOneLineAndLeavesNothing) {
   const test::TempDir dir;
   const fs::path file = writeProject(dir, project());

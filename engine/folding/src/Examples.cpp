@@ -160,7 +160,9 @@ Image birdImage(int width, int height) {
       // Body: an ellipse; head: a circle at the front (right); wing: a triangle up and back; tail: a wedge.
       const bool body = std::pow((px - 0.5) / 0.30, 2.0) + std::pow((py - 0.68) / 0.14, 2.0) <= 1.0;
       const bool head = std::pow((px - 0.80) / 0.10, 2.0) + std::pow((py - 0.56) / 0.16, 2.0) <= 1.0;
-      const bool wing = py < 0.68 && py > 0.08 + 0.9 * std::abs(px - 0.45) && px > 0.25 && px < 0.62;
+      // Wing raised and swept back: between a parabola through its tip and the back, above the body.
+      const double wingTop = 0.06 + 4.5 * (px - 0.36) * (px - 0.36) + 0.25 * std::max(0.0, px - 0.36);
+      const bool wing = px > 0.22 && px < 0.64 && py > wingTop && py < 0.62 - 0.2 * (px - 0.45);
       const bool tail = px < 0.24 && px > 0.06 && std::abs(py - 0.66) < 0.5 * (0.24 - px) + 0.03;
       const bool beak = px > 0.88 && px < 0.98 && std::abs(py - 0.58) < 0.4 * (0.98 - px);
       if (beak) {
