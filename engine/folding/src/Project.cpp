@@ -633,7 +633,7 @@ Project parseProject(const json& root, const std::string& where) {
   for (std::size_t i = 0; i < zoneCount; ++i) {
     const Node n =
         zones[i].object({"id", "image", "shape", "profile", "layer", "phase", "phase_gradient", "interp",
-                         "zero_anchors", "zero_spacing_px", "freeze_mask", "tools", "folding"});
+                         "zero_anchors", "zero_spacing_px", "feather_px", "freeze_mask", "tools", "folding"});
     Zone zone;
     zone.id = n["id"].string();
     requireUnique(zones, zoneCount, ids, zone.id, i);
@@ -654,6 +654,7 @@ Project parseProject(const json& root, const std::string& where) {
       zone.zeroBoundary = n["zero_anchors"].choice({"none", "zone_boundary"}) == "zone_boundary";
     }
     zone.zeroSpacing = n.has("zero_spacing_px") ? n["zero_spacing_px"].number(0.5, 1e4) : 4.0;
+    zone.feather = n.has("feather_px") ? n["feather_px"].number(0.0, 1e4) : 0.0;
     if (n.has("freeze_mask")) {
       zone.freezeMask = n["freeze_mask"].string();
     }
@@ -743,6 +744,7 @@ json toJson(const Project& p) {
               {"interp", interpolationJson(zone.interp)},
               {"zero_anchors", zone.zeroBoundary ? "zone_boundary" : "none"},
               {"zero_spacing_px", zone.zeroSpacing},
+              {"feather_px", zone.feather},
               {"tools", tools}};
     if (!zone.freezeMask.empty()) {
       z["freeze_mask"] = zone.freezeMask.generic_string();

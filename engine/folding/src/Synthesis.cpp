@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace sylva::folding {
@@ -96,6 +97,19 @@ Rect zoneBox(const Zone& zone, glm::ivec2 size) {
   r.min = glm::clamp(r.min, glm::ivec2(0), size);
   r.max = glm::clamp(r.max, glm::ivec2(0), size);
   return r;
+}
+
+/** Distance (pixels) from p to the closed polyline `outline`. */
+double distanceToOutline(const std::vector<Vec2>& outline, Vec2 p) {
+  double best = std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vec2 a = outline[i];
+    const Vec2 e = outline[(i + 1) % outline.size()] - a;
+    const double len2 = glm::dot(e, e);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, e) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, glm::length(p - (a + t * e)));
+  }
+  return best;
 }
 
 /** An upper bound of |J| over a zone (pixels): base field at the box corners plus the largest residual. */
@@ -397,7 +411,12 @@ SynthesisStats synthesizeZone(const Project& project, const ProjectImages& image
               continue;
             }
             ++localZone;
-            const Vec2 j = field.evaluate(c, static_cast<std::uint64_t>(py) * size.x + px);
+            Vec2 j = field.evaluate(c, static_cast<std::uint64_t>(py) * size.x + px);
+            if (zone.feather > 0.0) {
+              // Soft edge: J fades in with smoothstep over `feather` pixels from the zone border.
+              const double f = std::clamp(distanceToOutline(outline, c) / zone.feather, 0.0, 1.0);
+              j *= f * f * (3.0 - 2.0 * f);
+            }
             std::vector<Interval> intervals{{0.0, 1.0}};
             if (zone.folding.type == Folding::Type::Polygons ||
                 (zone.folding.type == Folding::Type::Object && objectMask.empty())) {

@@ -375,6 +375,29 @@ TEST(FoldingSynthesis, ScaleMatchesTheAnalyticField) {
   EXPECT_GT(inside, 1500);
 }
 
+TEST(FoldingSynthesis, FeatherFadesTheJumpInFromTheZoneBorder) {
+  const json zone = {{"id", "z"},
+                     {"image", "img"},
+                     {"shape", {{"type", "rect"}, {"min", {8, 8}}, {"max", {56, 40}}}},
+                     {"profile", "p"},
+                     {"feather_px", 6.0},
+                     {"tools", {{{"type", "translate"}, {"v", {3, -2}}}}}};
+  Fixture f = make(baseProject(zone), {pattern(64, 48)});
+  const Textures tex = synthesize(f.project, f.images);
+  const glm::ivec2 o = tex.atlas.entries[0].origin();
+  const std::span<const float> jump = tex.jump[0].values<float>();
+  auto jx = [&](int x, int y) {
+    return jump[(static_cast<std::size_t>(y + o.y) * tex.width() + x + o.x) * 4];
+  };
+  EXPECT_FLOAT_EQ(jx(30, 24), -3.0f) << "deeper than the feather: the full translate";
+  const double d = 0.5 / 6.0; // texel (8, 24): its centre is ½ px inside the border
+  EXPECT_NEAR(jx(8, 24), -3.0 * d * d * (3.0 - 2.0 * d), 1e-6);
+  EXPECT_LT(std::abs(jx(9, 24)), std::abs(jx(12, 24)));
+  EXPECT_LT(std::abs(jx(12, 24)), 3.0f);
+  // The project round-trips the field.
+  EXPECT_EQ(parseProject(toJson(f.project), "f.json").zones[0].feather, 6.0);
+}
+
 json richZone() {
   return {{"id", "z"},
           {"image", "img"},

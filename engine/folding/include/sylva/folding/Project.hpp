@@ -161,8 +161,11 @@ struct Zone {
   double phase = 0.0;      ///< dt offset in cycles
   Vec2 phaseGradient{0.0}; ///< extra dt per pixel (cycles/px), from the zone's bounding-box corner
   Interpolation interp;
-  bool zeroBoundary = false;        ///< zero anchors along the zone border
-  double zeroSpacing = 4.0;         ///< pixels between sampled zero anchors
+  bool zeroBoundary = false; ///< zero anchors along the zone border
+  double zeroSpacing = 4.0;  ///< pixels between sampled zero anchors
+  /** Soft edge width (pixels): J fades to 0 over this distance inside the zone border (smoothstep); 0 = hard.
+   */
+  double feather = 0.0;
   std::filesystem::path freezeMask; ///< optional painted freeze mask (≥ ½ = frozen), image-sized
   std::vector<Tool> tools;
   Folding folding;
