@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Limits.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 
@@ -52,17 +53,9 @@ terrain::TerrainView parseTerrainView(const std::string& name) {
 }
 
 std::size_t affordableSamples() {
-  // MemAvailable from /proc/meminfo, kB; unknown (not Linux) = no limit beyond the loader's own.
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  std::size_t kb = 0;
-  std::string unit;
-  while (meminfo >> key >> kb >> unit) {
-    if (key == "MemAvailable:") {
-      return std::max<std::size_t>(4, kb * 1024 / kRenderBytesPerSample);
-    }
-  }
-  return terrain::kMaxHeightFieldSamples;
+  // Unknown available memory (not Linux) = no limit beyond the loader's own.
+  const std::optional<std::size_t> bytes = availableMemoryBytes();
+  return bytes ? std::max<std::size_t>(4, *bytes / kRenderBytesPerSample) : terrain::kMaxHeightFieldSamples;
 }
 
 void checkMemoryFor(std::size_t samples, const std::string& option) {

@@ -4,6 +4,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/Limits.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/core/Random.hpp>
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace sylva::folding {
 
@@ -521,8 +523,18 @@ Textures synthesize(const Project& project, const ProjectImages& images, Progres
   tex.atlas = packAtlas(project, images);
   const int w = tex.atlas.color.width();
   const int h = tex.atlas.color.height();
-  tex.init = Image(w, h, 4, PixelType::F32);
   const std::size_t layers = project.jumpLayers.size() - 1;
+  // Float textures: init, and per layer jump and (possibly) fold, 16 bytes a texel each, plus a frame.
+  const std::size_t bytesPerTexel = 16 * (1 + 2 * layers) + 8;
+  const std::size_t need = static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * bytesPerTexel;
+  if (const std::optional<std::size_t> available = availableMemoryBytes(); available && need > *available) {
+    fail("atlas: {}×{} texels need about {:.1f} GiB to synthesise ({} bytes a texel), {:.1f} GiB is "
+         "available; "
+         "crop or scale the input images",
+         w, h, static_cast<double>(need) / (1u << 30), bytesPerTexel,
+         static_cast<double>(*available) / (1u << 30));
+  }
+  tex.init = Image(w, h, 4, PixelType::F32);
   for (std::size_t l = 0; l < layers; ++l) {
     tex.jump.emplace_back(w, h, 4, PixelType::F32);
   }

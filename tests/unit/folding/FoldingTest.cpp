@@ -398,6 +398,16 @@ TEST(FoldingSynthesis, FeatherFadesTheJumpInFromTheZoneBorder) {
   EXPECT_EQ(parseProject(toJson(f.project), "f.json").zones[0].feather, 6.0);
 }
 
+TEST(FoldingSynthesis, AnAtlasTooLargeForTheRenderersIsAnError) {
+  Fixture f = make(baseProject(nullptr), {Image(kMaxAtlasSide + 1, 2, 4, PixelType::U8)});
+  try {
+    (void)synthesize(f.project, f.images);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("atlas: packing needs 16385×2 texels, more than the 16384"));
+  }
+}
+
 json richZone() {
   return {{"id", "z"},
           {"image", "img"},

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <optional>
 
 namespace sylva {
 
@@ -10,5 +12,12 @@ namespace sylva {
  * anything.
  */
 inline constexpr std::uint64_t kMaxDeflateRatio = 1032;
+
+/**
+ * Memory the system can give this process now without swapping (bytes): MemAvailable from /proc/meminfo;
+ * nullopt where that is unknown (not Linux). Commands check big allocations against it before any work, so an
+ * absurd size is a one-line error instead of an out-of-memory kill.
+ */
+std::optional<std::size_t> availableMemoryBytes();
 
 } // namespace sylva
