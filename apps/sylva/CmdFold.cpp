@@ -14,6 +14,7 @@
 #include <sylva/folding/Project.hpp>
 #include <sylva/folding/Renderer.hpp>
 #include <sylva/folding/Synthesis.hpp>
+#include <sylva/folding/Templates.hpp>
 
 #ifdef SYLVA_HAVE_FOLDING_GPU
 #include <sylva/folding/gpu/FoldRenderer.hpp>
@@ -660,6 +661,85 @@ void registerFoldInfo(CLI::App& fold) {
 
 } // namespace
 
+// ---------------------------------------------------------------------------------------------------------
+// template
+
+void registerFoldTemplate(CLI::App& fold) {
+  std::string names;
+  for (MotionTemplate m : motionTemplates()) {
+    names += (names.empty() ? "" : ", ") + std::string(motionTemplateName(m));
+  }
+  auto* command = fold.add_subcommand(
+      "template", "Apply a motion template (" + names +
+                      ") to one zone of a project: its tools, folding region, interpolation and a profile");
+  struct Options {
+    std::string project;
+    std::string zone;
+    std::string name;
+    double strength = 0.0;
+    std::vector<double> direction{0.0, 1.0};
+    double period = 0.0;
+    std::string out;
+  };
+  auto o = std::make_shared<Options>();
+  command->add_option("project", o->project, "Project file (.json, format sylva-fold)")->required();
+  command->add_option("--zone", o->zone, "Id of the zone to animate")->required();
+  std::vector<std::string> choices;
+  for (MotionTemplate m : motionTemplates()) {
+    choices.emplace_back(motionTemplateName(m));
+  }
+  command->add_option("--template", o->name, "Template name")->required()->check(CLI::IsMember(choices));
+  command->add_option("--strength", o->strength, "Largest motion in pixels (0: a fraction of the zone)")
+      ->check(finiteRange(0.0, 1e4))
+      ->capture_default_str();
+  command->add_option("--direction", o->direction, "wave_swash: direction the water advances, X Y")
+      ->expected(2)
+      ->check(finiteRange(-1e4, 1e4));
+  command->add_option("--period", o->period, "Profile period in seconds (0: the template's default)")
+      ->check(finiteRange(0.0, 1e6))
+      ->capture_default_str();
+  command->add_option("-o,--out", o->out, "Write the edited project here (default: overwrite the input)");
+  command->callback([o] {
+    const Project project = loadProject(o->project);
+    const int zone = [&] {
+      for (std::size_t z = 0; z < project.zones.size(); ++z) {
+        if (project.zones[z].id == o->zone) {
+          return static_cast<int>(z);
+        }
+      }
+      fail("--zone: {} has no zone '{}'", o->project, o->zone);
+    }();
+    EditHistory history(project);
+    TemplateParams params;
+    params.strength = o->strength;
+    params.direction = Vec2(o->direction[0], o->direction[1]);
+    params.periodS = o->period;
+    applyMotionTemplate(history, zone, *parseMotionTemplate(o->name), params);
+    const std::filesystem::path out =
+        o->out.empty() ? std::filesystem::path(o->project) : std::filesystem::path(o->out);
+    Project edited = history.project();
+    if (!o->out.empty()) {
+      // File names stay relative to the project's images: rewrite them for the new location.
+      const std::filesystem::path from = std::filesystem::absolute(project.baseDir);
+      const std::filesystem::path to = std::filesystem::absolute(out).parent_path();
+      auto rebase = [&](std::filesystem::path& file) {
+        if (!file.empty() && file.is_relative()) {
+          file = std::filesystem::relative(from / file, to);
+        }
+      };
+      for (ImageEntry& image : edited.images) {
+        rebase(image.file);
+      }
+      for (Zone& z : edited.zones) {
+        rebase(z.freezeMask);
+        rebase(z.folding.mask);
+      }
+    }
+    saveProject(out, edited);
+    std::printf("%s: zone '%s' now plays '%s'\n", out.string().c_str(), o->zone.c_str(), o->name.c_str());
+  });
+}
+
 void registerFold(CLI::App& app) {
   auto* command = app.add_subcommand(
       "fold", "Folding textures: animate still images from a project file (docs/folding.md)");
@@ -669,6 +749,7 @@ void registerFold(CLI::App& app) {
   registerFoldView(*command);
   registerExportShader(*command);
   registerFoldInfo(*command);
+  registerFoldTemplate(*command);
 }
 
 } // namespace sylva::app

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 #include <gif_lib.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -331,6 +332,31 @@ TEST(CliFold, RealFfmpegWritesPlayableVideos) {
     ASSERT_EQ(probe.status, 0) << probe.err;
     EXPECT_EQ(probe.out, "72,56,6\n") << video;
   }
+}
+
+TEST(CliFold, TemplateAnimatesAZoneAndWritesAProjectThatSynthesises) {
+  const test::TempDir dir;
+  const fs::path file = writeProject(dir, project());
+  const fs::path out = dir / "sub" / "blink.json";
+  fs::create_directories(out.parent_path());
+  const nlohmann::json original = nlohmann::json::parse(readAll(file));
+  const std::string zone = original["zones"][0]["id"].get<std::string>();
+  const test::RunResult r = runSylva(dir, "fold template " + quote(file.string()) + " --zone " + zone +
+                                              " --template blink --period 3 -o " + quote(out.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json edited = nlohmann::json::parse(readAll(out));
+  EXPECT_EQ(edited["zones"][0]["profile"], "blink");
+  EXPECT_EQ(edited["profiles"].back()["id"], "blink");
+  EXPECT_EQ(edited["profiles"].back()["period_s"], 3.0);
+  EXPECT_EQ(nlohmann::json::parse(readAll(file)), original) << "with -o the input stays as it was";
+  // The written project still finds its image from its new directory.
+  const test::RunResult synth =
+      runSylva(dir, "fold synth " + quote(out.string()) + " -o " + quote((dir / "t").string()));
+  EXPECT_EQ(synth.status, 0) << synth.err;
+  const test::RunResult bad =
+      runSylva(dir, "fold template " + quote(file.string()) + " --zone nope --template blink");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("--zone: " + file.string() + " has no zone 'nope'"));
 }
 
 TEST(CliFold, FfmpegFailureIsOneLineAndLeavesNothing) {

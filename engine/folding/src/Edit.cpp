@@ -2,8 +2,12 @@
 #include <sylva/folding/Edit.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
 
 #include <nlohmann/json.hpp>
+
+#include <set>
+#include <stdexcept>
 
 namespace sylva::folding {
 
@@ -11,13 +15,18 @@ EditHistory::EditHistory(Project project) : mProject(std::move(project)) {}
 
 void EditHistory::apply(const std::string& name, int zone, const std::function<void(Project&)>& edit) {
   Project next = mProject;
-  edit(next);
+  try {
+    edit(next);
+  } catch (const std::out_of_range&) {
+    fail("edit '{}': no such zone, vertex, tool or anchor", name);
+  }
   // The same validation as a file on disk, so an edit can never produce a project that would not load.
   Project checked = parseProject(toJson(next), "edit '" + name + "'");
   checked.baseDir = next.baseDir;
-  mUndo.push_back({{name, zone}, std::move(mProject)});
+  mUndo.push_back({{name, zone}, std::move(mProject), mRevision});
   mRedo.clear();
   mProject = std::move(checked);
+  mRevision = ++mNextRevision;
 }
 
 EditHistory::Change EditHistory::undo() {
@@ -26,8 +35,9 @@ EditHistory::Change EditHistory::undo() {
   }
   Entry entry = std::move(mUndo.back());
   mUndo.pop_back();
-  mRedo.push_back({entry.change, mProject});
+  mRedo.push_back({entry.change, mProject, mRevision});
   mProject = std::move(entry.before);
+  mRevision = entry.beforeRevision;
   return entry.change;
 }
 
@@ -37,8 +47,9 @@ EditHistory::Change EditHistory::redo() {
   }
   Entry entry = std::move(mRedo.back());
   mRedo.pop_back();
-  mUndo.push_back({entry.change, mProject});
+  mUndo.push_back({entry.change, mProject, mRevision});
   mProject = std::move(entry.before);
+  mRevision = entry.beforeRevision;
   return entry.change;
 }
 
@@ -115,6 +126,132 @@ void setProfileTiming(EditHistory& history, int profile, double periodS, double 
     Profile& pr = p.profiles.at(static_cast<std::size_t>(profile));
     pr.periodS = periodS;
     pr.shift = shift;
+  });
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Files of an editing session
+
+std::filesystem::path autosavePath(const std::filesystem::path& projectFile) {
+  return projectFile.parent_path() / ("." + projectFile.filename().string() + ".autosave");
+}
+
+void autosave(const EditHistory& history, const std::filesystem::path& projectFile) {
+  saveJsonFile(autosavePath(projectFile), toJson(history.project()));
+}
+
+std::optional<Project> recoverAutosave(const std::filesystem::path& projectFile, std::string* warning) {
+  const std::filesystem::path sidecar = autosavePath(projectFile);
+  if (!std::filesystem::exists(sidecar)) {
+    return std::nullopt;
+  }
+  Project recovered;
+  try {
+    recovered = parseProject(loadJsonFile(sidecar), sidecar.string());
+  } catch (const Error& e) {
+    if (warning) {
+      *warning = e.what();
+    }
+    return std::nullopt;
+  }
+  recovered.baseDir = projectFile.parent_path();
+  if (std::filesystem::exists(projectFile)) {
+    try {
+      if (loadProject(projectFile) == recovered) {
+        return std::nullopt; // saved after the last autosave: nothing to recover
+      }
+    } catch (const Error&) {
+      // An unreadable project file: the sidecar is the better copy.
+    }
+  }
+  return recovered;
+}
+
+void saveEdited(EditHistory& history, const std::filesystem::path& projectFile) {
+  saveProject(projectFile, history.project());
+  history.markSaved();
+  std::error_code ignored;
+  std::filesystem::remove(autosavePath(projectFile), ignored);
+}
+
+namespace {
+
+/** `project` as JSON with its zones or profiles replaced by `part`'s, for validation in context. */
+Project parseInContext(const Project& project, const nlohmann::json& part, const char* field,
+                       const char* format, const std::string& where) {
+  requireJsonVersion(part, 1, where);
+  if (!part.contains("format") || part["format"] != format) {
+    fail("{}: format: expected \"{}\"", where, format);
+  }
+  for (const auto& [key, _] : part.items()) {
+    if (key != "format" && key != "version" && key != field) {
+      fail("{}: {}: unknown field", where, key);
+    }
+  }
+  if (!part.contains(field)) {
+    fail("{}: {}: missing field", where, field);
+  }
+  nlohmann::json combined = toJson(project);
+  combined[field] = part[field];
+  if (std::string(field) == "profiles") {
+    combined["zones"] = nlohmann::json::array(); // zones may name profiles the import replaces
+  }
+  return parseProject(combined, where);
+}
+
+std::string uniqueId(const std::string& id, const std::set<std::string>& taken) {
+  if (!taken.count(id)) {
+    return id;
+  }
+  for (int n = 2;; ++n) {
+    const std::string candidate = id + "-" + std::to_string(n);
+    if (!taken.count(candidate)) {
+      return candidate;
+    }
+  }
+}
+
+} // namespace
+
+nlohmann::json exportZones(const Project& project, const std::vector<int>& zones) {
+  const nlohmann::json all = toJson(project);
+  nlohmann::json out = {{"format", "sylva-fold-zones"}, {"version", 1}, {"zones", nlohmann::json::array()}};
+  for (int z : zones) {
+    out["zones"].push_back(all["zones"].at(static_cast<std::size_t>(z)));
+  }
+  return out;
+}
+
+void importZones(EditHistory& history, const nlohmann::json& json, const std::string& where) {
+  const Project parsed = parseInContext(history.project(), json, "zones", "sylva-fold-zones", where);
+  history.apply("import zones", -1, [&](Project& p) {
+    std::set<std::string> taken;
+    for (const Zone& z : p.zones) {
+      taken.insert(z.id);
+    }
+    for (Zone zone : parsed.zones) {
+      zone.id = uniqueId(zone.id, taken);
+      taken.insert(zone.id);
+      p.zones.push_back(std::move(zone));
+    }
+  });
+}
+
+nlohmann::json exportProfiles(const Project& project) {
+  return {{"format", "sylva-fold-profiles"}, {"version", 1}, {"profiles", toJson(project)["profiles"]}};
+}
+
+void importProfiles(EditHistory& history, const nlohmann::json& json, const std::string& where) {
+  const Project parsed = parseInContext(history.project(), json, "profiles", "sylva-fold-profiles", where);
+  history.apply("import profiles", -1, [&](Project& p) {
+    for (const Profile& profile : parsed.profiles) {
+      const int existing = p.profileIndex(profile.id);
+      if (existing >= 0) {
+        p.profiles[static_cast<std::size_t>(existing)] = profile;
+      } else {
+        p.profiles.push_back(profile);
+      }
+    }
   });
 }
 

@@ -2,7 +2,12 @@
 
 #include <sylva/folding/Project.hpp>
 
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
+#include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,12 +41,21 @@ public:
   /** Names of the edits on the undo stack, oldest first. */
   std::vector<std::string> undoNames() const;
 
+  /** True when the project differs from the state last marked saved (undoing back to it clears the mark). */
+  bool dirty() const { return mRevision != mSavedRevision; }
+  /** Records the current state as saved (call after writing the file). */
+  void markSaved() { mSavedRevision = mRevision; }
+
 private:
   struct Entry {
     Change change;
     Project before;
+    std::uint64_t beforeRevision = 0;
   };
   Project mProject;
+  std::uint64_t mRevision = 0;
+  std::uint64_t mNextRevision = 0;
+  std::uint64_t mSavedRevision = 0;
   std::vector<Entry> mUndo;
   std::vector<Entry> mRedo;
 };
@@ -55,5 +69,36 @@ void movePointAnchor(EditHistory& history, int zone, int tool, int pair, int end
 void setInterpolation(EditHistory& history, int zone, const Interpolation& interp);
 void setProfileFunction(EditHistory& history, int profile, const PositionFunction& fn);
 void setProfileTiming(EditHistory& history, int profile, double periodS, double shift);
+
+// ---------------------------------------------------------------------------------------------------------
+// Files of an editing session
+
+/** The autosave sidecar of a project file: `.<file name>.autosave` in the same directory. */
+std::filesystem::path autosavePath(const std::filesystem::path& projectFile);
+/** Writes the current project to the sidecar, atomically (an editor calls it every few seconds when dirty).
+ */
+void autosave(const EditHistory& history, const std::filesystem::path& projectFile);
+/**
+ * Crash recovery: the sidecar's project when the sidecar exists, is valid, and differs from the project file
+ * (or that file is missing); nullopt otherwise. A sidecar that does not load is ignored and its error
+ * returned in `warning` (if given). The recovered project resolves files against the project file's
+ * directory.
+ */
+std::optional<Project> recoverAutosave(const std::filesystem::path& projectFile,
+                                       std::string* warning = nullptr);
+/** Saves the project to `projectFile` (atomically), marks the history saved, and removes the sidecar. */
+void saveEdited(EditHistory& history, const std::filesystem::path& projectFile);
+
+/** Motion zones on their own (the thesis's "export motion zones"): format `sylva-fold-zones`, version 1. */
+nlohmann::json exportZones(const Project& project, const std::vector<int>& zones);
+/**
+ * Appends the zones of an exported file as one edit. Their images and profiles must exist in the project;
+ * ids that are taken get a suffix ("eyeL" → "eyeL-2"). Errors name `where` and the JSON path.
+ */
+void importZones(EditHistory& history, const nlohmann::json& json, const std::string& where);
+/** Motion profiles on their own: format `sylva-fold-profiles`, version 1. */
+nlohmann::json exportProfiles(const Project& project);
+/** Replaces the profiles with the same id and appends the others, as one edit. */
+void importProfiles(EditHistory& history, const nlohmann::json& json, const std::string& where);
 
 } // namespace sylva::folding
