@@ -13,6 +13,8 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests
   libgtest-dev libgmock-dev libbenchmark-dev glslang-tools xvfb xauth
+  # web preview parity: headless Chromium (WebGL 2 on SwiftShader)
+  chromium fonts-dejavu-core
   # fuzzing: clang with libFuzzer and its sanitizer runtimes (the `fuzz` preset)
   clang libclang-rt-14-dev
 )

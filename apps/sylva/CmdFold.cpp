@@ -580,6 +580,30 @@ void registerExportShader(CLI::App& fold) {
   });
 }
 
+void registerExportWeb(CLI::App& fold) {
+  auto* command = fold.add_subcommand(
+      "export-web",
+      "Write one self-contained HTML file (WebGL 2, textures embedded) that plays the project's "
+      "canvas image in a browser with the same equations");
+  struct Options {
+    std::string project;
+    std::string out;
+  };
+  auto o = std::make_shared<Options>();
+  command->add_option("project", o->project, "Project file (.json, format sylva-fold)")->required();
+  command->add_option("-o,--out", o->out, "Output HTML file")->required();
+  command->callback([o] {
+#ifdef SYLVA_HAVE_FOLDING_GPU
+    const Loaded l = load(o->project);
+    const Textures textures = synthesizeWithProgress(l);
+    folding::gpu::writeWebPreview(o->out, shader::Library(), l.project, textures);
+    std::printf("%s\n", o->out.c_str());
+#else
+    fail("fold export-web: this sylva was built without the folding GPU renderer");
+#endif
+  });
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // info
 
@@ -748,6 +772,7 @@ void registerFold(CLI::App& app) {
   registerFoldRender(*command);
   registerFoldView(*command);
   registerExportShader(*command);
+  registerExportWeb(*command);
   registerFoldInfo(*command);
   registerFoldTemplate(*command);
 }

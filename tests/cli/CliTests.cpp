@@ -634,6 +634,7 @@ TEST(CliDocs, ReferenceMatchesHelp) {
                                           "fold render",
                                           "fold view",
                                           "fold export-shader",
+                                          "fold export-web",
                                           "fold info",
                                           "fold template"};
   const test::TempDir dir;

@@ -87,9 +87,14 @@ EncodedInfo encodedInfo(const Project& project, const Textures& textures) {
   return info;
 }
 
-std::string exportedShaderSource(const shader::Library& library, const Project& project,
-                                 const EncodedInfo& info) {
+namespace {
+
+std::string shaderSource(const shader::Library& library, const Project& project, const EncodedInfo& info,
+                         bool web) {
   validate(project, info);
+  if (web && !rgba16(info)) {
+    fail("web preview: needs the rgba16 encoding");
+  }
   const int layers = info.layers;
   const int profiles = static_cast<int>(project.profiles.size());
   const int declared = std::max(profiles, 1); // GLSL has no zero-sized arrays
@@ -225,7 +230,50 @@ std::string exportedShaderSource(const shader::Library& library, const Project& 
   s += "  ivec2 size = textureSize(folding_color, 0);\n";
   s += "  return foldingSample(ivec2(floor(uv * vec2(size))));\n";
   s += "}\n";
+  if (web) {
+    // WebGL 2: no binding qualifiers, and RGBA16UI data textures read as their integers, normalised here so
+    // the rest of the code is the same as for RGBA16 UNORM.
+    std::string out;
+    std::istringstream in(s);
+    std::string line;
+    while (std::getline(in, line)) {
+      const std::size_t binding = line.find("layout(binding = FOLDING_BINDING_BASE + ");
+      if (binding != std::string::npos) {
+        const std::size_t close = line.find(") uniform sampler2D ", binding);
+        std::string rest = line.substr(close + std::string(") uniform sampler2D ").size());
+        const bool colour = rest.rfind("folding_color", 0) == 0;
+        line = line.substr(0, binding) + (colour ? "uniform highp sampler2D " : "uniform highp usampler2D ") +
+               rest;
+      }
+      out += line + "\n";
+    }
+    const std::string wrapper =
+        "vec4 foldingTexel(highp usampler2D s, ivec2 p) {\n"
+        "  return vec4(texelFetch(s, p, 0)) / 65535.0; // as an RGBA16 UNORM read\n}\n";
+    const std::size_t decoding = out.find("#if FOLDING_ENCODING_RGBA16");
+    out.insert(decoding, wrapper);
+    for (const std::string name : {"folding_init", "folding_jump", "folding_fold"}) {
+      for (std::size_t at = out.find("texelFetch(" + name); at != std::string::npos;
+           at = out.find("texelFetch(" + name, at)) {
+        const std::size_t end = out.find(", 0)", at);
+        const std::string args = out.substr(at + 11, end - (at + 11));
+        out.replace(at, end + 4 - at, "foldingTexel(" + args + ")");
+      }
+    }
+    return out;
+  }
   return s;
+}
+
+} // namespace
+
+std::string exportedShaderSource(const shader::Library& library, const Project& project,
+                                 const EncodedInfo& info) {
+  return shaderSource(library, project, info, false);
+}
+
+std::string webShaderSource(const shader::Library& library, const Project& project, const EncodedInfo& info) {
+  return shaderSource(library, project, info, true);
 }
 
 void exportShader(const std::filesystem::path& dir, const shader::Library& library, const Project& project,

@@ -585,10 +585,11 @@ double decodeUnit(std::uint16_t v) {
 
 namespace {
 
-/** The integer-valued channels (texel index, profile) and units of one texture kind, 16-bit. */
-enum class Kind { Init, Jump, Fold };
+using Kind = TextureKind;
 
-Image encode16(const Image& src, Kind kind, double jumpMax) {
+} // namespace
+
+Image encode16(const Image& src, TextureKind kind, double jumpMax) {
   Image out(src.width(), src.height(), 4, PixelType::U16);
   const std::span<const float> s = src.values<float>();
   const std::span<std::uint16_t> d = out.values<std::uint16_t>();
@@ -615,6 +616,8 @@ Image encode16(const Image& src, Kind kind, double jumpMax) {
   }
   return out;
 }
+
+namespace {
 
 Image decode16(const Image& src, Kind kind, double jumpMax, const std::string& file) {
   if (src.channels() != 4 || src.type() != PixelType::U16) {

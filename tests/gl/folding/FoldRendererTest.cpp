@@ -10,6 +10,7 @@
 #include <sylva/gl/Framebuffer.hpp>
 
 #include "CliRun.hpp"
+#include "ExternalData.hpp"
 #include "GlTest.hpp"
 #include "Patterns.hpp"
 #include "TempDir.hpp"
@@ -21,6 +22,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 
 namespace sylva::folding::gpu {
 namespace {
@@ -433,6 +436,68 @@ TEST_F(FoldGpu, DISABLED_BenchmarkOneMegapixel) {
       "atlas %dx%d (synthesis %.2f s): GPU %.2f ms/frame (%.1f fps) over %d frames; CPU reference %.1f "
       "ms/frame\n",
       r.width, r.height, synthS, r.msPerFrame, r.fps, r.frames, cpuMs);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Web preview: the HTML page in headless Chromium (WebGL 2 on SwiftShader) against the CPU reference.
+
+/** The frame the page drew with ?t=…&dump=1: its <pre id="out"> holds "W H" and one hex RGBA row per line. */
+Image pageFrame(const std::filesystem::path& page, double t, const test::TempDir& dir) {
+  const test::RunResult r = test::runProgram(
+      "chromium", dir.path(),
+      "--headless=new --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader "
+      "--dump-dom " +
+          test::quote("file://" + std::filesystem::absolute(page).string() +
+                      "?dump=1&t=" + std::to_string(t)));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("<title>done</title>"), std::string::npos) << r.out.substr(0, 2000);
+  const std::size_t start = r.out.find("<pre id=\"out\">");
+  if (start == std::string::npos) {
+    return {};
+  }
+  std::istringstream in(r.out.substr(start + 14, r.out.find("</pre>", start) - start - 14));
+  int w = 0;
+  int h = 0;
+  in >> w >> h;
+  if (w <= 0 || h <= 0) {
+    return {};
+  }
+  Image image(w, h, 4, PixelType::U8);
+  auto* d = reinterpret_cast<std::uint8_t*>(image.data());
+  for (int y = 0; y < h; ++y) {
+    std::string row;
+    in >> row;
+    for (int i = 0; i < w * 4 && 2 * i + 1 < static_cast<int>(row.size()); ++i) {
+      d[static_cast<std::size_t>(y) * w * 4 + i] =
+          static_cast<std::uint8_t>(std::stoi(row.substr(2 * i, 2), nullptr, 16));
+    }
+  }
+  return image;
+}
+
+TEST(FoldWeb, PreviewPageMatchesTheCpuReferenceInHeadlessChromium) {
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
+    if (test::allowMissingData()) {
+      GTEST_SKIP() << "chromium is not installed (SYLVA_ALLOW_MISSING_DATA=1)";
+    }
+    FAIL() << "chromium is not installed: run scripts/setup-debian.sh";
+  }
+  const Fixture& f = parityFixture();
+  test::TempDir dir;
+  const std::filesystem::path page = dir / "preview.html";
+  writeWebPreview(page, shader::Library(), f.project, f.textures);
+  int worst = 0;
+  for (double t : {0.0, 0.37, 1.1, 2.9}) {
+    const Image shown = pageFrame(page, t, dir);
+    ASSERT_FALSE(shown.empty()) << "t = " << t;
+    const Image expected = cropToEntry(renderFrame(f.textures, f.project.profiles, f.project.jumpLayers, t),
+                                       f.textures.atlas.entries[0]);
+    const Difference d = compare(shown, expected, 2);
+    EXPECT_EQ(d.above, 0u) << "t = " << t << ": max difference " << d.max;
+    worst = std::max(worst, d.max);
+  }
+  RecordProperty("max_difference", worst);
+  std::printf("web preview vs CPU: max difference %d/255\n", worst);
 }
 
 } // namespace

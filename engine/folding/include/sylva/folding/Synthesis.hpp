@@ -114,7 +114,14 @@ double decodeJump(std::uint16_t v, double jumpMax);
 /** Progress values in [0, 1] ↔ round(65535·t). */
 std::uint16_t encodeUnit(double t);
 double decodeUnit(std::uint16_t v);
-/** init.profile: k + 1 (0 = still); positions as texel indices (exact); dt as a unit value. */
+/** Which of the float textures an image is, for its 16-bit encoding. */
+enum class TextureKind : std::uint8_t { Init, Jump, Fold };
+/**
+ * The RGBA16 encoding of one float texture (what saveTextures writes as PNG): init = (x0, y0 texel indices,
+ * round(65535·dt), k + 1 with 0 = still); jump = (encodeJump(Jx), encodeJump(Jy), encodeUnit(t0),
+ * encodeUnit(t1)); fold = four encodeUnit values. `jumpMax` in pixels.
+ */
+Image encode16(const Image& texture, TextureKind kind, double jumpMax);
 
 /** File names and scale of an encoded set, written as `folding.json` next to the textures. */
 struct EncodedInfo {

@@ -30,6 +30,22 @@ std::string exportedShaderSource(const shader::Library& library, const Project& 
                                  const EncodedInfo& info);
 
 /**
+ * The same evaluation for WebGL 2 (GLSL ES 3.00, no #version or precision lines: the host adds them): no
+ * binding qualifiers, and the data textures are RGBA16UI (`usampler2D`, the 16-bit integers as stored)
+ * instead of RGBA16 UNORM, which WebGL lacks. Needs the rgba16 encoding.
+ */
+std::string webShaderSource(const shader::Library& library, const Project& project, const EncodedInfo& info);
+
+/**
+ * Writes one self-contained HTML file that plays the project's canvas image in a browser with WebGL 2: the
+ * colour atlas and the 16-bit data textures embedded (base64 of the raw texels), webShaderSource, a
+ * play/pause button, a time slider and speed control. With `?t=SECONDS&dump=1` in the URL it draws that one
+ * frame and writes its pixels (hex RGBA rows, top first) into `<pre id="out">`, for tests. Atomic.
+ */
+void writeWebPreview(const std::filesystem::path& path, const shader::Library& library,
+                     const Project& project, const Textures& textures);
+
+/**
  * Writes `folding.glsl` (exportedShaderSource) and `README.md` (encoding, uniform list, how to bind, the
  * per-frame phase formula) into `dir`, each atomically; creates `dir`. Made for the textures as saveTextures
  * writes them next to it (RGBA16 PNGs as GL_RGBA16 UNORM textures, or EXR as float textures).
