@@ -1,15 +1,19 @@
 // Folding-texture CPU kernels on the generated 1 MP case (FoldingCase.hpp): synthesis with the Shepard
-// variants, polygon thresholds, region re-synthesis after moving one anchor, and the CPU reference render.
+// variants, polygon thresholds, region re-synthesis after moving one anchor, the CPU part of an editor drag
+// step, and the CPU reference render.
 // Items are pixels, so "items_per_second" reads as pixels per second. Targets: docs/folding.md. Run:
 // sylva_benchmarks --benchmark_filter=Fold
 #include "FoldingCase.hpp"
 
 #include <sylva/core/Parallel.hpp>
+#include <sylva/folding/Edit.hpp>
 #include <sylva/folding/Renderer.hpp>
 
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cmath>
+#include <numbers>
 
 namespace {
 
@@ -80,7 +84,7 @@ void BM_FoldResynthesisOneAnchor(benchmark::State& state) {
   const ProjectImages images = benchImages();
   Textures textures = synthesize(p, images);
   Rect region;
-  const Project moved = movedAnchor(p, 500, Vec2(5.0, 3.0), textures.atlas.entries[0], region);
+  const Project moved = movedAnchor(p, 500, Vec2(5.0, 3.0), textures.atlas, region);
   for (auto _ : state) {
     resynthesize(moved, images, textures, region);
   }
@@ -88,6 +92,33 @@ void BM_FoldResynthesisOneAnchor(benchmark::State& state) {
   state.counters["region_px"] = static_cast<double>(region.width()) * region.height();
 }
 BENCHMARK(BM_FoldResynthesisOneAnchor)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/**
+ * The CPU part of one drag step in the editor (the GPU upload and preview frame are timed by `sylva bench
+ * fold`): the validated edit moving anchor 500 (movePointAnchor through EditHistory::apply), the region it
+ * can change (anchorMoveAtlasRect) and its re-synthesis; the anchor walks a circle of 6 px in 30 steps.
+ */
+void BM_FoldDragStepCpu(benchmark::State& state) {
+  const Project p = benchProject(1000, interpolation(Interpolation::Type::ModifiedShepard));
+  const ProjectImages images = benchImages();
+  Textures textures = synthesize(p, images);
+  EditHistory history(p);
+  const Vec2 centre = std::get<PointsTool>(p.zones[0].tools[0]).pairs[500][1];
+  Vec2 position = centre;
+  int step = 0;
+  double regionPixels = 0.0;
+  for (auto _ : state) {
+    const double angle = 2.0 * std::numbers::pi * (++step % 30) / 30.0;
+    const Vec2 next = centre + 6.0 * Vec2(std::cos(angle), std::sin(angle));
+    movePointAnchor(history, 0, 0, 500, 1, next);
+    const Rect region = anchorMoveAtlasRect(history.project(), textures.atlas, 0, position, next);
+    resynthesize(history.project(), images, textures, region);
+    position = next;
+    regionPixels = static_cast<double>(region.width()) * region.height();
+  }
+  state.counters["region_px"] = regionPixels;
+}
+BENCHMARK(BM_FoldDragStepCpu)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /** One frame of the CPU reference renderer on one thread (the whole 1 MP atlas moves). */
 void BM_FoldRenderCpuOneThread(benchmark::State& state) {

@@ -106,20 +106,16 @@ inline Vec2 benchJump(int x, int y) {
 
 /**
  * Moves point anchor `pair` of the case's points tool by `delta` pixels (its destination b) and returns the
- * moved project and the atlas region (pixels) the move can change: the union of the R-disks around the old
- * and the new position, for a modified-Shepard zone.
+ * moved project and, in `region`, the atlas rectangle (pixels) the move can change (anchorMoveAtlasRect: the
+ * R-boxes around the old and the new position for modified Shepard, the zone for Shepard).
  */
-inline Project movedAnchor(const Project& p, int pair, Vec2 delta, const AtlasEntry& entry, Rect& region) {
+inline Project movedAnchor(const Project& p, int pair, Vec2 delta, const Atlas& atlas, Rect& region) {
   Project moved = p;
   auto& points = std::get<PointsTool>(moved.zones[0].tools[0]);
   const Vec2 before = points.pairs[static_cast<std::size_t>(pair)][1];
-  points.pairs[static_cast<std::size_t>(pair)][1] = before + delta;
   const Vec2 after = before + delta;
-  const double r = p.zones[0].interp.radius;
-  const Vec2 lo = glm::min(before, after) - r;
-  const Vec2 hi = glm::max(before, after) + r;
-  region.min = entry.origin() + glm::ivec2(glm::floor(lo));
-  region.max = entry.origin() + glm::ivec2(glm::ceil(hi)) + 1;
+  points.pairs[static_cast<std::size_t>(pair)][1] = after;
+  region = anchorMoveAtlasRect(moved, atlas, 0, before, after);
   return moved;
 }
 

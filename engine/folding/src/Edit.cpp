@@ -13,7 +13,8 @@ namespace sylva::folding {
 
 EditHistory::EditHistory(Project project) : mProject(std::move(project)) {}
 
-void EditHistory::apply(const std::string& name, int zone, const std::function<void(Project&)>& edit) {
+void EditHistory::apply(const std::string& name, int zone, const std::function<void(Project&)>& edit,
+                        bool coalesce) {
   Project next = mProject;
   try {
     edit(next);
@@ -23,13 +24,22 @@ void EditHistory::apply(const std::string& name, int zone, const std::function<v
   // The same validation as a file on disk, so an edit can never produce a project that would not load.
   Project checked = parseProject(toJson(next), "edit '" + name + "'");
   checked.baseDir = next.baseDir;
-  mUndo.push_back({{name, zone}, std::move(mProject), mRevision});
+  if (mValidator) {
+    mValidator(checked);
+  }
+  const bool merge = coalesce && mCoalescing && !mUndo.empty() && mUndo.back().change.name == name &&
+                     mUndo.back().change.zone == zone;
+  if (!merge) {
+    mUndo.push_back({{name, zone}, std::move(mProject), mRevision});
+  }
+  mCoalescing = coalesce;
   mRedo.clear();
   mProject = std::move(checked);
   mRevision = ++mNextRevision;
 }
 
 EditHistory::Change EditHistory::undo() {
+  mCoalescing = false;
   if (mUndo.empty()) {
     return {};
   }
@@ -42,6 +52,7 @@ EditHistory::Change EditHistory::undo() {
 }
 
 EditHistory::Change EditHistory::redo() {
+  mCoalescing = false;
   if (mRedo.empty()) {
     return {};
   }
@@ -129,6 +140,82 @@ void setProfileTiming(EditHistory& history, int profile, double periodS, double 
   });
 }
 
+namespace {
+std::string freeId(const std::string& id, const std::set<std::string>& taken) {
+  if (!taken.count(id)) {
+    return id;
+  }
+  for (int n = 2;; ++n) {
+    const std::string candidate = id + "-" + std::to_string(n);
+    if (!taken.count(candidate)) {
+      return candidate;
+    }
+  }
+}
+
+template <typename T> std::set<std::string> idsOf(const std::vector<T>& items) {
+  std::set<std::string> ids;
+  for (const T& item : items) {
+    ids.insert(item.id);
+  }
+  return ids;
+}
+} // namespace
+
+int addZone(EditHistory& history, Zone zone) {
+  zone.id = freeId(zone.id.empty() ? "zone" : zone.id, idsOf(history.project().zones));
+  const int index = static_cast<int>(history.project().zones.size());
+  history.apply("add zone", index, [&](Project& p) { p.zones.push_back(zone); });
+  return index;
+}
+
+void removeZone(EditHistory& history, int zone) {
+  history.apply("remove zone", zone, [&](Project& p) {
+    zoneAt(p, zone);
+    p.zones.erase(p.zones.begin() + zone);
+  });
+}
+
+void moveZoneToImage(EditHistory& history, int zone, const std::string& image) {
+  history.apply("move zone to image", zone, [&](Project& p) { zoneAt(p, zone).image = image; });
+}
+
+void replaceZone(EditHistory& history, int zone, const Zone& value, const std::string& name, bool coalesce) {
+  history.apply(
+      name, zone, [&](Project& p) { zoneAt(p, zone) = value; }, coalesce);
+}
+
+int addProfile(EditHistory& history, Profile profile) {
+  profile.id = freeId(profile.id.empty() ? "motion" : profile.id, idsOf(history.project().profiles));
+  const int index = static_cast<int>(history.project().profiles.size());
+  history.apply("add profile", -1, [&](Project& p) { p.profiles.push_back(profile); });
+  return index;
+}
+
+void replaceProfile(EditHistory& history, int profile, const Profile& value, bool coalesce) {
+  history.apply(
+      "edit profile", -1,
+      [&](Project& p) {
+        Profile& target = p.profiles.at(static_cast<std::size_t>(profile));
+        if (target.id != value.id) {
+          for (Zone& z : p.zones) {
+            if (z.profile == target.id) {
+              z.profile = value.id;
+            }
+          }
+        }
+        target = value;
+      },
+      coalesce);
+}
+
+int addImage(EditHistory& history, ImageEntry image) {
+  image.id = freeId(image.id.empty() ? "image" : image.id, idsOf(history.project().images));
+  const int index = static_cast<int>(history.project().images.size());
+  history.apply("add image", -1, [&](Project& p) { p.images.push_back(image); });
+  return index;
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Files of an editing session
 
@@ -199,18 +286,6 @@ Project parseInContext(const Project& project, const nlohmann::json& part, const
   return parseProject(combined, where);
 }
 
-std::string uniqueId(const std::string& id, const std::set<std::string>& taken) {
-  if (!taken.count(id)) {
-    return id;
-  }
-  for (int n = 2;; ++n) {
-    const std::string candidate = id + "-" + std::to_string(n);
-    if (!taken.count(candidate)) {
-      return candidate;
-    }
-  }
-}
-
 } // namespace
 
 nlohmann::json exportZones(const Project& project, const std::vector<int>& zones) {
@@ -230,7 +305,7 @@ void importZones(EditHistory& history, const nlohmann::json& json, const std::st
       taken.insert(z.id);
     }
     for (Zone zone : parsed.zones) {
-      zone.id = uniqueId(zone.id, taken);
+      zone.id = freeId(zone.id, taken);
       taken.insert(zone.id);
       p.zones.push_back(std::move(zone));
     }

@@ -142,25 +142,6 @@ std::vector<GifColorType> quantisePalette(const std::filesystem::path& path, std
   return palette;
 }
 
-/** The executable `name` in a directory of PATH, or an empty path. */
-std::filesystem::path findOnPath(const std::string& name) {
-  const char* env = std::getenv("PATH");
-  const std::string path = env != nullptr ? env : "";
-  std::size_t start = 0;
-  while (start <= path.size()) {
-    const std::size_t end = std::min(path.find(':', start), path.size());
-    const std::string dir = path.substr(start, end - start);
-    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
-    struct stat st {};
-    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
-        ::access(candidate.c_str(), X_OK) == 0) {
-      return candidate;
-    }
-    start = end + 1;
-  }
-  return {};
-}
-
 /** The last non-empty line of a text file, trimmed ("" when there is none). */
 std::string lastLine(const std::filesystem::path& path) {
   std::ifstream in(path);

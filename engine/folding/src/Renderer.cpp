@@ -256,4 +256,12 @@ Image cropToEntry(const Image& frame, const AtlasEntry& entry) {
   return out;
 }
 
+double longestPeriod(const std::vector<Profile>& profiles) {
+  double longest = 0.0;
+  for (const Profile& p : profiles) {
+    longest = std::max(longest, p.periodS);
+  }
+  return longest > 0.0 ? longest : 1.0;
+}
+
 } // namespace sylva::folding

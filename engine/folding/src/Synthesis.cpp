@@ -330,6 +330,35 @@ Rect zoneAtlasRect(const Project& project, const Atlas& atlas, int zone) {
   return {box.min + e.origin(), box.max + e.origin()};
 }
 
+Rect anchorMoveAtlasRect(const Project& project, const Atlas& atlas, int zone, Vec2 before, Vec2 after) {
+  const Rect zoneRect = zoneAtlasRect(project, atlas, zone);
+  const Zone& z = project.zones[static_cast<std::size_t>(zone)];
+  if (z.interp.type == Interpolation::Type::Shepard) {
+    return zoneRect; // every anchor weighs on every texel
+  }
+  // AnchorField buckets anchors in a grid anchored at their bounding box; if the move changes that box, the
+  // cells change and so the order in which far-away texels sum their anchors (last-bit differences). The
+  // freeze mask's anchors are left out here: they only widen the box, so "strictly inside" stays safe.
+  const AtlasEntry& e = atlas.entries.at(static_cast<std::size_t>(project.imageIndex(z.image)));
+  Vec2 lo(std::numeric_limits<double>::max());
+  Vec2 hi(std::numeric_limits<double>::lowest());
+  for (const Anchor& a : zoneAnchors(z, {}, e.imageSize)) {
+    lo = glm::min(lo, a.position);
+    hi = glm::max(hi, a.position);
+  }
+  const auto inside = [&](Vec2 p) { return p.x > lo.x && p.x < hi.x && p.y > lo.y && p.y < hi.y; };
+  if (!inside(before) || !inside(after)) {
+    return zoneRect;
+  }
+  // Texel centres c with |c − p| < R for either position; one texel of margin for rounding.
+  const double r = z.interp.radius;
+  const Vec2 a = glm::floor(glm::min(before, after) - r);
+  const Vec2 b = glm::ceil(glm::max(before, after) + r);
+  const Rect box{e.origin() + glm::ivec2(a) - 1, e.origin() + glm::ivec2(b) + 1};
+  const Rect clipped{glm::max(box.min, zoneRect.min), glm::min(box.max, zoneRect.max)};
+  return clipped.empty() ? Rect{} : clipped;
+}
+
 namespace {
 
 void resetRegion(Textures& tex, Rect region) {

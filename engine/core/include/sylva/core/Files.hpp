@@ -31,6 +31,10 @@ void writeTextFile(const std::filesystem::path& path, std::string_view text);
 /** The extension of `path` in lower case, with its dot (".png"), or "" when there is none. */
 std::string lowerExtension(const std::filesystem::path& path);
 
+/** The executable `name` in a directory of $PATH (an empty entry is "."), or an empty path when none holds
+ * it. */
+std::filesystem::path findOnPath(const std::string& name);
+
 /** Reads a whole file; throws sylva::Error naming the file if it is missing or unreadable. */
 std::string readTextFile(const std::filesystem::path& path);
 

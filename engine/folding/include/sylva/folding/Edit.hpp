@@ -31,8 +31,21 @@ public:
     int zone = -1;
   };
 
-  /** Applies `edit` to a copy, validates it, then commits it and clears the redo stack. */
-  void apply(const std::string& name, int zone, const std::function<void(Project&)>& edit);
+  /**
+   * Applies `edit` to a copy, validates it (as a file would be, then with the validator if one is set), then
+   * commits it and clears the redo stack. With `coalesce`, an edit of the same name right after another
+   * coalescing one (a mouse drag: one edit per motion event) replaces the state without a new undo entry, so
+   * the whole drag undoes in one step; any other edit, undo, redo or endCoalescing() ends the run.
+   */
+  void apply(const std::string& name, int zone, const std::function<void(Project&)>& edit,
+             bool coalesce = false);
+  /** Ends a run of coalescing edits (the mouse button went up). */
+  void endCoalescing() { mCoalescing = false; }
+  /**
+   * An extra check every edit must pass before it commits (the editor checks zones against the loaded
+   * image sizes); it throws sylva::Error to refuse the edit.
+   */
+  void setValidator(std::function<void(const Project&)> validator) { mValidator = std::move(validator); }
   bool canUndo() const { return !mUndo.empty(); }
   bool canRedo() const { return !mRedo.empty(); }
   /** Undoes/redoes the last edit; returns what changed (name empty when there was nothing to do). */
@@ -58,6 +71,8 @@ private:
   std::uint64_t mSavedRevision = 0;
   std::vector<Entry> mUndo;
   std::vector<Entry> mRedo;
+  bool mCoalescing = false;
+  std::function<void(const Project&)> mValidator;
 };
 
 /** Common edits (each a call to EditHistory::apply with a descriptive name). */
@@ -69,6 +84,23 @@ void movePointAnchor(EditHistory& history, int zone, int tool, int pair, int end
 void setInterpolation(EditHistory& history, int zone, const Interpolation& interp);
 void setProfileFunction(EditHistory& history, int profile, const PositionFunction& fn);
 void setProfileTiming(EditHistory& history, int profile, double periodS, double shift);
+/** Appends a zone (its id made unique: "zone" → "zone-2"); returns its index. */
+int addZone(EditHistory& history, Zone zone);
+void removeZone(EditHistory& history, int zone);
+/**
+ * Moves a zone to another image (the thesis's motion-zone panel): geometry keeps its pixel coordinates, so
+ * the edit is refused when the zone does not fit the new image.
+ */
+void moveZoneToImage(EditHistory& history, int zone, const std::string& image);
+/** Replaces a zone wholesale (the properties panel edits a copy); `coalesce` as in EditHistory::apply. */
+void replaceZone(EditHistory& history, int zone, const Zone& value, const std::string& name,
+                 bool coalesce = false);
+/** Appends a profile (id made unique); returns its index. */
+int addProfile(EditHistory& history, Profile profile);
+/** Replaces a profile wholesale (live sliders coalesce); zones keep naming it by its (new) id. */
+void replaceProfile(EditHistory& history, int profile, const Profile& value, bool coalesce = false);
+/** Appends an input image (id made unique); returns its index. */
+int addImage(EditHistory& history, ImageEntry image);
 
 // ---------------------------------------------------------------------------------------------------------
 // Files of an editing session

@@ -38,6 +38,9 @@ std::vector<Profile> applyPlayback(std::vector<Profile> profiles, const Playback
 Image renderFrame(const Textures& textures, const std::vector<Profile>& profiles,
                   const std::vector<double>& jumpLayers, double t, unsigned threads = 1);
 
+/** The longest profile period, seconds: one full cycle of the slowest zone (1 when there is none). */
+double longestPeriod(const std::vector<Profile>& profiles);
+
 /** The part of an atlas-sized frame that shows image `entry` (its crop). */
 Image cropToEntry(const Image& frame, const AtlasEntry& entry);
 

@@ -103,10 +103,26 @@ void resynthesize(const Project& project, const ProjectImages& images, Textures&
 
 /**
  * The atlas region a change to `zone` between two project states can affect: its zone's bounding box
- * (both states), as atlas pixels. Modified-Shepard edits of one anchor could be bounded tighter by R; the
- * editor passes the union of R-disks around the moved anchor instead.
+ * (both states), as atlas pixels. Moving one anchor is bounded tighter by anchorMoveAtlasRect.
  */
 Rect zoneAtlasRect(const Project& project, const Atlas& atlas, int zone);
+
+/**
+ * The atlas rectangle (atlas pixels, [min, max)) whose texels can change when one point anchor of `zone`
+ * moves from `before` to `after` (zone-image pixels; `project` is the state before or after the move, the
+ * anchor sits at one of the two): the texels resynthesize() must redo so that the textures equal a full
+ * synthesis of the moved project.
+ *  - modified Shepard, plain and randomised: the union of the boxes of half-side R (interp.radius) around
+ *    both positions, grown by one texel, intersected with zoneAtlasRect; empty ({0, 0}, {0, 0}) when that
+ *    misses the zone. When `before` or `after` is not strictly inside the bounding box of the zone's other
+ *    anchors, the move changes the anchor grid and so the order of floating-point sums everywhere: the whole
+ *    zone rectangle then.
+ *  - Shepard (global weights): the whole zone rectangle.
+ * For a points tool the anchor's position is its destination b; when only the source a moves (the vector
+ * changes, not the position) pass b for both. The atlas layout must stay the same (packAtlas crops images
+ * by how far their jumps reach: compare the entries before reusing the textures).
+ */
+Rect anchorMoveAtlasRect(const Project& project, const Atlas& atlas, int zone, Vec2 before, Vec2 after);
 
 /** 16-bit encoding (docs/folding.md "Encoding"): J ↔ 32767 + round(32767·J/jumpMax); zero is exact. */
 std::uint16_t encodeJump(double j, double jumpMax);
