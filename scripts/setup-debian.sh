@@ -9,10 +9,14 @@ packages=(
   # engine libraries
   libglm-dev libepoxy-dev libglfw3-dev libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
   libfmt-dev libpng-dev libopenexr-dev libgdal-dev libzip-dev libgif-dev
+  # optical flow from reference videos (folding editor) and grass capture: OpenCV
+  libopencv-video-dev libopencv-videoio-dev libopencv-imgproc-dev
   # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests
   libgtest-dev libgmock-dev libbenchmark-dev glslang-tools xvfb xauth
+  # the folding editor's end-to-end test: real X input and screenshots
+  xdotool imagemagick x11-utils
   # web preview parity: headless Chromium (WebGL 2 on SwiftShader)
   chromium fonts-dejavu-core
   # fuzzing: clang with libFuzzer and its sanitizer runtimes (the `fuzz` preset)
