@@ -2,6 +2,7 @@
 // render writes PNG frames, GIF, sprite sheet or video, view previews live with sliders, export-shader writes
 // the GLSL and its textures for a game, info describes a project. Every input error is one line naming the
 // file and the JSON field, found before any output is written.
+#include "CmdFoldFlow.hpp"
 #include "Commands.hpp"
 #include "SourceOptions.hpp"
 
@@ -13,6 +14,7 @@
 #include <sylva/folding/Export.hpp>
 #include <sylva/folding/Project.hpp>
 #include <sylva/folding/Renderer.hpp>
+#include <sylva/folding/Session.hpp>
 #include <sylva/folding/Synthesis.hpp>
 #include <sylva/folding/Templates.hpp>
 
@@ -25,6 +27,7 @@
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/shader/Library.hpp>
 
+#include "FoldEditor.hpp"
 #include "ImGuiLayer.hpp"
 
 #include <GLFW/glfw3.h>
@@ -124,21 +127,7 @@ template <typename F> auto withFileName(const Loaded& l, F&& work) {
 
 /** Synthesises with a progress line; Ctrl-C cancels with the one-line error. */
 Textures synthesizeWithProgress(const Loaded& l, SynthesisStats* stats = nullptr) {
-  // synthesize() advances once per row of each zone's bounding box (clipped to its image).
-  std::size_t rows = 0;
-  for (const Zone& zone : l.project.zones) {
-    const Image& image = l.images.images[static_cast<std::size_t>(l.project.imageIndex(zone.image))];
-    double lo = 1e300;
-    double hi = -1e300;
-    for (const Vec2& p : zone.shape.outline()) {
-      lo = std::min(lo, p.y);
-      hi = std::max(hi, p.y);
-    }
-    const double clipped = std::clamp(std::ceil(hi), 0.0, static_cast<double>(image.height())) -
-                           std::clamp(std::floor(lo), 0.0, static_cast<double>(image.height()));
-    rows += static_cast<std::size_t>(std::max(0.0, clipped));
-  }
-  Progress progress("synthesis", std::max<std::size_t>(rows, 1));
+  Progress progress("synthesis", std::max<std::size_t>(synthesisRows(l.project, l.images), 1));
   Textures textures = withFileName(l, [&] { return synthesize(l.project, l.images, &progress, stats); });
   if (progress.cancelled()) {
     fail("{}: synthesis cancelled", l.where);
@@ -160,15 +149,6 @@ int imageOption(const Project& project, const std::string& id) {
     fail("--image: no image '{}' in the project (images: {})", id, ids);
   }
   return index;
-}
-
-/** Longest profile period in seconds (one full cycle of the slowest zone). */
-double longestPeriod(const std::vector<Profile>& profiles) {
-  double longest = 0.0;
-  for (const Profile& p : profiles) {
-    longest = std::max(longest, p.periodS);
-  }
-  return longest > 0.0 ? longest : 1.0;
 }
 
 void requireExtension(const std::string& option, const std::string& path, const std::string& ext) {
@@ -775,6 +755,10 @@ void registerFold(CLI::App& app) {
   registerExportWeb(*command);
   registerFoldInfo(*command);
   registerFoldTemplate(*command);
+  registerFoldFlow(*command);
+#ifdef SYLVA_HAVE_FOLDING_GPU
+  registerFoldEdit(*command);
+#endif
 }
 
 } // namespace sylva::app

@@ -1,0 +1,42 @@
+#pragma once
+
+// `sylva fold edit`: the folding-texture editor (docs/folding-editor.md). The window, its panels and the
+// canvas gestures live in FoldEditor.cpp; the model it edits (sylva::folding::Session, EditHistory, Handles,
+// CanvasView) is GL-free and unit-tested on its own.
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+namespace sylva::app {
+
+/** Command-line options of `sylva fold edit`. */
+struct FoldEditOptions {
+  /** A project file (.json), or input images to start a new project from. Empty: the start screen. */
+  std::vector<std::string> inputs;
+  /** Where a new project is saved (default: <first image stem>.fold.json next to the first image). */
+  std::string project;
+  int width = 1600;
+  int height = 900;
+  std::string shaderDir;
+  int frames = 0;
+  std::string screenshot;
+  double fixedStep = 0.0;
+  double autosaveSeconds = 30.0;
+  bool noRecover = false;
+  /** The recent-files list (default: $XDG_CONFIG_HOME/sylva/recent-folding.json). */
+  std::string recentFile;
+  /** Zoom of the canvas at start (0: fit the image). */
+  double zoom = 0.0;
+  /** Start with the preview paused at this time, seconds (negative: playing from 0). */
+  double pausedAt = -1.0;
+};
+
+/** Opens the editor window and runs until it is closed (or `frames` frames have been shown). */
+void runFoldEditor(const FoldEditOptions& options);
+
+/** Adds `sylva fold edit` to the `fold` command (built only with the folding GPU renderer). */
+void registerFoldEdit(CLI::App& fold);
+
+} // namespace sylva::app

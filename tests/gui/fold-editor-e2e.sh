@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# End-to-end test of `sylva fold edit` driven by real input, as a user would: on its own Xvfb display, xdotool
+# opens an image through Ctrl+N and the path prompt, draws a rectangle zone (R + drag), adds two anchors
+# (A + drags), synthesises (Ctrl+Enter), saves (Ctrl+S), then opens the image in an "external editor" (Ctrl+E;
+# a script that rewrites it) and checks that the editor reloads it. The saved project must equal
+# tests/gui/fold-editor-e2e.expected.json byte for byte, and a screenshot of the whole screen must match
+# tests/golden/refs/llvmpipe/fold-editor-e2e.png. On a mismatch the actuals go to
+# <golden-out>/llvmpipe/fold-editor-e2e.actual.{png,json} (promote the PNG with scripts/promote-goldens.sh,
+# copy the JSON over the expected file after reviewing it).
+#
+# Usage: fold-editor-e2e.sh SYLVA_EXE SOURCE_DIR GOLDEN_OUT_DIR
+# Exit 77 (skipped) when xvfb-run, xdotool or ImageMagick's import is missing, unless SYLVA_REQUIRE_DISPLAY=1.
+set -euo pipefail
+exe="$1"
+src="$2"
+out="$3/llvmpipe"
+name=fold-editor-e2e
+
+if [ -z "${SYLVA_E2E_INNER:-}" ]; then
+  for tool in xvfb-run xdotool import; do
+    if ! command -v "$tool" >/dev/null; then
+      echo "$name: $tool not found (apt install xvfb xdotool imagemagick)" >&2
+      [ "${SYLVA_REQUIRE_DISPLAY:-0}" = 1 ] && exit 1
+      exit 77
+    fi
+  done
+  # A display of its own: no other test's window can take the pointer focus (no window manager).
+  exec xvfb-run -a -s "-screen 0 1280x720x24" env SYLVA_E2E_INNER=1 bash "$0" "$@"
+fi
+
+work="$(mktemp -d)"
+pid=""
+cleanup() {
+  if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then kill "$pid" 2>/dev/null || true; fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
+cp "$src/data/folding/beach.png" "$work/beach.png"
+export XDG_CONFIG_HOME="$work/config"
+# The "external image editor": replaces the image with a mirrored copy half a second after it is opened.
+convert "$work/beach.png" -flop "$work/mirrored.png"
+export SYLVA_IMAGE_EDITOR="sh -c 'sleep 0.5; cp \"$work/mirrored.png\" \"\$1\"' editor {}"
+
+"$exe" --log-level info fold edit --width 1280 --height 720 --fixed-step 0.04 --paused-at 1.0 --autosave 0 >"$work/log" 2>&1 &
+pid=$!
+wid="$(timeout 60 xdotool search --sync --onlyvisible --name 'Sylva fold editor' | head -n 1)"
+eval "$(xdotool getwindowgeometry --shell "$wid")" # X, Y, WIDTH, HEIGHT
+sleep 3
+
+# Window-relative pointer moves; GLFW polls once a frame, so every action gets time to be seen.
+at() {
+  xdotool mousemove --sync $((X + $1)) $((Y + $2))
+  sleep 0.3
+}
+key() {
+  xdotool keydown "$1"
+  sleep 0.3
+  xdotool keyup "$1"
+  sleep 0.8
+}
+drag() {
+  at "$1" "$2"
+  xdotool mousedown 1
+  sleep 0.4
+  for i in 1 2 3 4 5 6; do
+    xdotool mousemove --sync $((X + $1 + ($3 - $1) * i / 6)) $((Y + $2 + ($4 - $2) * i / 6))
+    sleep 0.15
+  done
+  sleep 0.4
+  xdotool mouseup 1
+  sleep 1.0
+}
+
+# 1. Open an image: Ctrl+N, replace the prompt's text with the path, Enter.
+at 640 360
+key ctrl+n
+key ctrl+a
+xdotool type --delay 30 "$work/beach.png"
+sleep 0.5
+key Return
+sleep 2
+# 2. A rectangle zone over the surf.
+at 520 320
+key r
+drag 330 300 780 520
+# 3. Two anchors: the water moves up the beach.
+key a
+drag 420 420 430 470
+drag 640 410 650 470
+# 4. Synthesise and save.
+key ctrl+Return
+sleep 1
+key ctrl+s
+sleep 1
+# 5. The screenshot, with the pointer parked over the tool panel (no hover effects on the canvas).
+at 120 650
+sleep 2
+import -window root "$work/shot.png"
+# 6. Edit the image "externally": the editor must notice the new pixels and reload them.
+key ctrl+e
+sleep 3
+key ctrl+q
+status=0
+wait "$pid" || status=$?
+pid=""
+if [ "$status" -ne 0 ]; then
+  echo "$name: the editor exited with status $status" >&2
+  cat "$work/log" >&2
+  exit 1
+fi
+
+failed=0
+if ! grep -q "reloaded .*beach.png" "$work/log"; then
+  echo "$name: the image changed on disk but the editor did not reload it" >&2
+  cat "$work/log" >&2
+  failed=1
+fi
+project="$work/beach.fold.json"
+expected="$src/tests/gui/$name.expected.json"
+mkdir -p "$out"
+if [ ! -f "$project" ]; then
+  echo "$name: the editor saved no project at $project" >&2
+  cat "$work/log" >&2
+  failed=1
+elif ! cmp -s "$project" "$expected"; then
+  echo "$name: saved project differs from $expected:" >&2
+  diff -u "$expected" "$project" >&2 || true
+  cp "$project" "$out/$name.actual.json"
+  failed=1
+fi
+ref="$src/tests/golden/refs/llvmpipe/$name.png"
+if ! "$exe" imgdiff "$work/shot.png" "$ref" --max-diff 2 --max-fraction 0.0005 \
+  --diff "$out/$name.diff.png" --report "$out/$name.json"; then
+  cp "$work/shot.png" "$out/$name.actual.png"
+  echo "$name: screenshot differs from $ref (actual: $out/$name.actual.png, diff: $out/$name.diff.png)" >&2
+  failed=1
+fi
+exit "$failed"
