@@ -2403,8 +2403,10 @@ void FoldEditor::drawFlowWindow() {
     return;
   }
   FlowPanel& f = mFlow;
-  ImGui::SetNextWindowSize(ImVec2(460, 560), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowPos(ImVec2(300, 120), ImGuiCond_FirstUseEver);
+  // Over the panels on the right at first, so the canvas (where the suggestions are drawn) stays visible.
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowSize(ImVec2(460, 520), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(vp->Size.x - 470.0f, vp->Size.y - 560.0f), ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Motion from a reference video", &f.open)) {
     ImGui::End();
     return;

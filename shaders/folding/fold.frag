@@ -44,9 +44,17 @@ void main() {
   x.dt = init.z;
   x.layers = fold.info.y;
   x.foldMask = fold.info.z;
+  // Fetch only the layers in use: the bounds are uniform, so no lane fetches what it will not read (a ?: here
+  // would fetch all FOLD_MAX_LAYERS of both arrays on llvmpipe, where both operands are evaluated).
   for (int l = 0; l < FOLD_MAX_LAYERS; ++l) {
-    x.jump[l] = l < x.layers ? texelFetch(jumpMaps, ivec3(texel, l), 0) : vec4(0.0, 0.0, 1.0, 1.0);
-    x.fold[l] = (x.foldMask & (1 << l)) != 0 ? texelFetch(foldMaps, ivec3(texel, l), 0) : vec4(1.0);
+    x.jump[l] = vec4(0.0, 0.0, 1.0, 1.0);
+    x.fold[l] = vec4(1.0);
+  }
+  for (int l = 0; l < x.layers; ++l) {
+    x.jump[l] = texelFetch(jumpMaps, ivec3(texel, l), 0);
+    if ((x.foldMask & (1 << l)) != 0) {
+      x.fold[l] = texelFetch(foldMaps, ivec3(texel, l), 0);
+    }
   }
   float breaks[FOLD_MAX_BREAKS] =
       float[FOLD_MAX_BREAKS](fold.breaks[0].x, fold.breaks[0].y, fold.breaks[0].z, fold.breaks[0].w,

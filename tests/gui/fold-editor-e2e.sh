@@ -43,33 +43,10 @@ export SYLVA_IMAGE_EDITOR="sh -c 'sleep 0.5; cp \"$work/mirrored.png\" \"\$1\"' 
 
 "$exe" --log-level info fold edit --width 1280 --height 720 --fixed-step 0.04 --paused-at 1.0 --autosave 0 >"$work/log" 2>&1 &
 pid=$!
-wid="$(timeout 60 xdotool search --sync --onlyvisible --name 'Sylva fold editor' | head -n 1)"
-eval "$(xdotool getwindowgeometry --shell "$wid")" # X, Y, WIDTH, HEIGHT
+# shellcheck source=tests/gui/xdo.sh
+. "$src/tests/gui/xdo.sh"
+find_window 'Sylva fold editor'
 sleep 3
-
-# Window-relative pointer moves; GLFW polls once a frame, so every action gets time to be seen.
-at() {
-  xdotool mousemove --sync $((X + $1)) $((Y + $2))
-  sleep 0.3
-}
-key() {
-  xdotool keydown "$1"
-  sleep 0.3
-  xdotool keyup "$1"
-  sleep 0.8
-}
-drag() {
-  at "$1" "$2"
-  xdotool mousedown 1
-  sleep 0.4
-  for i in 1 2 3 4 5 6; do
-    xdotool mousemove --sync $((X + $1 + ($3 - $1) * i / 6)) $((Y + $2 + ($4 - $2) * i / 6))
-    sleep 0.15
-  done
-  sleep 0.4
-  xdotool mouseup 1
-  sleep 1.0
-}
 
 # 1. Open an image: Ctrl+N, replace the prompt's text with the path, Enter.
 at 640 360
