@@ -16,25 +16,9 @@ src="$2"
 out="$3/llvmpipe"
 name=fold-editor-e2e
 
-if [ -z "${SYLVA_E2E_INNER:-}" ]; then
-  for tool in xvfb-run xdotool import; do
-    if ! command -v "$tool" >/dev/null; then
-      echo "$name: $tool not found (apt install xvfb xdotool imagemagick)" >&2
-      [ "${SYLVA_REQUIRE_DISPLAY:-0}" = 1 ] && exit 1
-      exit 77
-    fi
-  done
-  # A display of its own: no other test's window can take the pointer focus (no window manager).
-  exec xvfb-run -a -s "-screen 0 1280x720x24" env SYLVA_E2E_INNER=1 bash "$0" "$@"
-fi
-
-work="$(mktemp -d)"
-pid=""
-cleanup() {
-  if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then kill "$pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
+# shellcheck source=tests/gui/xdo.sh
+. "$src/tests/gui/xdo.sh"
+e2e_start "$name" "$0" "$@"
 cp "$src/data/folding/beach.png" "$work/beach.png"
 export XDG_CONFIG_HOME="$work/config"
 # The "external image editor": replaces the image with a mirrored copy half a second after it is opened.
@@ -43,8 +27,6 @@ export SYLVA_IMAGE_EDITOR="sh -c 'sleep 0.5; cp \"$work/mirrored.png\" \"\$1\"' 
 
 "$exe" --log-level info fold edit --width 1280 --height 720 --fixed-step 0.04 --paused-at 1.0 --autosave 0 >"$work/log" 2>&1 &
 pid=$!
-# shellcheck source=tests/gui/xdo.sh
-. "$src/tests/gui/xdo.sh"
 find_window 'Sylva fold editor'
 sleep 3
 
@@ -76,15 +58,7 @@ import -window root "$work/shot.png"
 # 6. Edit the image "externally": the editor must notice the new pixels and reload them.
 key ctrl+e
 sleep 3
-key ctrl+q
-status=0
-wait "$pid" || status=$?
-pid=""
-if [ "$status" -ne 0 ]; then
-  echo "$name: the editor exited with status $status" >&2
-  cat "$work/log" >&2
-  exit 1
-fi
+e2e_quit "$name" "$work/log"
 
 failed=0
 if ! grep -q "reloaded .*beach.png" "$work/log"; then

@@ -13,32 +13,15 @@ src="$2"
 out="$3/llvmpipe"
 name=fold-editor-tools-e2e
 
-if [ -z "${SYLVA_E2E_INNER:-}" ]; then
-  for tool in xvfb-run xdotool; do
-    if ! command -v "$tool" >/dev/null; then
-      echo "$name: $tool not found (apt install xvfb xdotool)" >&2
-      [ "${SYLVA_REQUIRE_DISPLAY:-0}" = 1 ] && exit 1
-      exit 77
-    fi
-  done
-  exec xvfb-run -a -s "-screen 0 1280x720x24" env SYLVA_E2E_INNER=1 bash "$0" "$@"
-fi
-
-work="$(mktemp -d)"
-pid=""
-cleanup() {
-  if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then kill "$pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
+# shellcheck source=tests/gui/xdo.sh
+. "$src/tests/gui/xdo.sh"
+e2e_start "$name" "$0" "$@"
 cp "$src/data/folding/beach.png" "$work/beach.png"
 export XDG_CONFIG_HOME="$work/config"
 
 "$exe" --log-level info fold edit "$work/beach.png" --project "$work/tools.json" --width 1280 --height 720 \
   --fixed-step 0.04 --paused-at 1.0 --autosave 0 >"$work/log" 2>&1 &
 pid=$!
-# shellcheck source=tests/gui/xdo.sh
-. "$src/tests/gui/xdo.sh"
 find_window 'Sylva fold editor'
 sleep 3
 
@@ -82,15 +65,7 @@ at 520 320
 key Delete
 key ctrl+z
 key ctrl+s
-key ctrl+q
-status=0
-wait "$pid" || status=$?
-pid=""
-if [ "$status" -ne 0 ]; then
-  echo "$name: the editor exited with status $status" >&2
-  cat "$work/log" >&2
-  exit 1
-fi
+e2e_quit "$name" "$work/log"
 
 failed=0
 expected="$src/tests/gui/$name.expected.json"

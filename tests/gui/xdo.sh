@@ -1,5 +1,45 @@
-# Shared by the GUI end-to-end scripts (sourced): pointer and key helpers relative to the window found by
-# find_window. GLFW polls input once a frame, so every action leaves time to be seen (testing-recipes).
+# Shared by the GUI end-to-end scripts (sourced): their start and end, and pointer and key helpers relative to
+# the window found by find_window. GLFW polls input once a frame, so every action leaves time to be seen
+# (testing-recipes).
+
+# e2e_start NAME SCRIPT ARGS...: call first. Outside a display of its own it checks the tools (exit 77: skipped,
+# unless SYLVA_REQUIRE_DISPLAY=1) and re-runs SCRIPT with ARGS under `xvfb-run -a` (a new display: no other
+# test's window can take the pointer focus, there is no window manager). Inside, it makes the scratch directory
+# $work, removed on exit together with the process $pid if that still runs.
+e2e_start() {
+  local name="$1" script="$2"
+  shift 2
+  if [ -z "${SYLVA_E2E_INNER:-}" ]; then
+    local tool
+    for tool in xvfb-run xdotool import convert; do
+      if ! command -v "$tool" >/dev/null; then
+        echo "$name: $tool not found (apt install xvfb xdotool imagemagick)" >&2
+        [ "${SYLVA_REQUIRE_DISPLAY:-0}" = 1 ] && exit 1
+        exit 77
+      fi
+    done
+    exec xvfb-run -a -s "-screen 0 1280x720x24" env SYLVA_E2E_INNER=1 bash "$script" "$@"
+  fi
+  work="$(mktemp -d)"
+  pid=""
+  trap e2e_cleanup EXIT
+}
+e2e_cleanup() {
+  if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then kill "$pid" 2>/dev/null || true; fi
+  rm -rf "$work"
+}
+# e2e_quit NAME LOG: Ctrl+Q, then fails (printing LOG) unless the process $pid exits with status 0.
+e2e_quit() {
+  key ctrl+q
+  local status=0
+  wait "$pid" || status=$?
+  pid=""
+  if [ "$status" -ne 0 ]; then
+    echo "$1: the editor exited with status $status" >&2
+    cat "$2" >&2
+    exit 1
+  fi
+}
 
 # find_window TITLE: sets X, Y, WIDTH, HEIGHT of the first visible window whose title matches.
 find_window() {
