@@ -423,11 +423,12 @@ private:
 
   /** Re-synthesises what changed and updates the GPU copy. */
   void refresh(std::optional<Rect> hint = std::nullopt) {
-    if (!mSession || (!mAutoSynth && mUploaded) || backgroundBusy()) {
+    if (!mSession || backgroundBusy()) {
       return;
     }
     try {
-      if (mSession->stale() && !startBackground()) {
+      // With live synthesis off, only the first synthesis and Ctrl+Enter run; timing changes still show.
+      if ((mAutoSynth || !mUploaded) && mSession->stale() && !startBackground()) {
         const Session::Update u = mSession->synthesize(hint);
         mLastSynthMs = u.ms;
         mLastRegion = u.region;
@@ -1950,7 +1951,7 @@ void FoldEditor::drawPreview(ImVec2 pos, ImVec2 size) {
     ImGui::Image(textureId(mPreviewTex), ImVec2(static_cast<float>(shown.x), static_cast<float>(shown.y)),
                  ImVec2(0, 1), ImVec2(1, 0));
   } else {
-    ImGui::TextDisabled("(synthesise to preview: Ctrl+Enter)");
+    ImGui::TextDisabled(mJob ? "(synthesising in the background...)" : "(synthesise to preview: Ctrl+Enter)");
   }
   // Timeline.
   if (ImGui::Button(mPlaying ? "Pause" : "Play")) {

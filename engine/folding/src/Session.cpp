@@ -176,7 +176,7 @@ Session::Update Session::synthesize(std::optional<Rect> hint, Progress* progress
     full = atlas.entries != mTextures->atlas.entries || atlas.color.width() != mTextures->width() ||
            atlas.color.height() != mTextures->height();
   }
-  const Atlas& layout = layoutMayMove ? atlas : mTextures->atlas;
+
   if (full) {
     mTextures = std::make_unique<Textures>(folding::synthesize(now, mImages, progress));
     u.full = true;
@@ -187,8 +187,9 @@ Session::Update Session::synthesize(std::optional<Rect> hint, Progress* progress
       region = *hint;
     } else {
       for (std::size_t z : changed) {
-        for (const Rect r : {zoneAtlasRect(mSynthesized, mTextures->atlas, static_cast<int>(z)),
-                             zoneAtlasRect(now, layout, static_cast<int>(z))}) {
+        for (const Rect r :
+             {zoneAtlasRect(mSynthesized, mTextures->atlas, static_cast<int>(z)),
+              zoneAtlasRect(now, layoutMayMove ? atlas : mTextures->atlas, static_cast<int>(z))}) {
           region = region.empty() ? r : Rect{glm::min(region.min, r.min), glm::max(region.max, r.max)};
         }
       }
