@@ -21,3 +21,24 @@ endif()
 if(SYLVA_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+# OpenCV for the folding editor's motion from video (video: DIS and Farneback optical flow; videoio: FFmpeg
+# decoding, image sequences, the MJPEG writer) and for grass capture (imgproc: contours, Canny, morphology,
+# distance transform). Used as the interface target sylva_opencv, kept out of public headers.
+# Debian installs OpenCVConfig.cmake only with the libopencv-dev meta package, which pulls every OpenCV module
+# (contrib, viz with VTK, Qt); the four per-module -dev packages we install carry the headers and libraries
+# alone, so without a config file the same components are found directly.
+find_package(OpenCV QUIET COMPONENTS core imgproc video videoio)
+add_library(sylva_opencv INTERFACE)
+if(OpenCV_FOUND)
+  target_include_directories(sylva_opencv SYSTEM INTERFACE ${OpenCV_INCLUDE_DIRS})
+  target_link_libraries(sylva_opencv INTERFACE ${OpenCV_LIBS})
+else()
+  find_path(SYLVA_OPENCV_INCLUDE_DIR opencv2/video/tracking.hpp PATH_SUFFIXES opencv4 REQUIRED)
+  target_include_directories(sylva_opencv SYSTEM INTERFACE ${SYLVA_OPENCV_INCLUDE_DIR})
+  foreach(component videoio video imgproc core)
+    find_library(SYLVA_OPENCV_${component}_LIBRARY opencv_${component} REQUIRED)
+    target_link_libraries(sylva_opencv INTERFACE ${SYLVA_OPENCV_${component}_LIBRARY})
+  endforeach()
+endif()
+

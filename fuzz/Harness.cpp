@@ -1,5 +1,8 @@
 #include "Harness.hpp"
 
+#include <sylva/capture/BladeModel.hpp>
+#include <sylva/capture/Depth.hpp>
+#include <sylva/capture/Fakenect.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
@@ -212,6 +215,108 @@ void flowFfmpeg(std::span<const std::uint8_t> bytes) {
   expectCleanRejection([&] { flowOfFirstFrames(folding::loadVideo(path, 3)); });
 }
 
+/**
+ * Blade-model files: loaded and validated; what loads must also survive the helpers and a round trip through
+ * toJson (a valid file that its own writer cannot express again would be a finding).
+ */
+void bladeModels(std::span<const std::uint8_t> bytes) {
+  const fs::path path = writeInput("blades.json", bytes);
+  capture::BladeModelFile file;
+  try {
+    file = capture::loadBladeModels(path);
+  } catch (const Error&) {
+    return;
+  }
+  for (const capture::BladeModel& blade : file.blades) {
+    (void)blade.length();
+    (void)blade.maxWidth();
+    (void)blade.lodForKnots(16);
+  }
+  (void)capture::parseBladeModels(capture::toJson(file), path.string()); // throws (a finding) if not
+}
+
+/** Depth inputs: the bytes as a file both depth loaders open (16-bit depth PNG, 8-bit Middlebury disparity).
+ */
+void depthPng(std::span<const std::uint8_t> bytes) {
+  const fs::path path = writeInput("depth.png", bytes);
+  expectCleanRejection([&] {
+    const capture::DepthFrame frame = capture::loadDepthPng(path);
+    const auto [lo, hi] = capture::depthRange(frame);
+    (void)capture::depthPreview(frame, lo, hi + 1.0f);
+  });
+  expectCleanRejection([&] { (void)capture::loadMiddlebury(path); });
+}
+
+/**
+ * fakenect recordings and frame files. The first byte chooses: even, the rest is decoded directly as a depth
+ * PGM and as an RGB PPM (small sizes reach the pixel loops); odd, the rest is a recording: INDEX.txt up to
+ * the first NUL byte, then a 2-byte little-endian length L, L bytes of the file the first INDEX line names
+ * and the remaining bytes as the file the second line names (plain names only), then every depth frame is
+ * read.
+ */
+void fakenect(std::span<const std::uint8_t> bytes) {
+  if (bytes.empty()) {
+    return;
+  }
+  const std::span<const std::byte> rest = std::as_bytes(bytes.subspan(1));
+  if (bytes[0] % 2 == 0) {
+    expectCleanRejection(
+        [&] { (void)capture::depthFromKinectRaw(capture::decodeFakenectDepth(rest, "d.pgm")); });
+    expectCleanRejection([&] { (void)capture::decodeFakenectRgb(rest, "r.ppm"); });
+    return;
+  }
+  const fs::path dir = scratch() / "fakenect";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::size_t pos = 1;
+  while (pos < bytes.size() && bytes[pos] != 0) {
+    ++pos;
+  }
+  const std::string index(reinterpret_cast<const char*>(bytes.data()) + 1, pos - 1);
+  std::ofstream(dir / "INDEX.txt", std::ios::binary)
+      .write(index.data(), static_cast<std::streamsize>(index.size()));
+  std::span<const std::uint8_t> files =
+      pos + 1 <= bytes.size() ? bytes.subspan(pos + 1) : bytes.subspan(0, 0);
+  std::size_t firstSize = 0;
+  if (files.size() >= 2) {
+    firstSize = std::min<std::size_t>(files[0] | (std::size_t{files[1]} << 8), files.size() - 2);
+    files = files.subspan(2);
+  }
+  // The first two INDEX lines name the files; anything with a directory part is left out.
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (names.size() < 2 && start < index.size()) {
+    std::size_t end = index.find('\n', start);
+    end = end == std::string::npos ? index.size() : end;
+    std::string name = index.substr(start, end - start);
+    if (!name.empty() && name.back() == '\r') {
+      name.pop_back();
+    }
+    start = end + 1;
+    if (name.empty()) {
+      continue;
+    }
+    const bool plain = name.size() < 200 &&
+                       name.find_first_of(std::string("/\\\0", 3)) == std::string::npos && name != "." &&
+                       name != ".." && name != "INDEX.txt";
+    names.push_back(plain ? name : std::string());
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::span<const std::uint8_t> file =
+        i == 0 ? files.subspan(0, firstSize) : files.subspan(firstSize);
+    if (!names[i].empty()) {
+      std::ofstream(dir / names[i], std::ios::binary)
+          .write(reinterpret_cast<const char*>(file.data()), static_cast<std::streamsize>(file.size()));
+    }
+  }
+  expectCleanRejection([&] {
+    const capture::FakenectRecording recording = capture::FakenectRecording::open(dir);
+    for (std::size_t i = 0; i < std::min<std::size_t>(recording.depthFrameCount(), 8); ++i) {
+      expectCleanRejection([&] { (void)recording.depthFrame(i); });
+    }
+  });
+}
+
 } // namespace
 
 const std::vector<Target>& targets() {
@@ -227,6 +332,9 @@ const std::vector<Target>& targets() {
       {"flow", "reference videos as image sequences for motion from video, and their optical flow", flow},
       {"flow_ffmpeg",
        "reference videos in containers (FFmpeg through OpenCV); not in CI, see docs/testing.md", flowFfmpeg},
+      {"blade_models", "blade-model files (capture): parsing, validation and a round trip", bladeModels},
+      {"depth_png", "depth inputs: 16-bit depth PNGs and 8-bit Middlebury disparity maps", depthPng},
+      {"fakenect", "fakenect recordings: INDEX.txt, depth PGM and RGB PPM frame files", fakenect},
 #ifdef SYLVA_FUZZ_HAVE_CLI
       {"cli", "the sylva command line's option parsing and validation (commands not run)", runCliArguments},
 #endif

@@ -17,6 +17,9 @@ entries=(
   "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/topobathy.npz|topobathy.npz"
   "python3-skimage|usr/lib/python3/dist-packages/skimage/data/chelsea.png|chelsea.png"
   "opencv-doc|usr/share/doc/opencv-doc/examples/data/tree.avi|tree.avi"
+  "opencv-doc|usr/share/doc/opencv-doc/examples/data/aloeGT.png|aloeGT.png"
+  "opencv-doc|usr/share/doc/opencv-doc/examples/data/aloeL.jpg|aloeL.jpg"
+  "opencv-doc|usr/share/doc/opencv-doc/examples/data/aloeR.jpg|aloeR.jpg"
 )
 
 work="$(mktemp -d)"

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes Sylva's loaders and parsers with libFuzzer (+ ASan/UBSan):
 #   scripts/fuzz.sh [TARGET|all] [SECONDS] [--merge]
-# TARGET: png exr npy npz gdal json shader fold flow cli (default all), or flow_ffmpeg (by name only: it finds a
-# known OpenCV 4.6 over-read, docs/testing.md); SECONDS per target (default 60).
+# TARGET: png exr npy npz gdal json shader fold flow cli blade_models depth_png fakenect (default all), or
+# flow_ffmpeg (by name only: it finds a known OpenCV 4.6 over-read, docs/testing.md); SECONDS per target
+# (default 60).
 # Each run starts from the committed seeds (fuzz/corpus/TARGET) and regression inputs (fuzz/regressions/TARGET) and
 # works in build/fuzz-work/TARGET. A crash, leak, sanitizer report, timeout (>10 s) or allocation over the limit
 # writes the input there as crash-*/leak-*/timeout-*/oom-* and makes the script fail; copy it into
@@ -13,7 +14,7 @@ cd "$(dirname "$0")/.."
 target="${1:-all}"
 seconds="${2:-60}"
 merge="${3:-}"
-all=(png exr npy npz gdal json shader fold flow cli)
+all=(png exr npy npz gdal json shader fold flow cli blade_models depth_png fakenect)
 if [ "$target" = all ]; then targets=("${all[@]}"); else targets=("$target"); fi
 for t in "${targets[@]}"; do
   [[ " ${all[*]} flow_ffmpeg " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (targets: ${all[*]})" >&2; exit 2; }

@@ -11,6 +11,8 @@ packages=(
   libfmt-dev libpng-dev libopenexr-dev libgdal-dev libzip-dev libgif-dev
   # optical flow from reference videos (folding editor) and grass capture: OpenCV
   libopencv-video-dev libopencv-videoio-dev libopencv-imgproc-dev
+  # grass capture: Kinect v1 through libfreenect, and its fakenect replay library and tools
+  libfreenect-dev libfreenect-bin
   # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests

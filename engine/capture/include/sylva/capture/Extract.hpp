@@ -1,0 +1,197 @@
+#pragma once
+// Blade extraction from one depth frame (paper §4.1–4.3): depth-range mask → contour (mask tracing, or Canny
+// on depth) → cluster centre → distance-from-centre signal along the contour, whose prominent local minima
+// are the junctions between blades → each blade's contour → skeleton by matching symmetric contour points (or
+// the medial axis when the blade is not symmetric) → width per knot → smoothing → resampling → metres.
+
+#include <sylva/capture/Depth.hpp>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sylva::capture {
+
+/** How the blob's outline is found. */
+enum class ContourMethod {
+  /** Trace the boundary of the depth-range mask (the paper's main method). */
+  Mask,
+  /** Canny edges on the depth values (the paper's alternative), closed and filled into regions. */
+  Canny,
+};
+
+/** How a cluster's centre is chosen. */
+enum class CentreMode {
+  /** Core, unless it is unusable (then centroid, then base, with a warning). */
+  Auto,
+  /** The deepest point inside the blob (distance-transform maximum): where blades join. */
+  Core,
+  /** The blob's centroid (the paper's choice; right for star-shaped clusters). */
+  Centroid,
+  /** The lowest point of the blob (blades growing from the ground seen from the side). */
+  Base,
+  /** ExtractOptions::centrePx. */
+  Manual,
+};
+
+/** Options of extractBlades; defaults suit a 640×480 Kinect frame of a grass tuft 0.5–1.5 m away. */
+struct ExtractOptions {
+  /** Depth range of the blades in metres; 0 for either means automatic (Otsu split of the valid depths). */
+  float nearMetres = 0.0f;
+  float farMetres = 0.0f;
+  /** Region of interest x0, y0, x1, y1 in pixels (x1, y1 exclusive); all zero: the whole frame. */
+  std::array<int, 4> roi{0, 0, 0, 0};
+  ContourMethod contour = ContourMethod::Mask;
+  /** Canny thresholds in depth metres per pixel step (the gradient of depth, not of grey). */
+  double cannyLowMetres = 0.02;
+  double cannyHighMetres = 0.06;
+  /**
+   * Radius in pixels of the morphological close that fills cracks and pin holes (no opening: it would cut the
+   * one-pixel tips of thin blades; speckle goes with minClusterAreaPx).
+   */
+  int cleanRadiusPx = 1;
+  /** Holes in the mask smaller than this (pixels) are filled (sensor dropouts inside blades). */
+  int fillHolesPx = 400;
+  /** Blobs smaller than this (pixels) are ignored. */
+  int minClusterAreaPx = 300;
+  CentreMode centre = CentreMode::Auto;
+  glm::vec2 centrePx{0.0f};
+  /** Gaussian smoothing of the distance signal along the contour, sigma in pixels of arc length. */
+  double smoothSigmaPx = 3.0;
+  /**
+   * A local minimum of the distance signal is a junction when it is at least this prominent: the lower of the
+   * two peaks that enclose it rises this far above it, as a fraction of the cluster's largest distance. Noise
+   * makes shallow minima; blades make deep ones.
+   */
+  double prominence = 0.08;
+  /** A contour segment is a blade only if its tip is this far (pixels) above its higher junction... */
+  double minBladeLengthPx = 15.0;
+  /** ...and it is at least this many times longer than wide (rejects pots, ground, the cluster's base). */
+  double minElongation = 2.5;
+  /** Knots of the captured skeleton before refining. */
+  int knots = 128;
+  /** Gaussian smoothing of skeleton points and widths along the blade, sigma in knots of the 128-knot line.
+   */
+  double skeletonSmoothKnots = 2.0;
+  /**
+   * Symmetric matching is trusted when the two sides of a blade differ in arc length by at most this ratio
+   * and their midpoints stay inside the blade; otherwise the medial axis is used (asymmetric blades).
+   */
+  double symmetryRatio = 1.35;
+  /**
+   * ...and when matched pairs cross the skeleton squarely: their mean offset along the skeleton stays within
+   * this fraction of their mean chord (0.3 ≈ 17° off perpendicular), or within 3 px of contour noise.
+   */
+  double maxObliqueness = 0.3;
+  /** Extend each blade's skeleton straight from its lowest knot to the cluster centre (its root). */
+  bool extendToCentre = true;
+  /** Use a colour frame, when present, to move depth edges onto colour edges (joint bilateral). */
+  bool colourRefine = true;
+};
+
+/** A junction between two blades: a prominent local minimum of the distance signal. */
+struct Junction {
+  /** Index into Cluster::contour. */
+  int index = 0;
+  glm::vec2 px{0.0f};
+  /** Smoothed distance from the centre, pixels. */
+  float distancePx = 0.0f;
+  /** Prominence as a fraction of the cluster's largest distance. */
+  float prominence = 0.0f;
+};
+
+/** One connected blob of blades. */
+struct Cluster {
+  /** Closed outline, pixel coordinates (pixel centres), counter-clockwise on screen. */
+  std::vector<glm::vec2> contour;
+  glm::vec2 centre{0.0f};
+  /** The mode that produced the centre (never Auto). */
+  CentreMode centreMode = CentreMode::Core;
+  /** Distance from the centre along the contour (pixels): raw and smoothed. */
+  std::vector<float> signal;
+  std::vector<float> smoothed;
+  std::vector<Junction> junctions;
+  /** Indices into ExtractResult::blades. */
+  std::vector<int> blades;
+  /** Segments between junctions that were not blades, with the reason ("too short", "not elongated"). */
+  std::vector<std::string> rejected;
+  int areaPx = 0;
+};
+
+/** One captured blade. */
+struct CapturedBlade {
+  int cluster = 0;
+  /** The blade's outline from one junction over the tip to the next, pixels. */
+  std::vector<glm::vec2> outline;
+  /** Index of the tip within outline. */
+  int tip = 0;
+  /** Skeleton knots root → tip (pixels) and full widths (pixels), ExtractOptions::knots of them. */
+  std::vector<glm::vec2> skeletonPx;
+  std::vector<float> widthsPx;
+  /** The same knots in camera space (metres, x right, y down, z forward) and widths in metres. */
+  std::vector<glm::vec3> knots;
+  std::vector<float> widths;
+  /** Unit width direction per knot in camera space (the blade's side). */
+  std::vector<glm::vec3> sides;
+  /** Length of the knot line, pixels and metres. */
+  float lengthPx = 0.0f;
+  float lengthMetres = 0.0f;
+  /** Pixels of the skeleton that came from the extension to the centre (0 when none). */
+  float extensionPx = 0.0f;
+  /** True when the medial axis replaced symmetric matching. */
+  bool medialAxis = false;
+  /** Ratio of the longer to the shorter side's arc length (1: symmetric). */
+  float sideRatio = 1.0f;
+  /** Matched pairs' offset along the skeleton over their chord length (0: pairs straight across). */
+  float obliqueness = 0.0f;
+  /** The blade's outline touches the region of interest's border (it may be cut). */
+  bool touchesBorder = false;
+  /** Mean linear RGB of the blade's pixels when the frame has colour. */
+  bool hasColour = false;
+  glm::vec3 colour{0.0f};
+};
+
+/** Everything extractBlades found, including the intermediate stages (for overlays and docs). */
+struct ExtractResult {
+  int width = 0;
+  int height = 0;
+  /** Depth range used, metres. */
+  float nearMetres = 0.0f;
+  float farMetres = 0.0f;
+  /** Foreground mask after cleaning (255 inside), width × height. */
+  std::vector<std::uint8_t> mask;
+  /** Canny edge map (255 on edges) when ContourMethod::Canny was used, else empty. */
+  std::vector<std::uint8_t> edges;
+  std::vector<Cluster> clusters;
+  std::vector<CapturedBlade> blades;
+  /** Problems worth telling the user, each naming the frame (DepthFrame::label()). */
+  std::vector<std::string> warnings;
+  /** True when the frame's depth was refined with its colour frame. */
+  bool colourRefined = false;
+};
+
+/**
+ * Runs the pipeline on one frame. Never throws for content problems (an empty mask, no contour, no usable
+ * centre): those come back as warnings naming the frame, with no blades. Throws sylva::Error for invalid
+ * options (naming the option) or a frame with no pixels.
+ */
+ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& options = {});
+
+/**
+ * The debug overlay: the depth as grey, the mask tinted, contours, the centre, junctions, each blade's
+ * skeleton in its own colour with width ticks, and labels. RGB8, the frame's size (at least 640 wide: small
+ * frames are scaled up by an integer factor).
+ */
+Image overlayImage(const DepthFrame& frame, const ExtractResult& result);
+
+/** The distance signal of one cluster as a plot (RGB8, width × height): raw, smoothed and the junctions. */
+Image signalPlot(const Cluster& cluster, int width, int height);
+
+/** Rasterises blades (skeleton ± half width) into a width × height mask (255 inside); for accuracy checks. */
+std::vector<std::uint8_t> rasteriseBlades(const std::vector<CapturedBlade>& blades, int width, int height);
+
+} // namespace sylva::capture

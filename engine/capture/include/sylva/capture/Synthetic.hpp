@@ -1,0 +1,139 @@
+#pragma once
+// Synthetic ground truth: blade clusters of known shape drawn into depth frames with Kinect-like noise and
+// quantisation, for accuracy tests, demos and refining without a recording.
+
+#include <sylva/capture/Depth.hpp>
+#include <sylva/capture/Extract.hpp>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sylva::capture {
+
+/** The five blade shapes of the paper's captures. */
+enum class BladeShape { SlimGrass, QuadraticLeaf, SlenderLeaf, BambooLeaf, SharpTip };
+inline constexpr BladeShape kBladeShapes[] = {BladeShape::SlimGrass, BladeShape::QuadraticLeaf,
+                                              BladeShape::SlenderLeaf, BladeShape::BambooLeaf,
+                                              BladeShape::SharpTip};
+/** "slim", "quadratic", "slender", "bamboo", "sharp". */
+const char* bladeShapeName(BladeShape shape);
+std::optional<BladeShape> parseBladeShape(const std::string& name);
+
+/** Width at t ∈ [0, 1] (root → tip) as a fraction of the blade's largest width. */
+float bladeWidthProfile(BladeShape shape, float t);
+/** Typical length and largest width of a shape, metres. */
+float bladeShapeLength(BladeShape shape);
+float bladeShapeWidth(BladeShape shape);
+
+/** One blade of a synthetic cluster. */
+struct SyntheticBlade {
+  BladeShape shape = BladeShape::SlimGrass;
+  float lengthMetres = 0.3f;
+  float widthMetres = 0.012f;
+  /** Lean from vertical in the image plane, radians (positive: to the right). */
+  float leanRadians = 0.0f;
+  /** Total turn of the tangent from root to tip in the image plane, radians (positive: to the right). */
+  float bendRadians = 0.0f;
+  /** Tilt of the blade towards the camera, radians. */
+  float tiltRadians = 0.0f;
+  /** Asymmetry in [0, 1): the right half is this much narrower than the left (0: symmetric). */
+  float asymmetry = 0.0f;
+  /**
+   * A one-sided lobe: the right edge bulges out by lobe × width at mid-length (Gaussian, σ = 8 % of the
+   * length), the kind of damage or side growth that breaks symmetric matching.
+   */
+  float lobe = 0.0f;
+};
+
+/** A cluster scene. */
+struct SyntheticScene {
+  int width = 640;
+  int height = 480;
+  CameraIntrinsics intrinsics = CameraIntrinsics::kinectV1();
+  /** The root of every blade in camera space, metres. */
+  glm::vec3 rootMetres{0.0f, 0.2f, 0.65f};
+  std::vector<SyntheticBlade> blades;
+  /** Background wall depth, metres (0: none, no data). */
+  float backgroundMetres = 1.8f;
+  /** Kinect-like noise: axial Gaussian σ(z) = 1.2 mm + 1.9 mm·(z − 0.4 m)², lateral edge jitter, dropouts,
+   * and 11-bit quantisation. */
+  bool noise = true;
+  float lateralNoisePx = 0.5f;
+  /** Fraction of edge pixels that lose their depth (Kinect shadows). */
+  float edgeDropout = 0.15f;
+  /** Also draw a registered RGB frame (green blades on a brown background). */
+  bool colour = true;
+  std::uint64_t seed = 1;
+};
+
+/**
+ * A fan of `count` blades of one shape from a common root: leans spread evenly over ±spread/2 around
+ * `orientationRadians`, each bending by `bendRadians` away from the centre, with seeded variation of ±10 % in
+ * length and width.
+ */
+SyntheticScene makeCluster(BladeShape shape, int count, float bendRadians, float orientationRadians,
+                           std::uint64_t seed, float spreadRadians = 1.4f);
+
+/** Ground truth of a rendered scene. */
+struct SyntheticTruth {
+  /** Per blade: centreline root → tip (pixels) and full widths (pixels) at 256 samples. */
+  std::vector<std::vector<glm::vec2>> centrelinePx;
+  std::vector<std::vector<float>> widthsPx;
+  /** The same in camera space, metres. */
+  std::vector<std::vector<glm::vec3>> centrelineMetres;
+  std::vector<std::vector<float>> widthsMetres;
+  /** Noise-free silhouette of all blades (255 inside), width × height. */
+  std::vector<std::uint8_t> mask;
+  /** Front-most blade per pixel (−1: none), width × height. */
+  std::vector<int> label;
+};
+
+/** A rendered synthetic frame with its truth. */
+struct SyntheticFrame {
+  DepthFrame frame;
+  SyntheticTruth truth;
+};
+
+/**
+ * Renders the scene (z-buffered quads between cross-sections, noise as configured). `phase` bends every blade
+ * about its width direction by an extra tip angle (radians, swaying). Deterministic for a scene and phase.
+ */
+SyntheticFrame renderScene(const SyntheticScene& scene, float extraBendRadians = 0.0f, int frameIndex = 0);
+
+/**
+ * A swaying sequence: frame i adds a bend of amplitude·sin(2π·frequency·i/fps + per-blade phase) to every
+ * blade.
+ */
+std::vector<SyntheticFrame> swaySequence(const SyntheticScene& scene, int frames, double fps,
+                                         float amplitudeRadians, double frequencyHz);
+
+/** Accuracy of a capture against the truth (tests and `sylva capture synth --evaluate`). */
+struct AccuracyReport {
+  int bladesExpected = 0;
+  int bladesFound = 0;
+  /** IoU of the rasterised captured blades with the noise-free silhouette. */
+  double silhouetteIoU = 0.0;
+  /** Mean over matched blades of mean |w − w_true| / max w_true over the middle 10–90 % of the captured
+   * knots. */
+  double widthError = 0.0;
+  /** Worst matched blade's width error. */
+  double widthErrorMax = 0.0;
+  /** Mean distance (pixels) of captured skeleton knots from the true centreline, and the worst blade's mean.
+   */
+  double skeletonErrorPx = 0.0;
+  double skeletonErrorMaxPx = 0.0;
+  /** Skeleton error relative to the blade's length (worst blade). */
+  double skeletonErrorRelative = 0.0;
+  /** Captured length / true length beyond the junctions, mean over matched blades. */
+  double lengthRatio = 0.0;
+};
+
+/** Matches captured blades to true blades by their tips and measures. */
+AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult& result);
+
+} // namespace sylva::capture

@@ -1,0 +1,1213 @@
+// Blade extraction from one depth frame (paper §4.1–4.3), on OpenCV's imgproc for the image operations (range
+// mask, morphology, contour tracing, Canny, distance transform) and plain C++ for the signal processing along
+// the contour (smoothing, prominence, symmetric matching), which the paper describes and OpenCV does not
+// have.
+#include <sylva/capture/Extract.hpp>
+
+#include <sylva/core/Error.hpp>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <numeric>
+#include <optional>
+
+namespace sylva::capture {
+namespace {
+
+constexpr int kMatchSamples = 256;
+/** Offsets between matched contour points below this many pixels are contour noise, not asymmetry. */
+constexpr float kOffsetNoisePx = 3.0f;
+
+void validate(const ExtractOptions& o) {
+  auto finite = [](double v) { return std::isfinite(v); };
+  if (!finite(o.nearMetres) || !finite(o.farMetres) || o.nearMetres < 0.0f || o.farMetres < 0.0f ||
+      (o.nearMetres > 0.0f && o.farMetres > 0.0f && o.nearMetres >= o.farMetres)) {
+    fail("--near/--far: need 0 ≤ near < far metres (0 for automatic), got {} and {}", o.nearMetres,
+         o.farMetres);
+  }
+  if (o.roi[0] < 0 || o.roi[1] < 0 || o.roi[2] < 0 || o.roi[3] < 0) {
+    fail("--roi: coordinates must be ≥ 0");
+  }
+  if (!finite(o.cannyLowMetres) || !finite(o.cannyHighMetres) || o.cannyLowMetres <= 0.0 ||
+      o.cannyHighMetres < o.cannyLowMetres) {
+    fail("--canny: need 0 < low ≤ high metres");
+  }
+  if (o.cleanRadiusPx < 0 || o.cleanRadiusPx > 32) {
+    fail("--clean: radius {} outside 0..32 pixels", o.cleanRadiusPx);
+  }
+  if (o.fillHolesPx < 0 || o.minClusterAreaPx < 1) {
+    fail("--fill-holes / --min-area: must be ≥ 0 and ≥ 1 pixels");
+  }
+  if (!finite(o.smoothSigmaPx) || o.smoothSigmaPx < 0.0 || o.smoothSigmaPx > 100.0) {
+    fail("--smooth: sigma {} outside 0..100 pixels", o.smoothSigmaPx);
+  }
+  if (!finite(o.prominence) || o.prominence <= 0.0 || o.prominence >= 1.0) {
+    fail("--prominence: {} outside (0, 1)", o.prominence);
+  }
+  if (!finite(o.minBladeLengthPx) || o.minBladeLengthPx < 0.0 || !finite(o.minElongation) ||
+      o.minElongation < 0.0) {
+    fail("--min-length / --min-elongation: must be finite and ≥ 0");
+  }
+  if (o.knots < 4 || o.knots > 4096) {
+    fail("--knots: {} outside 4..4096", o.knots);
+  }
+  if (!finite(o.skeletonSmoothKnots) || o.skeletonSmoothKnots < 0.0 || o.skeletonSmoothKnots > 64.0) {
+    fail("--skeleton-smooth: {} outside 0..64", o.skeletonSmoothKnots);
+  }
+  if (!finite(o.symmetryRatio) || o.symmetryRatio < 1.0) {
+    fail("--symmetry: ratio {} must be ≥ 1", o.symmetryRatio);
+  }
+  if (!finite(o.maxObliqueness) || o.maxObliqueness < 0.0) {
+    fail("--max-oblique: {} must be ≥ 0", o.maxObliqueness);
+  }
+  if (o.centre == CentreMode::Manual && (!std::isfinite(o.centrePx.x) || !std::isfinite(o.centrePx.y))) {
+    fail("--centre: not a finite pixel position");
+  }
+}
+
+/** Otsu's threshold over valid depths (256 bins between min and max); returns the split depth. */
+float otsuSplit(const std::vector<float>& values, float lo, float hi) {
+  constexpr int kBins = 256;
+  std::array<double, kBins> hist{};
+  const float scale = (kBins - 1) / std::max(hi - lo, 1e-6f);
+  for (float v : values) {
+    hist[static_cast<std::size_t>(std::clamp(static_cast<int>((v - lo) * scale), 0, kBins - 1))] += 1.0;
+  }
+  const double total = static_cast<double>(values.size());
+  double sumAll = 0.0;
+  for (int i = 0; i < kBins; ++i) {
+    sumAll += i * hist[i];
+  }
+  double wB = 0.0;
+  double sumB = 0.0;
+  double best = -1.0;
+  int split = kBins / 2;
+  for (int i = 0; i < kBins - 1; ++i) {
+    wB += hist[i];
+    if (wB == 0.0) {
+      continue;
+    }
+    const double wF = total - wB;
+    if (wF == 0.0) {
+      break;
+    }
+    sumB += i * hist[i];
+    const double mB = sumB / wB;
+    const double mF = (sumAll - sumB) / wF;
+    const double between = wB * wF * (mB - mF) * (mB - mF);
+    if (between > best) {
+      best = between;
+      split = i;
+    }
+  }
+  return lo + (static_cast<float>(split) + 1.0f) / scale;
+}
+
+/** Circular Gaussian smoothing of a closed signal (sigma in samples). */
+std::vector<float> smoothCircular(const std::vector<float>& s, double sigma) {
+  const int n = static_cast<int>(s.size());
+  if (sigma <= 0.0 || n < 3) {
+    return s;
+  }
+  const int radius = std::min(n / 2, static_cast<int>(std::ceil(3.0 * sigma)));
+  std::vector<double> kernel(2 * radius + 1);
+  double sum = 0.0;
+  for (int k = -radius; k <= radius; ++k) {
+    kernel[k + radius] = std::exp(-0.5 * k * k / (sigma * sigma));
+    sum += kernel[k + radius];
+  }
+  std::vector<float> out(s.size());
+  for (int i = 0; i < n; ++i) {
+    double acc = 0.0;
+    for (int k = -radius; k <= radius; ++k) {
+      acc += kernel[k + radius] * s[((i + k) % n + n) % n];
+    }
+    out[i] = static_cast<float>(acc / sum);
+  }
+  return out;
+}
+
+/** Open-ended Gaussian smoothing of a polyline's values; the first and last values stay fixed. */
+template <typename T> std::vector<T> smoothOpen(const std::vector<T>& s, double sigma, bool pinEnds) {
+  const int n = static_cast<int>(s.size());
+  if (sigma <= 0.0 || n < 3) {
+    return s;
+  }
+  const int radius = static_cast<int>(std::ceil(3.0 * sigma));
+  std::vector<T> out(s.size());
+  for (int i = 0; i < n; ++i) {
+    T acc{};
+    double sum = 0.0;
+    for (int k = -radius; k <= radius; ++k) {
+      const int j = std::clamp(i + k, 0, n - 1);
+      const double w = std::exp(-0.5 * k * k / (sigma * sigma));
+      acc += s[j] * static_cast<float>(w);
+      sum += w;
+    }
+    out[i] = acc / static_cast<float>(sum);
+  }
+  if (pinEnds) {
+    out.front() = s.front();
+    out.back() = s.back();
+  }
+  return out;
+}
+
+/**
+ * Junctions: local minima of the circular signal whose topographic prominence (the lower of the highest
+ * points reached on each side before the signal drops below the minimum again) is at least `minProminence`.
+ */
+std::vector<int> prominentMinima(const std::vector<float>& s, float minProminence,
+                                 std::vector<float>& prominence) {
+  const int n = static_cast<int>(s.size());
+  std::vector<int> out;
+  prominence.clear();
+  if (n < 3) {
+    return out;
+  }
+  for (int i = 0; i < n; ++i) {
+    const float v = s[i];
+    const float prev = s[(i - 1 + n) % n];
+    const float next = s[(i + 1) % n];
+    // A plateau counts once, at its first sample.
+    if (!(v < prev && v <= next)) {
+      continue;
+    }
+    float leftPeak = v;
+    float rightPeak = v;
+    bool leftBlocked = false;
+    bool rightBlocked = false;
+    for (int k = 1; k < n; ++k) {
+      const float u = s[(i - k + n) % n];
+      if (u < v) {
+        leftBlocked = true;
+        break;
+      }
+      leftPeak = std::max(leftPeak, u);
+    }
+    for (int k = 1; k < n; ++k) {
+      const float u = s[(i + k) % n];
+      if (u < v) {
+        rightBlocked = true;
+        break;
+      }
+      rightPeak = std::max(rightPeak, u);
+    }
+    // The global minimum is never blocked: its prominence is the signal's range.
+    float p;
+    if (!leftBlocked && !rightBlocked) {
+      p = *std::max_element(s.begin(), s.end()) - v;
+    } else {
+      p = std::min(leftPeak, rightPeak) - v;
+    }
+    if (p >= minProminence) {
+      out.push_back(i);
+      prominence.push_back(p);
+    }
+  }
+  return out;
+}
+
+float polylineLength(const std::vector<glm::vec2>& line) {
+  float len = 0.0f;
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    len += glm::length(line[i] - line[i - 1]);
+  }
+  return len;
+}
+
+/** Resamples a polyline (and per-point values) to `count` points evenly spaced by arc length. */
+std::vector<glm::vec2> resample(const std::vector<glm::vec2>& line, int count,
+                                const std::vector<float>* values = nullptr,
+                                std::vector<float>* valuesOut = nullptr) {
+  std::vector<glm::vec2> out(static_cast<std::size_t>(count));
+  if (valuesOut) {
+    valuesOut->assign(static_cast<std::size_t>(count), 0.0f);
+  }
+  if (line.empty()) {
+    return out;
+  }
+  std::vector<float> arc(line.size(), 0.0f);
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    arc[i] = arc[i - 1] + glm::length(line[i] - line[i - 1]);
+  }
+  const float total = arc.back();
+  std::size_t j = 0;
+  for (int k = 0; k < count; ++k) {
+    const float target = count == 1 ? 0.0f : total * static_cast<float>(k) / static_cast<float>(count - 1);
+    while (j + 1 < line.size() - 1 && arc[j + 1] < target) {
+      ++j;
+    }
+    if (line.size() == 1) {
+      out[k] = line[0];
+      if (valuesOut) {
+        (*valuesOut)[k] = (*values)[0];
+      }
+      continue;
+    }
+    const float seg = arc[j + 1] - arc[j];
+    const float t = seg > 0.0f ? std::clamp((target - arc[j]) / seg, 0.0f, 1.0f) : 0.0f;
+    out[k] = line[j] + t * (line[j + 1] - line[j]);
+    if (valuesOut) {
+      (*valuesOut)[k] = (*values)[j] + t * ((*values)[j + 1] - (*values)[j]);
+    }
+  }
+  return out;
+}
+
+bool insideMask(const cv::Mat& mask, const glm::vec2& p) {
+  const int x = static_cast<int>(std::lround(p.x));
+  const int y = static_cast<int>(std::lround(p.y));
+  return x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask.at<std::uint8_t>(y, x) != 0;
+}
+
+/** Zhang–Suen thinning of a binary image (0/1), in place. */
+void thin(cv::Mat& img) {
+  cv::Mat marker = cv::Mat::zeros(img.size(), CV_8U);
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (int pass = 0; pass < 2; ++pass) {
+      marker.setTo(0);
+      for (int y = 1; y < img.rows - 1; ++y) {
+        for (int x = 1; x < img.cols - 1; ++x) {
+          if (img.at<std::uint8_t>(y, x) == 0) {
+            continue;
+          }
+          const int p2 = img.at<std::uint8_t>(y - 1, x);
+          const int p3 = img.at<std::uint8_t>(y - 1, x + 1);
+          const int p4 = img.at<std::uint8_t>(y, x + 1);
+          const int p5 = img.at<std::uint8_t>(y + 1, x + 1);
+          const int p6 = img.at<std::uint8_t>(y + 1, x);
+          const int p7 = img.at<std::uint8_t>(y + 1, x - 1);
+          const int p8 = img.at<std::uint8_t>(y, x - 1);
+          const int p9 = img.at<std::uint8_t>(y - 1, x - 1);
+          const int b = p2 + p3 + p4 + p5 + p6 + p7 + p8 + p9;
+          const int a = (p2 == 0 && p3 == 1) + (p3 == 0 && p4 == 1) + (p4 == 0 && p5 == 1) +
+                        (p5 == 0 && p6 == 1) + (p6 == 0 && p7 == 1) + (p7 == 0 && p8 == 1) +
+                        (p8 == 0 && p9 == 1) + (p9 == 0 && p2 == 1);
+          const bool c =
+              pass == 0 ? (p2 * p4 * p6 == 0 && p4 * p6 * p8 == 0) : (p2 * p4 * p8 == 0 && p2 * p6 * p8 == 0);
+          if (b >= 2 && b <= 6 && a == 1 && c) {
+            marker.at<std::uint8_t>(y, x) = 1;
+          }
+        }
+      }
+      if (cv::countNonZero(marker) > 0) {
+        changed = true;
+        img &= ~marker;
+      }
+    }
+  }
+}
+
+/**
+ * The medial axis of a blade region from the pixel nearest `base` to the pixel nearest `tip`: Zhang–Suen
+ * thinning, then the shortest 8-connected path on the skeleton between the two. Widths are twice the distance
+ * to the region's border. Returns false when the skeleton does not connect them.
+ */
+bool medialAxis(const cv::Mat& region, const glm::vec2& base, const glm::vec2& tip,
+                std::vector<glm::vec2>& line, std::vector<float>& widths) {
+  cv::Mat skel;
+  region.convertTo(skel, CV_8U, 1.0 / 255.0);
+  cv::Mat dist;
+  cv::distanceTransform(region, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  thin(skel);
+  std::vector<cv::Point> pts;
+  cv::findNonZero(skel, pts);
+  if (pts.size() < 2) {
+    return false;
+  }
+  auto nearest = [&](const glm::vec2& p) {
+    std::size_t best = 0;
+    float bestD = std::numeric_limits<float>::max();
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const float d = glm::length(glm::vec2(pts[i].x, pts[i].y) - p);
+      if (d < bestD) {
+        bestD = d;
+        best = i;
+      }
+    }
+    return pts[best];
+  };
+  const cv::Point start = nearest(base);
+  const cv::Point goal = nearest(tip);
+  cv::Mat prev(skel.size(), CV_32S, cv::Scalar(-1));
+  std::deque<cv::Point> queue{start};
+  prev.at<int>(start) = start.y * skel.cols + start.x;
+  while (!queue.empty()) {
+    const cv::Point p = queue.front();
+    queue.pop_front();
+    if (p == goal) {
+      break;
+    }
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const cv::Point q(p.x + dx, p.y + dy);
+        if ((dx == 0 && dy == 0) || q.x < 0 || q.y < 0 || q.x >= skel.cols || q.y >= skel.rows ||
+            skel.at<std::uint8_t>(q) == 0 || prev.at<int>(q) >= 0) {
+          continue;
+        }
+        prev.at<int>(q) = p.y * skel.cols + p.x;
+        queue.push_back(q);
+      }
+    }
+  }
+  if (prev.at<int>(goal) < 0) {
+    return false;
+  }
+  line.clear();
+  widths.clear();
+  for (cv::Point p = goal;;) {
+    line.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
+    // Twice the distance from a pixel centre to the nearest outside pixel centre is the width plus one pixel.
+    widths.push_back(std::max(2.0f * dist.at<float>(p) - 1.0f, 0.0f));
+    const int code = prev.at<int>(p);
+    const cv::Point q(code % skel.cols, code / skel.cols);
+    if (q == p) {
+      break;
+    }
+    p = q;
+  }
+  std::reverse(line.begin(), line.end());
+  std::reverse(widths.begin(), widths.end());
+  // Close the ends: from the base point and out to the tip.
+  line.insert(line.begin(), base);
+  widths.insert(widths.begin(), widths.front());
+  line.push_back(tip);
+  widths.push_back(0.0f);
+  return line.size() >= 2;
+}
+
+struct Context {
+  const DepthFrame& frame;
+  const ExtractOptions& options;
+  ExtractResult& result;
+  cv::Mat depth; ///< CV_32F metres, possibly colour-refined
+  cv::Mat mask;  ///< CV_8U 0/255
+};
+
+/**
+ * Colour-guided refinement: pixels in a band around the depth mask's edge (and dropouts inside it) are
+ * reclassified by colour, comparing each with the mean colours of sure foreground and sure background in a
+ * local window (a joint-bilateral decision), so the silhouette follows the colour edge where depth is noisy
+ * or missing; reclassified foreground pixels take the median depth of their sure neighbours.
+ */
+void refineWithColour(Context& c) {
+  const Image& colour = c.frame.colour;
+  const int w = c.mask.cols;
+  const int h = c.mask.rows;
+  cv::Mat rgb(h, w, CV_32FC3);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      rgb.at<cv::Vec3f>(y, x) = {colour.get(x, y, 0), colour.get(x, y, 1), colour.get(x, y, 2)};
+    }
+  }
+  const int band = 2;
+  const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * band + 1, 2 * band + 1});
+  cv::Mat sureFg;
+  cv::Mat sureBg;
+  cv::erode(c.mask, sureFg, kernel);
+  cv::dilate(c.mask, sureBg, kernel);
+  sureBg = 255 - sureBg;
+  // Window sums of colour over sure foreground and sure background (box filters of masked colour).
+  const int win = 2 * band + 3;
+  cv::Mat fgF;
+  cv::Mat bgF;
+  sureFg.convertTo(fgF, CV_32F, 1.0 / 255.0);
+  sureBg.convertTo(bgF, CV_32F, 1.0 / 255.0);
+  cv::Mat fgCol;
+  cv::Mat bgCol;
+  cv::Mat fgCount;
+  cv::Mat bgCount;
+  cv::Mat fg3;
+  cv::Mat bg3;
+  cv::merge(std::vector<cv::Mat>{fgF, fgF, fgF}, fg3);
+  cv::merge(std::vector<cv::Mat>{bgF, bgF, bgF}, bg3);
+  cv::boxFilter(rgb.mul(fg3), fgCol, -1, {win, win}, {-1, -1}, false);
+  cv::boxFilter(rgb.mul(bg3), bgCol, -1, {win, win}, {-1, -1}, false);
+  cv::boxFilter(fgF, fgCount, -1, {win, win}, {-1, -1}, false);
+  cv::boxFilter(bgF, bgCount, -1, {win, win}, {-1, -1}, false);
+  cv::Mat refined = c.mask.clone();
+  cv::Mat depth = c.depth.clone();
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (sureFg.at<std::uint8_t>(y, x) || sureBg.at<std::uint8_t>(y, x)) {
+        continue;
+      }
+      const float nf = fgCount.at<float>(y, x);
+      const float nb = bgCount.at<float>(y, x);
+      if (nf < 1.0f || nb < 1.0f) {
+        continue;
+      }
+      const cv::Vec3f p = rgb.at<cv::Vec3f>(y, x);
+      const cv::Vec3f mf = fgCol.at<cv::Vec3f>(y, x) / nf;
+      const cv::Vec3f mb = bgCol.at<cv::Vec3f>(y, x) / nb;
+      const bool fg = cv::norm(p - mf) < cv::norm(p - mb);
+      refined.at<std::uint8_t>(y, x) = fg ? 255 : 0;
+      if (fg && (depth.at<float>(y, x) <= 0.0f || c.mask.at<std::uint8_t>(y, x) == 0)) {
+        // Median depth of sure-foreground neighbours.
+        std::vector<float> near;
+        for (int dy = -band - 1; dy <= band + 1; ++dy) {
+          for (int dx = -band - 1; dx <= band + 1; ++dx) {
+            const int xx = x + dx;
+            const int yy = y + dy;
+            if (xx >= 0 && yy >= 0 && xx < w && yy < h && sureFg.at<std::uint8_t>(yy, xx) &&
+                c.depth.at<float>(yy, xx) > 0.0f) {
+              near.push_back(c.depth.at<float>(yy, xx));
+            }
+          }
+        }
+        if (!near.empty()) {
+          std::nth_element(near.begin(), near.begin() + near.size() / 2, near.end());
+          depth.at<float>(y, x) = near[near.size() / 2];
+        }
+      }
+    }
+  }
+  c.mask = refined;
+  c.depth = depth;
+  c.result.colourRefined = true;
+}
+
+/** Canny on depth: Sobel gradients of depth in millimetres, hysteresis in Sobel units of the metre
+ * thresholds. */
+cv::Mat cannyMask(Context& c, const cv::Mat& rangeMask) {
+  const ExtractOptions& o = c.options;
+  cv::Mat mm(c.depth.size(), CV_16S);
+  const float farFill = c.result.farMetres * 1.5f;
+  for (int y = 0; y < mm.rows; ++y) {
+    for (int x = 0; x < mm.cols; ++x) {
+      float z = c.depth.at<float>(y, x);
+      z = z > 0.0f ? z : farFill;
+      mm.at<std::int16_t>(y, x) = static_cast<std::int16_t>(std::clamp(z * 1000.0f, 0.0f, 32000.0f));
+    }
+  }
+  cv::Mat dx;
+  cv::Mat dy;
+  cv::Sobel(mm, dx, CV_16S, 1, 0, 3);
+  cv::Sobel(mm, dy, CV_16S, 0, 1, 3);
+  // A depth step of h mm between neighbours gives a 3×3 Sobel response of about 4h.
+  cv::Mat edges;
+  cv::Canny(dx, dy, edges, o.cannyLowMetres * 4000.0, o.cannyHighMetres * 4000.0, true);
+  c.result.edges.assign(edges.datastart, edges.dataend);
+  // Regions enclosed by depth edges (closed over one-pixel gaps) whose depth lies mostly in range, plus their
+  // edge pixels.
+  cv::Mat closedEdges;
+  cv::dilate(edges, closedEdges, cv::Mat());
+  cv::Mat regions = 255 - closedEdges;
+  cv::Mat labels;
+  const int count = cv::connectedComponents(regions, labels, 4, CV_32S);
+  std::vector<int> inRange(count, 0);
+  std::vector<int> total(count, 0);
+  for (int y = 0; y < labels.rows; ++y) {
+    for (int x = 0; x < labels.cols; ++x) {
+      const int l = labels.at<int>(y, x);
+      if (l > 0) {
+        ++total[l];
+        inRange[l] += rangeMask.at<std::uint8_t>(y, x) ? 1 : 0;
+      }
+    }
+  }
+  cv::Mat out = cv::Mat::zeros(c.depth.size(), CV_8U);
+  for (int y = 0; y < labels.rows; ++y) {
+    for (int x = 0; x < labels.cols; ++x) {
+      const int l = labels.at<int>(y, x);
+      if (l > 0 && 2 * inRange[l] > total[l]) {
+        out.at<std::uint8_t>(y, x) = 255;
+      }
+    }
+  }
+  // The edge ring belongs to the region it encloses where depth is in range.
+  cv::Mat grown;
+  cv::dilate(out, grown, cv::Mat(), {-1, -1}, 2);
+  out |= grown & closedEdges & rangeMask;
+  return out;
+}
+
+/** Fills holes smaller than maxArea pixels. */
+void fillHoles(cv::Mat& mask, int maxArea) {
+  if (maxArea <= 0) {
+    return;
+  }
+  std::vector<std::vector<cv::Point>> contours;
+  std::vector<cv::Vec4i> hierarchy;
+  cv::findContours(mask.clone(), contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
+  for (std::size_t i = 0; i < contours.size(); ++i) {
+    if (hierarchy[i][3] >= 0 && cv::contourArea(contours[i]) <= maxArea) {
+      cv::drawContours(mask, contours, static_cast<int>(i), cv::Scalar(255), cv::FILLED);
+    }
+  }
+}
+
+void buildMask(Context& c) {
+  const DepthFrame& f = c.frame;
+  const ExtractOptions& o = c.options;
+  c.depth = cv::Mat(f.height, f.width, CV_32F, const_cast<float*>(f.depth.data())).clone();
+  const bool wholeFrame = o.roi == std::array<int, 4>{0, 0, 0, 0};
+  const int x0 = wholeFrame ? 0 : std::min(o.roi[0], f.width);
+  const int y0 = wholeFrame ? 0 : std::min(o.roi[1], f.height);
+  const int x1 = wholeFrame ? f.width : std::min(o.roi[2], f.width);
+  const int y1 = wholeFrame ? f.height : std::min(o.roi[3], f.height);
+  if (x1 - x0 < 2 || y1 - y0 < 2) {
+    fail("--roi: region {},{},{},{} is empty within the {}x{} frame", o.roi[0], o.roi[1], o.roi[2], o.roi[3],
+         f.width, f.height);
+  }
+  std::vector<float> valid;
+  valid.reserve(static_cast<std::size_t>(x1 - x0) * (y1 - y0));
+  float lo = std::numeric_limits<float>::max();
+  float hi = 0.0f;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const float z = c.depth.at<float>(y, x);
+      if (z > 0.0f && std::isfinite(z)) {
+        valid.push_back(z);
+        lo = std::min(lo, z);
+        hi = std::max(hi, z);
+      }
+    }
+  }
+  c.mask = cv::Mat::zeros(f.height, f.width, CV_8U);
+  if (valid.empty()) {
+    c.result.warnings.push_back(f.label() + ": no valid depth pixel in the region of interest");
+    return;
+  }
+  float nearM = o.nearMetres > 0.0f ? o.nearMetres : lo;
+  float farM = o.farMetres;
+  if (farM <= 0.0f) {
+    farM = otsuSplit(valid, lo, hi);
+    // One mode only (no background in view): everything valid is foreground.
+    double sumN = 0.0;
+    double sumF = 0.0;
+    std::size_t nN = 0;
+    std::size_t nF = 0;
+    for (float z : valid) {
+      if (z <= farM) {
+        sumN += z;
+        ++nN;
+      } else {
+        sumF += z;
+        ++nF;
+      }
+    }
+    if (nN == 0 || nF == 0 || (sumF / nF - sumN / nN) < 0.15 * (sumN / nN)) {
+      farM = hi;
+    }
+  }
+  c.result.nearMetres = nearM;
+  c.result.farMetres = farM;
+  cv::Mat range = cv::Mat::zeros(f.height, f.width, CV_8U);
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const float z = c.depth.at<float>(y, x);
+      range.at<std::uint8_t>(y, x) = (z >= nearM && z <= farM) ? 255 : 0;
+    }
+  }
+  c.mask = o.contour == ContourMethod::Canny ? cannyMask(c, range) : range;
+  if (o.cleanRadiusPx > 0) {
+    const int r = o.cleanRadiusPx;
+    const cv::Mat k = cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1});
+    cv::morphologyEx(c.mask, c.mask, cv::MORPH_CLOSE, k);
+  }
+  fillHoles(c.mask, o.fillHolesPx);
+  if (o.colourRefine && !f.colour.empty() && f.colour.width() == f.width && f.colour.height() == f.height &&
+      f.colour.channels() >= 3) {
+    refineWithColour(c);
+    fillHoles(c.mask, o.fillHolesPx);
+  }
+  // Nothing outside the region of interest.
+  if (!wholeFrame) {
+    cv::Mat roiMask = cv::Mat::zeros(c.mask.size(), CV_8U);
+    roiMask(cv::Rect(x0, y0, x1 - x0, y1 - y0)).setTo(255);
+    c.mask &= roiMask;
+  }
+  c.result.mask.assign(c.mask.datastart, c.mask.dataend);
+  if (cv::countNonZero(c.mask) == 0) {
+    c.result.warnings.push_back(fmt::format("{}: empty mask: no pixel in the depth range [{:.3f}, {:.3f}] m",
+                                            f.label(), nearM, farM));
+  }
+}
+
+struct CentreCandidate {
+  glm::vec2 px;
+  CentreMode mode;
+};
+
+/**
+ * The centres to try, in order of preference: the requested one, or for Auto the core (deepest point), the
+ * base (lowest point) and the centroid when it lies inside the blob. Empty (with a warning) when none is
+ * usable.
+ */
+std::vector<CentreCandidate> centreCandidates(Context& c, const cv::Mat& clusterMask,
+                                              const std::vector<cv::Point>& contour) {
+  cv::Mat dist;
+  cv::distanceTransform(clusterMask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  double maxVal = 0.0;
+  cv::Point maxLoc;
+  cv::minMaxLoc(dist, nullptr, &maxVal, nullptr, &maxLoc);
+  const cv::Moments m = cv::moments(clusterMask, true);
+  const glm::vec2 centroid = m.m00 > 0 ? glm::vec2(m.m10 / m.m00, m.m01 / m.m00) : glm::vec2(0.0f);
+  // The base: the middle of the lowest contour points.
+  int lowest = 0;
+  for (const cv::Point& p : contour) {
+    lowest = std::max(lowest, p.y);
+  }
+  glm::vec2 base(0.0f);
+  int nBase = 0;
+  for (const cv::Point& p : contour) {
+    if (p.y >= lowest - 1) {
+      base += glm::vec2(p.x, p.y);
+      ++nBase;
+    }
+  }
+  base /= static_cast<float>(std::max(nBase, 1));
+  const glm::vec2 core(static_cast<float>(maxLoc.x), static_cast<float>(maxLoc.y));
+  const std::string label = c.frame.label();
+  std::vector<CentreCandidate> out;
+  switch (c.options.centre) {
+  case CentreMode::Core:
+    out.push_back({core, CentreMode::Core});
+    break;
+  case CentreMode::Centroid:
+    out.push_back({centroid, CentreMode::Centroid});
+    break;
+  case CentreMode::Base:
+    out.push_back({base, CentreMode::Base});
+    break;
+  case CentreMode::Manual:
+    out.push_back({c.options.centrePx, CentreMode::Manual});
+    break;
+  case CentreMode::Auto:
+    if (maxVal >= 1.5) {
+      out.push_back({core, CentreMode::Core});
+    }
+    out.push_back({base, CentreMode::Base});
+    if (insideMask(clusterMask, centroid)) {
+      out.push_back({centroid, CentreMode::Centroid});
+    }
+    break;
+  }
+  if ((c.options.centre == CentreMode::Centroid || c.options.centre == CentreMode::Manual) &&
+      !insideMask(clusterMask, out.front().px)) {
+    // A centre outside the blob still defines a distance signal, but junctions then mean little.
+    c.result.warnings.push_back(fmt::format("{}: the cluster centre ({:.0f}, {:.0f}) lies outside the blob",
+                                            label, out.front().px.x, out.front().px.y));
+  }
+  return out;
+}
+
+/** Median valid depth around (u, v) within the mask, radius r; 0 when none. */
+float depthAround(const Context& c, const glm::vec2& p, int r) {
+  std::vector<float> values;
+  const int cx = static_cast<int>(std::lround(p.x));
+  const int cy = static_cast<int>(std::lround(p.y));
+  for (int dy = -r; dy <= r; ++dy) {
+    for (int dx = -r; dx <= r; ++dx) {
+      const int x = cx + dx;
+      const int y = cy + dy;
+      if (x < 0 || y < 0 || x >= c.depth.cols || y >= c.depth.rows || !c.mask.at<std::uint8_t>(y, x)) {
+        continue;
+      }
+      // Only depths in the blades' range: pixels the colour refinement added may still carry the
+      // background's.
+      const float z = c.depth.at<float>(y, x);
+      if (z > 0.0f && z >= c.result.nearMetres && z <= c.result.farMetres) {
+        values.push_back(z);
+      }
+    }
+  }
+  if (values.empty()) {
+    return 0.0f;
+  }
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+glm::vec3 srgbToLinear(const glm::vec3& c) {
+  glm::vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    out[i] = c[i] <= 0.04045f ? c[i] / 12.92f : std::pow((c[i] + 0.055f) / 1.055f, 2.4f);
+  }
+  return out;
+}
+
+/** Converts a pixel skeleton to metres: depth per knot (median around it, interpolated and smoothed). */
+void toMetres(const Context& c, CapturedBlade& blade) {
+  const std::size_t n = blade.skeletonPx.size();
+  std::vector<float> z(n, 0.0f);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int r = std::clamp(static_cast<int>(blade.widthsPx[k] * 0.25f), 1, 4);
+    z[k] = depthAround(c, blade.skeletonPx[k], r);
+  }
+  // Fill knots without depth from their nearest knots with depth.
+  int last = -1;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (z[k] > 0.0f) {
+      if (last < 0) {
+        std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(k), z[k]);
+      } else {
+        for (std::size_t j = static_cast<std::size_t>(last) + 1; j < k; ++j) {
+          const float t = static_cast<float>(j - last) / static_cast<float>(k - last);
+          z[j] = z[last] + t * (z[k] - z[last]);
+        }
+      }
+      last = static_cast<int>(k);
+    }
+  }
+  if (last < 0) {
+    z.assign(n, c.result.nearMetres > 0.0f ? c.result.nearMetres : 1.0f);
+  } else {
+    std::fill(z.begin() + last + 1, z.end(), z[static_cast<std::size_t>(last)]);
+  }
+  z = smoothOpen(z, 4.0 * static_cast<double>(n) / 128.0, false);
+  const CameraIntrinsics& k = c.frame.intrinsics;
+  blade.knots.resize(n);
+  blade.widths.resize(n);
+  blade.sides.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec2 p = blade.skeletonPx[i];
+    blade.knots[i] = glm::vec3(k.unproject(p.x, p.y, z[i]));
+    blade.widths[i] = static_cast<float>(blade.widthsPx[i] * z[i] / k.fx);
+    const glm::vec2 t = blade.skeletonPx[std::min(i + 1, n - 1)] - blade.skeletonPx[i > 0 ? i - 1 : 0];
+    const glm::vec2 side2 =
+        glm::length(t) > 0.0f ? glm::normalize(glm::vec2(-t.y, t.x)) : glm::vec2(1.0f, 0.0f);
+    const glm::vec3 a(k.unproject(p.x, p.y, z[i]));
+    const glm::vec3 b(k.unproject(p.x + side2.x, p.y + side2.y, z[i]));
+    blade.sides[i] = glm::normalize(b - a);
+  }
+  blade.lengthMetres = 0.0f;
+  for (std::size_t i = 1; i < n; ++i) {
+    blade.lengthMetres += glm::length(blade.knots[i] - blade.knots[i - 1]);
+  }
+  if (!c.frame.colour.empty() && c.frame.colour.width() == c.frame.width &&
+      c.frame.colour.height() == c.frame.height && c.frame.colour.channels() >= 3) {
+    glm::vec3 sum(0.0f);
+    int count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int x = static_cast<int>(std::lround(blade.skeletonPx[i].x));
+      const int y = static_cast<int>(std::lround(blade.skeletonPx[i].y));
+      if (x >= 0 && y >= 0 && x < c.frame.width && y < c.frame.height && c.mask.at<std::uint8_t>(y, x)) {
+        sum += srgbToLinear(
+            {c.frame.colour.get(x, y, 0), c.frame.colour.get(x, y, 1), c.frame.colour.get(x, y, 2)});
+        ++count;
+      }
+    }
+    if (count > 0) {
+      blade.hasColour = true;
+      blade.colour = sum / static_cast<float>(count);
+    }
+  }
+}
+
+/** Builds one blade from the contour segment [a, b] (indices, circular, a before b) around its tip. */
+bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, int a, int b,
+                int clusterIndex, std::vector<CapturedBlade>& out, std::string& reason) {
+  const ExtractOptions& o = c.options;
+  const int n = static_cast<int>(cluster.contour.size());
+  const int len = ((b - a) % n + n) % n;
+  if (len < 4) {
+    reason = "too few contour points";
+    return false;
+  }
+  // Tip: the farthest point of the smoothed signal within the segment.
+  int tipOffset = 0;
+  float tipValue = -1.0f;
+  for (int k = 0; k <= len; ++k) {
+    const float v = cluster.smoothed[(a + k) % n];
+    if (v > tipValue) {
+      tipValue = v;
+      tipOffset = k;
+    }
+  }
+  const float ra = cluster.smoothed[a];
+  const float rb = cluster.smoothed[b % n];
+  const float level = std::max(ra, rb);
+  const float height = tipValue - level;
+  if (height < o.minBladeLengthPx) {
+    reason = fmt::format("too short ({:.0f} px beyond its junctions)", height);
+    return false;
+  }
+  CapturedBlade blade;
+  blade.cluster = clusterIndex;
+  for (int k = 0; k <= len; ++k) {
+    blade.outline.push_back(cluster.contour[(a + k) % n]);
+  }
+  blade.tip = tipOffset;
+  // Sides from their junction towards the tip, trimmed to the level of the higher junction.
+  std::vector<glm::vec2> left;
+  std::vector<glm::vec2> right;
+  bool started = false;
+  for (int k = 0; k <= tipOffset; ++k) {
+    const int i = (a + k) % n;
+    if (!started && cluster.smoothed[i] < level && k < tipOffset) {
+      continue;
+    }
+    started = true;
+    left.push_back(cluster.contour[i]);
+  }
+  started = false;
+  for (int k = len; k >= tipOffset; --k) {
+    const int i = (a + k) % n;
+    if (!started && cluster.smoothed[i] < level && k > tipOffset) {
+      continue;
+    }
+    started = true;
+    right.push_back(cluster.contour[i]);
+  }
+  const float leftLen = polylineLength(left);
+  const float rightLen = polylineLength(right);
+  blade.sideRatio = std::max(leftLen, rightLen) / std::max(std::min(leftLen, rightLen), 1e-3f);
+  // Symmetric matching: equal fractions of arc length from the junction level to the tip.
+  // Arc length along a pixel staircase grows with its jaggedness, which differs between the sides: smooth
+  // them first so equal fractions of arc length face each other.
+  const std::vector<glm::vec2> ls = resample(smoothOpen(left, 2.0, true), kMatchSamples);
+  const std::vector<glm::vec2> rs = resample(smoothOpen(right, 2.0, true), kMatchSamples);
+  std::vector<glm::vec2> line(kMatchSamples);
+  std::vector<float> widths(kMatchSamples);
+  int outside = 0;
+  for (int k = 0; k < kMatchSamples; ++k) {
+    line[k] = 0.5f * (ls[k] + rs[k]);
+    if (k > 2 && k < kMatchSamples - 3 && !insideMask(clusterMask, line[k])) {
+      ++outside;
+    }
+  }
+  // Width: the matched pair's separation across the skeleton (a pair matched a little obliquely must not
+  // widen the blade), plus one pixel because the contour runs through boundary pixel centres, half a pixel
+  // inside the edge on either side.
+  const std::vector<glm::vec2> smoothLine = smoothOpen(line, 4.0, true);
+  for (int k = 0; k < kMatchSamples; ++k) {
+    const glm::vec2 t = smoothLine[std::min(k + 2, kMatchSamples - 1)] - smoothLine[std::max(k - 2, 0)];
+    const glm::vec2 d = ls[k] - rs[k];
+    const float across =
+        glm::length(t) > 0.0f ? std::abs(t.x * d.y - t.y * d.x) / glm::length(t) : glm::length(d);
+    widths[k] = across + 1.0f;
+  }
+  // The matched pair at the tip is the same point; nudge the tip width to 0 exactly.
+  widths.back() = 0.0f;
+  float maxWidth = *std::max_element(widths.begin(), widths.end());
+  // Oblique pairs (a pair's chord far from the skeleton's normal) mean the sides do not mirror each other.
+  // The offset along the skeleton is compared with the chord, above a floor of a few pixels of contour noise.
+  float offsetSum = 0.0f;
+  float chordSum = 0.0f;
+  for (int k = 2; k < kMatchSamples - 2; ++k) {
+    const glm::vec2 t = smoothLine[k + 2] - smoothLine[k - 2];
+    const glm::vec2 d = ls[k] - rs[k];
+    if (glm::length(t) > 0.0f) {
+      offsetSum += std::abs(glm::dot(glm::normalize(t), d));
+      chordSum += glm::length(d);
+    }
+  }
+  blade.obliqueness = chordSum > 0.0f ? offsetSum / chordSum : 0.0f;
+  const float meanOffset = offsetSum / static_cast<float>(kMatchSamples - 4);
+  const float meanChord = chordSum / static_cast<float>(kMatchSamples - 4);
+  const bool oblique =
+      meanOffset > std::max(kOffsetNoisePx, static_cast<float>(o.maxObliqueness) * meanChord);
+  const bool symmetric = blade.sideRatio <= o.symmetryRatio && outside <= kMatchSamples / 20 && !oblique;
+  if (!symmetric) {
+    // Medial axis of the blade region (outline closed across its base).
+    cv::Mat region = cv::Mat::zeros(clusterMask.size(), CV_8U);
+    std::vector<cv::Point> poly;
+    for (const glm::vec2& p : left) {
+      poly.emplace_back(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+    }
+    for (auto it = right.rbegin(); it != right.rend(); ++it) {
+      poly.emplace_back(static_cast<int>(std::lround(it->x)), static_cast<int>(std::lround(it->y)));
+    }
+    cv::fillPoly(region, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(255));
+    region &= clusterMask;
+    std::vector<glm::vec2> axis;
+    std::vector<float> axisWidths;
+    const glm::vec2 basePoint = 0.5f * (left.front() + right.front());
+    if (medialAxis(region, basePoint, cluster.contour[(a + tipOffset) % n], axis, axisWidths) &&
+        axis.size() >= 3) {
+      line = smoothOpen(resample(axis, kMatchSamples, &axisWidths, &widths), 2.0, true);
+      // Widths across the smoothed axis: the distance between the two places where a scan along the normal
+      // leaves the region (nearest-pixel classification puts them on the edges, unbiased).
+      for (int k = 0; k < kMatchSamples; ++k) {
+        const glm::vec2 t = line[std::min(k + 2, kMatchSamples - 1)] - line[std::max(k - 2, 0)];
+        if (glm::length(t) <= 0.0f) {
+          continue;
+        }
+        const glm::vec2 normal = glm::normalize(glm::vec2(-t.y, t.x));
+        float across = 0.0f;
+        for (const float sign : {-1.0f, 1.0f}) {
+          float d = 0.0f;
+          while (d < 200.0f && insideMask(region, line[k] + normal * (sign * (d + 0.25f)))) {
+            d += 0.25f;
+          }
+          across += d + 0.125f;
+        }
+        widths[k] = across;
+      }
+      widths.back() = 0.0f;
+      blade.medialAxis = true;
+      maxWidth = *std::max_element(widths.begin(), widths.end());
+    }
+  }
+  const float lengthPx = polylineLength(line);
+  if (lengthPx < o.minElongation * std::max(maxWidth, 1.0f)) {
+    reason = fmt::format("not elongated ({:.0f} px long, {:.0f} px wide)", lengthPx, maxWidth);
+    return false;
+  }
+  // Smooth, extend to the centre, resample to the knot count.
+  const double sigma = o.skeletonSmoothKnots * kMatchSamples / 128.0;
+  line = smoothOpen(line, sigma, true);
+  widths = smoothOpen(widths, sigma, false);
+  widths.back() = 0.0f;
+  float extension = 0.0f;
+  if (o.extendToCentre) {
+    const glm::vec2 base = line.front();
+    const float d = glm::length(base - cluster.centre);
+    if (d > 2.0f && insideMask(clusterMask, 0.5f * (base + cluster.centre))) {
+      const int steps = std::max(2, static_cast<int>(d / 2.0f));
+      // Where blades overlap the width cannot be measured; continue the trend of the blade's first captured
+      // fifth (leaves that widen from a stalk narrow towards the root), within a quarter to all of its base
+      // width.
+      const std::size_t probe = std::max<std::size_t>(2, line.size() / 5);
+      const float run =
+          std::max(polylineLength(std::vector<glm::vec2>(line.begin(), line.begin() + probe)), 1.0f);
+      const float slope = (widths[probe - 1] - widths.front()) / run;
+      const float w0 = widths.front();
+      std::vector<glm::vec2> ext;
+      std::vector<float> extW;
+      for (int s = 0; s < steps; ++s) {
+        const float t = static_cast<float>(s) / static_cast<float>(steps);
+        ext.push_back(cluster.centre + t * (base - cluster.centre));
+        extW.push_back(std::clamp(w0 - slope * (1.0f - t) * d, 0.25f * w0, w0));
+      }
+      line.insert(line.begin(), ext.begin(), ext.end());
+      widths.insert(widths.begin(), extW.begin(), extW.end());
+      extension = d;
+    }
+  }
+  blade.skeletonPx = resample(line, o.knots, &widths, &blade.widthsPx);
+  blade.lengthPx = polylineLength(blade.skeletonPx);
+  blade.extensionPx = extension;
+  for (const glm::vec2& p : blade.outline) {
+    if (c.options.roi != std::array<int, 4>{0, 0, 0, 0}) {
+      if (p.x <= c.options.roi[0] + 1 || p.y <= c.options.roi[1] + 1 || p.x >= c.options.roi[2] - 2 ||
+          p.y >= c.options.roi[3] - 2) {
+        blade.touchesBorder = true;
+      }
+    }
+    if (p.x <= 0.0f || p.y <= 0.0f || p.x >= c.frame.width - 1 || p.y >= c.frame.height - 1) {
+      blade.touchesBorder = true;
+    }
+  }
+  toMetres(c, blade);
+  out.push_back(std::move(blade));
+  return true;
+}
+
+/** A cluster partitioned around one centre: the cluster's signal and junctions, its blades, its warnings. */
+struct Partition {
+  Cluster cluster;
+  std::vector<CapturedBlade> blades;
+  std::vector<std::string> warnings;
+  /** How well the blades explain the cluster's silhouette: IoU of their rasterisation with the cluster mask.
+   */
+  double coverage = 0.0;
+};
+
+Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const cv::Mat& clusterMask,
+                    const CentreCandidate& centre, int clusterIndex) {
+  Partition out;
+  Cluster& cluster = out.cluster;
+  cluster.areaPx = cv::countNonZero(clusterMask);
+  cluster.centre = centre.px;
+  cluster.centreMode = centre.mode;
+  // OpenCV traces outer contours clockwise on screen (y down); that order is kept.
+  cluster.contour.reserve(contourPts.size());
+  for (const cv::Point& p : contourPts) {
+    cluster.contour.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
+  }
+  const int n = static_cast<int>(cluster.contour.size());
+  cluster.signal.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    cluster.signal[i] = glm::length(cluster.contour[i] - cluster.centre);
+  }
+  cluster.smoothed = smoothCircular(cluster.signal, c.options.smoothSigmaPx);
+  const float maxR = *std::max_element(cluster.smoothed.begin(), cluster.smoothed.end());
+  std::vector<float> prominence;
+  std::vector<int> minima =
+      prominentMinima(cluster.smoothed, static_cast<float>(c.options.prominence) * maxR, prominence);
+  for (std::size_t j = 0; j < minima.size(); ++j) {
+    Junction junction;
+    junction.index = minima[j];
+    junction.px = cluster.contour[minima[j]];
+    junction.distancePx = cluster.smoothed[minima[j]];
+    junction.prominence = prominence[j] / std::max(maxR, 1e-3f);
+    cluster.junctions.push_back(junction);
+  }
+  const std::string label = c.frame.label();
+  if (cluster.junctions.empty()) {
+    out.warnings.push_back(
+        fmt::format("{}: cluster at ({:.0f}, {:.0f}) has no junction: its distance signal has "
+                    "no minimum of prominence ≥ {}",
+                    label, cluster.centre.x, cluster.centre.y, c.options.prominence));
+    return out;
+  }
+  const std::size_t jn = cluster.junctions.size();
+  for (std::size_t j = 0; j < jn; ++j) {
+    const int a = cluster.junctions[j].index;
+    // One junction: the whole contour from it round to just before it is one blade.
+    const int b = jn == 1 ? (a + n - 1) % n : cluster.junctions[(j + 1) % jn].index;
+    std::string reason;
+    if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason)) {
+      cluster.blades.push_back(static_cast<int>(out.blades.size() - 1));
+    } else {
+      cluster.rejected.push_back(fmt::format("contour {}–{}: {}", a, b, reason));
+    }
+  }
+  if (out.blades.empty()) {
+    out.warnings.push_back(fmt::format("{}: cluster at ({:.0f}, {:.0f}): no segment is a blade ({})", label,
+                                       cluster.centre.x, cluster.centre.y,
+                                       cluster.rejected.empty() ? "none" : cluster.rejected.front()));
+  }
+  return out;
+}
+
+void processCluster(Context& c, const std::vector<cv::Point>& contourPts, int clusterIndex) {
+  cv::Mat clusterMask = cv::Mat::zeros(c.mask.size(), CV_8U);
+  cv::drawContours(clusterMask, std::vector<std::vector<cv::Point>>{contourPts}, 0, cv::Scalar(255),
+                   cv::FILLED);
+  clusterMask &= c.mask;
+  const std::vector<CentreCandidate> candidates = centreCandidates(c, clusterMask, contourPts);
+  std::optional<Partition> best;
+  for (const CentreCandidate& candidate : candidates) {
+    Partition p = partition(c, contourPts, clusterMask, candidate, clusterIndex);
+    if (candidates.size() > 1) {
+      // Auto: the centre whose blades reproduce the silhouette best wins (false splits and missed junctions
+      // both cost overlap).
+      const std::vector<std::uint8_t> raster = rasteriseBlades(p.blades, clusterMask.cols, clusterMask.rows);
+      std::size_t inter = 0;
+      std::size_t uni = 0;
+      for (std::size_t i = 0; i < raster.size(); ++i) {
+        const bool a = raster[i] != 0;
+        const bool b = clusterMask.data[i] != 0;
+        inter += (a && b) ? 1 : 0;
+        uni += (a || b) ? 1 : 0;
+      }
+      p.coverage = uni > 0 ? static_cast<double>(inter) / static_cast<double>(uni) : 0.0;
+    }
+    if (!best || p.coverage > best->coverage + 1e-4) {
+      best = std::move(p);
+    }
+  }
+  if (!best || best->blades.empty()) {
+    const cv::Moments m = cv::moments(clusterMask, true);
+    const glm::vec2 at = m.m00 > 0 ? glm::vec2(m.m10 / m.m00, m.m01 / m.m00) : glm::vec2(0.0f);
+    c.result.warnings.push_back(
+        fmt::format("{}: cluster at ({:.0f}, {:.0f}) has no usable centre: no centre tried "
+                    "({}) splits it into blades",
+                    c.frame.label(), at.x, at.y, candidates.size()));
+    if (best) {
+      c.result.warnings.insert(c.result.warnings.end(), best->warnings.begin(), best->warnings.end());
+      c.result.clusters.push_back(std::move(best->cluster));
+    }
+    return;
+  }
+  Partition& p = *best;
+  const int offset = static_cast<int>(c.result.blades.size());
+  for (int& index : p.cluster.blades) {
+    index += offset;
+  }
+  for (CapturedBlade& blade : p.blades) {
+    c.result.blades.push_back(std::move(blade));
+  }
+  c.result.warnings.insert(c.result.warnings.end(), p.warnings.begin(), p.warnings.end());
+  c.result.clusters.push_back(std::move(p.cluster));
+}
+
+} // namespace
+
+ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& options) {
+  validate(options);
+  if (frame.width <= 0 || frame.height <= 0 ||
+      frame.depth.size() != static_cast<std::size_t>(frame.width) * frame.height) {
+    fail("{}: empty depth frame", frame.label());
+  }
+  ExtractResult result;
+  result.width = frame.width;
+  result.height = frame.height;
+  Context c{frame, options, result, {}, {}};
+  buildMask(c);
+  if (cv::countNonZero(c.mask) == 0) {
+    return result;
+  }
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(c.mask.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  // Largest clusters first, so blade order is stable and meaningful.
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t i = 0; i < contours.size(); ++i) {
+    const double area = cv::contourArea(contours[i]);
+    if (area >= options.minClusterAreaPx && contours[i].size() >= 8) {
+      order.emplace_back(-area, i);
+    }
+  }
+  std::sort(order.begin(), order.end());
+  if (order.empty()) {
+    result.warnings.push_back(fmt::format("{}: no contour: no blob of at least {} pixels in the mask",
+                                          frame.label(), options.minClusterAreaPx));
+    return result;
+  }
+  for (const auto& [area, i] : order) {
+    processCluster(c, contours[i], static_cast<int>(result.clusters.size()));
+  }
+  return result;
+}
+
+std::vector<std::uint8_t> rasteriseBlades(const std::vector<CapturedBlade>& blades, int width, int height) {
+  cv::Mat mask = cv::Mat::zeros(height, width, CV_8U);
+  for (const CapturedBlade& blade : blades) {
+    const std::size_t n = blade.skeletonPx.size();
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      const glm::vec2 a = blade.skeletonPx[k];
+      const glm::vec2 b = blade.skeletonPx[k + 1];
+      const glm::vec2 t = b - a;
+      if (glm::length(t) <= 0.0f) {
+        continue;
+      }
+      const glm::vec2 s = glm::normalize(glm::vec2(-t.y, t.x));
+      const float wa = 0.5f * blade.widthsPx[k];
+      const float wb = 0.5f * blade.widthsPx[k + 1];
+      // Pixels whose centre lies inside the quad (the sampling the truth and the sensor use).
+      const glm::vec2 quad[4] = {a + s * wa, b + s * wb, b - s * wb, a - s * wa};
+      const int x0 =
+          std::max(0, static_cast<int>(std::floor(std::min({quad[0].x, quad[1].x, quad[2].x, quad[3].x}))));
+      const int x1 = std::min(
+          width - 1, static_cast<int>(std::ceil(std::max({quad[0].x, quad[1].x, quad[2].x, quad[3].x}))));
+      const int y0 =
+          std::max(0, static_cast<int>(std::floor(std::min({quad[0].y, quad[1].y, quad[2].y, quad[3].y}))));
+      const int y1 = std::min(
+          height - 1, static_cast<int>(std::ceil(std::max({quad[0].y, quad[1].y, quad[2].y, quad[3].y}))));
+      for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+          const glm::vec2 p(static_cast<float>(x), static_cast<float>(y));
+          int positive = 0;
+          int negative = 0;
+          for (int e = 0; e < 4; ++e) {
+            const glm::vec2 u = quad[(e + 1) % 4] - quad[e];
+            const glm::vec2 v = p - quad[e];
+            const float cross = u.x * v.y - u.y * v.x;
+            positive += cross >= 0.0f ? 1 : 0;
+            negative += cross <= 0.0f ? 1 : 0;
+          }
+          if (positive == 4 || negative == 4) {
+            mask.at<std::uint8_t>(y, x) = 255;
+          }
+        }
+      }
+    }
+  }
+  return {mask.datastart, mask.dataend};
+}
+
+} // namespace sylva::capture

@@ -1,0 +1,177 @@
+#include <sylva/capture/Pipeline.hpp>
+
+#include <sylva/core/Error.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sylva::capture {
+namespace {
+
+/** Camera space (x right, y down, z forward) to blade space (+Y up, +Z towards the camera), as a direction.
+ */
+glm::vec3 toBladeDirection(const glm::vec3& v) {
+  return {v.x, -v.y, -v.z};
+}
+
+} // namespace
+
+std::vector<TrackedBlade> trackBlades(const std::vector<ExtractResult>& results, float maxTipJumpPx) {
+  std::vector<TrackedBlade> tracks;
+  if (results.empty()) {
+    return tracks;
+  }
+  std::vector<glm::vec2> lastTip;
+  for (const CapturedBlade& blade : results[0].blades) {
+    TrackedBlade t;
+    t.reference = blade;
+    t.motion.push_back(blade.knots);
+    tracks.push_back(std::move(t));
+    lastTip.push_back(blade.skeletonPx.empty() ? glm::vec2(0.0f) : blade.skeletonPx.back());
+  }
+  for (std::size_t f = 1; f < results.size(); ++f) {
+    const std::vector<CapturedBlade>& blades = results[f].blades;
+    std::vector<bool> used(blades.size(), false);
+    // Nearest pairs first, so two tracks never fight over one blade in a greedy order that depends on
+    // indices.
+    struct Pair {
+      float d;
+      std::size_t track;
+      std::size_t blade;
+    };
+    std::vector<Pair> pairs;
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      for (std::size_t b = 0; b < blades.size(); ++b) {
+        if (blades[b].knots.size() != tracks[t].reference.knots.size() || blades[b].skeletonPx.empty()) {
+          continue;
+        }
+        const float d = glm::length(blades[b].skeletonPx.back() - lastTip[t]);
+        if (d <= maxTipJumpPx) {
+          pairs.push_back({d, t, b});
+        }
+      }
+    }
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+      return a.d < b.d || (a.d == b.d && (a.track < b.track || (a.track == b.track && a.blade < b.blade)));
+    });
+    std::vector<bool> done(tracks.size(), false);
+    for (const Pair& p : pairs) {
+      if (done[p.track] || used[p.blade]) {
+        continue;
+      }
+      done[p.track] = used[p.blade] = true;
+      tracks[p.track].motion.push_back(blades[p.blade].knots);
+      lastTip[p.track] = blades[p.blade].skeletonPx.back();
+    }
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      if (!done[t]) {
+        tracks[t].motion.push_back(tracks[t].motion.back());
+        ++tracks[t].missingFrames;
+      }
+    }
+  }
+  return tracks;
+}
+
+BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion, const ModelOptions& options,
+                          BladeSource source) {
+  const std::size_t n = blade.knots.size();
+  if (n < 2 || blade.widths.size() != n || blade.sides.size() != n) {
+    fail("blade model: the captured blade has {} knots, {} widths and {} sides", n, blade.widths.size(),
+         blade.sides.size());
+  }
+  if (options.levels.empty()) {
+    fail("--levels: give at least one knot count");
+  }
+  for (std::size_t i = 0; i < options.levels.size(); ++i) {
+    const int l = options.levels[i];
+    if (l < 2 || static_cast<std::size_t>(l) > n) {
+      fail("--levels: {} knots outside 2..{} (the captured knot count)", l, n);
+    }
+    if (i > 0 && l >= options.levels[i - 1]) {
+      fail("--levels: counts must decrease strictly, got {} after {}", l, options.levels[i - 1]);
+    }
+  }
+  KnotFrames frames;
+  if (!motion.empty()) {
+    frames = motion;
+  } else {
+    frames.push_back(blade.knots);
+    if (options.simulateSway) {
+      glm::vec3 axis(0.0f);
+      for (const glm::vec3& s : blade.sides) {
+        axis += s;
+      }
+      axis = glm::length(axis) > 0.0f ? glm::normalize(axis) : glm::vec3(1.0f, 0.0f, 0.0f);
+      // Bending about the width direction moves the blade towards and away from the camera: the way a blade
+      // bends most easily.
+      const KnotFrames sway = swayFrames(blade.knots, axis, options.sway);
+      frames.insert(frames.end(), sway.begin(), sway.end());
+    }
+  }
+  for (const auto& f : frames) {
+    if (f.size() != n) {
+      fail("blade model: a motion frame has {} knots, the blade {}", f.size(), n);
+    }
+  }
+
+  BladeModel model;
+  model.hasColour = blade.hasColour;
+  model.colour = blade.colour;
+  glm::vec3 axis(0.0f);
+  for (const glm::vec3& s : blade.sides) {
+    axis += toBladeDirection(s);
+  }
+  axis = glm::length(axis) > 1e-6f ? glm::normalize(axis) : glm::vec3(1.0f, 0.0f, 0.0f);
+  if (axis.x < 0.0f) {
+    axis = -axis;
+  }
+  model.bendAxis = axis;
+
+  for (int level : options.levels) {
+    RefineOptions refine;
+    refine.knots = level;
+    refine.mu = options.mu;
+    refine.keepEnds = true;
+    const RefineResult r = refineKnots(frames, blade.widths, refine);
+    BladeLod lod;
+    const std::vector<glm::vec3>& pose = r.frames[0];
+    const glm::vec3 root = pose[0];
+    const std::size_t m = pose.size();
+    lod.positions.resize(m);
+    lod.widths = r.widths;
+    lod.normals.resize(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      lod.positions[k] = toBladeDirection(pose[k] - root);
+    }
+    // The original knot each refined knot stands for (the middle of the knots merged into it) gives its side.
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t count = static_cast<std::size_t>(std::max(r.merged[k], 1));
+      const std::size_t middle = std::min(n - 1, first + count / 2);
+      first += count;
+      const glm::vec3 side = toBladeDirection(blade.sides[middle]);
+      const glm::vec3 t = lod.positions[std::min(k + 1, m - 1)] - lod.positions[k > 0 ? k - 1 : 0];
+      glm::vec3 normal = glm::cross(side, t);
+      if (glm::length(normal) < 1e-9f) {
+        normal = glm::vec3(0.0f, 0.0f, 1.0f);
+      }
+      normal = glm::normalize(normal);
+      if (normal.z < 0.0f) {
+        normal = -normal;
+      }
+      lod.normals[k] = normal;
+    }
+    model.lods.push_back(std::move(lod));
+  }
+  source.motionFrames = static_cast<int>(frames.size());
+  source.mu = options.mu;
+  source.medialAxis = blade.medialAxis;
+  model.source = std::move(source);
+  return model;
+}
+
+} // namespace sylva::capture
