@@ -33,6 +33,8 @@ void registerImgdiff(CLI::App& app);
 void registerTerrain(CLI::App& app);
 /** `sylva fold synth|render|view|export-shader|info` (folding textures, docs/folding.md). */
 void registerFold(CLI::App& app);
+/** `sylva capture [synth]` (grass blade capture, docs/capture.md). */
+void registerCapture(CLI::App& app);
 
 /** Host name, CPU model and core count, for benchmark reports. */
 struct MachineInfo {

@@ -525,10 +525,13 @@ cv::Mat cannyMask(Context& c, const cv::Mat& rangeMask) {
       }
     }
   }
-  // The edge ring belongs to the region it encloses where depth is in range.
+  // The edge ring on the silhouette belongs to the region it encloses where depth is in range; edges inside
+  // the range (one leaf in front of another) stay cut, which is what separates overlapping blades.
   cv::Mat grown;
   cv::dilate(out, grown, cv::Mat(), {-1, -1}, 2);
-  out |= grown & closedEdges & rangeMask;
+  cv::Mat silhouette;
+  cv::dilate(255 - rangeMask, silhouette, cv::Mat(), {-1, -1}, 3);
+  out |= grown & closedEdges & rangeMask & silhouette;
   return out;
 }
 
@@ -1055,17 +1058,62 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
     return out;
   }
   const std::size_t jn = cluster.junctions.size();
+  // A segment too wide for one blade is often two blades overlapping near their base (their valley is too
+  // shallow for the prominence test): it is split at the deepest minimum between its two highest peaks when
+  // both peaks rise a blade's minimum length above it.
+  std::vector<Junction> splits;
+  const auto take = [&](const auto& self, int a, int b, int depth) -> void {
+    std::string reason;
+    if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason)) {
+      cluster.blades.push_back(static_cast<int>(out.blades.size() - 1));
+      return;
+    }
+    const int len = ((b - a) % n + n) % n;
+    if (depth < 4 && reason.rfind("not elongated", 0) == 0 && len > 8) {
+      auto at = [&](int k) { return cluster.smoothed[(a + k) % n]; };
+      int best1 = -1;
+      for (int k = 1; k < len; ++k) {
+        if (at(k) > at(k - 1) && at(k) >= at(k + 1) && (best1 < 0 || at(k) > at(best1))) {
+          best1 = k;
+        }
+      }
+      int split = -1;
+      float splitDepth = 0.0f;
+      for (int k = 1; best1 >= 0 && k < len; ++k) {
+        if (k == best1 || !(at(k) > at(k - 1) && at(k) >= at(k + 1))) {
+          continue;
+        }
+        // The lowest point between this peak and the highest one.
+        int lo = std::min(k, best1);
+        const int hi = std::max(k, best1);
+        int m = lo;
+        for (; lo <= hi; ++lo) {
+          m = at(lo) < at(m) ? lo : m;
+        }
+        const float dip = std::min(at(k), at(best1)) - at(m);
+        if (dip >= c.options.minBladeLengthPx && dip > splitDepth) {
+          splitDepth = dip;
+          split = m;
+        }
+      }
+      if (split > 0) {
+        const int index = (a + split) % n;
+        splits.push_back(
+            {index, cluster.contour[index], cluster.smoothed[index], splitDepth / std::max(maxR, 1e-3f)});
+        self(self, a, index, depth + 1);
+        self(self, index, b, depth + 1);
+        return;
+      }
+    }
+    cluster.rejected.push_back(fmt::format("contour {}–{}: {}", a, b, reason));
+  };
   for (std::size_t j = 0; j < jn; ++j) {
     const int a = cluster.junctions[j].index;
     // One junction: the whole contour from it round to just before it is one blade.
     const int b = jn == 1 ? (a + n - 1) % n : cluster.junctions[(j + 1) % jn].index;
-    std::string reason;
-    if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason)) {
-      cluster.blades.push_back(static_cast<int>(out.blades.size() - 1));
-    } else {
-      cluster.rejected.push_back(fmt::format("contour {}–{}: {}", a, b, reason));
-    }
+    take(take, a, b, 0);
   }
+  cluster.junctions.insert(cluster.junctions.end(), splits.begin(), splits.end());
   if (out.blades.empty()) {
     out.warnings.push_back(fmt::format("{}: cluster at ({:.0f}, {:.0f}): no segment is a blade ({})", label,
                                        cluster.centre.x, cluster.centre.y,

@@ -1,0 +1,772 @@
+// `sylva capture`: grass blades from depth (docs/capture.md). `sylva capture INPUT` reads a 16-bit depth PNG,
+// a Middlebury disparity map or a fakenect recording (or, with --kinect, a Kinect v1 through libfreenect,
+// which the `fakenect` wrapper can replay), finds the blades, refines them and writes blade models and a
+// debug overlay. `sylva capture synth` draws synthetic blade clusters with known truth. Every input and
+// option error is one line naming the file, frame or option, found before any output is written; outputs are
+// written atomically.
+#include "Commands.hpp"
+#include "SourceOptions.hpp"
+
+#include <sylva/capture/BladeModel.hpp>
+#include <sylva/capture/Depth.hpp>
+#include <sylva/capture/Extract.hpp>
+#include <sylva/capture/Fakenect.hpp>
+#include <sylva/capture/Kinect.hpp>
+#include <sylva/capture/Pipeline.hpp>
+#include <sylva/capture/Synthetic.hpp>
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/core/Progress.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sylva::app {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace sylva::capture;
+
+struct CaptureOptions {
+  std::string input;
+  std::string format = "auto";
+  bool kinect = false;
+  int kinectFrames = 0;
+  // depth PNG
+  double unit = 0.001;
+  std::string intrinsics;
+  std::string colour;
+  // Middlebury
+  double focal = MiddleburyOptions{}.focalPx;
+  double baseline = MiddleburyOptions{}.baselineMetres;
+  double doffs = MiddleburyOptions{}.doffsPx;
+  double disparityScale = MiddleburyOptions{}.disparityScale;
+  // extraction
+  double nearM = 0.0;
+  double farM = 0.0;
+  std::string roi;
+  std::string contour = "mask";
+  std::string canny;
+  std::string centre = "auto";
+  double prominence = ExtractOptions{}.prominence;
+  double smooth = ExtractOptions{}.smoothSigmaPx;
+  double minLength = ExtractOptions{}.minBladeLengthPx;
+  double minElongation = ExtractOptions{}.minElongation;
+  int minArea = ExtractOptions{}.minClusterAreaPx;
+  int clean = ExtractOptions{}.cleanRadiusPx;
+  int knots = ExtractOptions{}.knots;
+  double symmetry = ExtractOptions{}.symmetryRatio;
+  bool noColour = false;
+  bool noExtend = false;
+  // recordings
+  std::string frames;
+  // models
+  std::string levels = "64,32,16";
+  double mu = 0.5;
+  std::string motion = "auto";
+  std::string name;
+  std::string out;
+  std::string overlay;
+  std::string stages;
+  bool quiet = false;
+  bool explain = false;
+};
+
+const char* centreModeName(CentreMode mode) {
+  switch (mode) {
+  case CentreMode::Auto:
+    return "auto";
+  case CentreMode::Core:
+    return "core";
+  case CentreMode::Centroid:
+    return "centroid";
+  case CentreMode::Base:
+    return "base";
+  case CentreMode::Manual:
+    return "manual";
+  }
+  return "?";
+}
+
+/** Parses "A-B" (inclusive) or "N" into a frame range; throws naming --frames. */
+std::pair<int, int> parseFrameRange(const std::string& text) {
+  int a = 0;
+  int b = 0;
+  char dash = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &dash, &b, &extra) == 3 && dash == '-' && a >= 0 && b >= a) {
+    return {a, b};
+  }
+  if (std::sscanf(text.c_str(), "%d%c", &a, &extra) == 1 && a >= 0) {
+    return {a, a};
+  }
+  fail("--frames: expected A-B or N (0-based, inclusive), got '{}'", text);
+}
+
+std::vector<int> parseLevels(const std::string& text) {
+  std::vector<int> levels;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string part =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const long v = std::strtol(part.c_str(), &end, 10);
+    if (part.empty() || *end != '\0' || v < 2 || v > 4096) {
+      fail("--levels: expected comma-separated knot counts in 2..4096, got '{}'", text);
+    }
+    levels.push_back(static_cast<int>(v));
+    if (comma == std::string::npos) {
+      break;
+    }
+    start = comma + 1;
+  }
+  return levels;
+}
+
+ExtractOptions extractOptions(const CaptureOptions& o) {
+  ExtractOptions e;
+  e.nearMetres = static_cast<float>(o.nearM);
+  e.farMetres = static_cast<float>(o.farM);
+  if (!o.roi.empty()) {
+    const std::vector<float> v = parseNumbers("--roi", o.roi, 4, "x0,y0,x1,y1");
+    for (int i = 0; i < 4; ++i) {
+      if (v[i] < 0.0f || v[i] > 65536.0f) {
+        fail("--roi: coordinates must be in 0..65536 pixels, got '{}'", o.roi);
+      }
+      e.roi[i] = static_cast<int>(v[i]);
+    }
+    if (e.roi[2] <= e.roi[0] || e.roi[3] <= e.roi[1]) {
+      fail("--roi: need x0 < x1 and y0 < y1, got '{}'", o.roi);
+    }
+  }
+  e.contour = o.contour == "canny" ? ContourMethod::Canny : ContourMethod::Mask;
+  if (!o.canny.empty()) {
+    const std::vector<float> v = parseNumbers("--canny", o.canny, 2, "low,high metres");
+    e.cannyLowMetres = v[0];
+    e.cannyHighMetres = v[1];
+  }
+  if (o.centre == "auto") {
+    e.centre = CentreMode::Auto;
+  } else if (o.centre == "core") {
+    e.centre = CentreMode::Core;
+  } else if (o.centre == "centroid") {
+    e.centre = CentreMode::Centroid;
+  } else if (o.centre == "base") {
+    e.centre = CentreMode::Base;
+  } else {
+    const std::vector<float> v = parseNumbers("--centre", o.centre, 2, "auto, core, centroid, base or X,Y");
+    e.centre = CentreMode::Manual;
+    e.centrePx = {v[0], v[1]};
+  }
+  e.prominence = o.prominence;
+  e.smoothSigmaPx = o.smooth;
+  e.minBladeLengthPx = o.minLength;
+  e.minElongation = o.minElongation;
+  e.minClusterAreaPx = o.minArea;
+  e.cleanRadiusPx = o.clean;
+  e.knots = o.knots;
+  e.symmetryRatio = o.symmetry;
+  e.colourRefine = !o.noColour;
+  e.extendToCentre = !o.noExtend;
+  return e;
+}
+
+/** What the input is, decided from the file (extension, PNG bit depth) or --format. */
+std::string inputFormat(const CaptureOptions& o) {
+  if (o.format != "auto") {
+    return o.format;
+  }
+  const fs::path path(o.input);
+  if (fs::is_directory(path)) {
+    return "fakenect";
+  }
+  if (!fs::exists(path)) {
+    fail("{}: no such file or folder", o.input);
+  }
+  if (lowerExtension(path) != ".png") {
+    fail("{}: expected a depth PNG, a Middlebury disparity PNG or a fakenect folder (use --format)", o.input);
+  }
+  // 16-bit: depth in millimetres; 8-bit: a disparity map.
+  const Image probe = loadPng(path);
+  return probe.type() == PixelType::U8 ? "middlebury" : "png";
+}
+
+/** The frames to process, loaded lazily (recordings can be long). */
+struct Source {
+  std::string label;
+  std::string kind;
+  std::optional<FakenectRecording> recording;
+  std::vector<DepthFrame> frames; ///< single images and Kinect captures
+  int first = 0;
+  int last = 0;
+  int count() const { return last - first + 1; }
+  DepthFrame frame(int i) const {
+    if (recording) {
+      return recording->depthFrame(static_cast<std::size_t>(i));
+    }
+    return frames[static_cast<std::size_t>(i)];
+  }
+};
+
+Source openSource(const CaptureOptions& o) {
+  Source s;
+  std::optional<std::pair<int, int>> range;
+  if (!o.frames.empty()) {
+    range = parseFrameRange(o.frames);
+  }
+  if (o.kinect) {
+    if (!o.input.empty()) {
+      fail("--kinect: give either an input or --kinect, not both");
+    }
+    KinectOptions k;
+    k.frames = o.kinectFrames;
+    k.colour = !o.noColour;
+    captureKinect(k, [&](DepthFrame&& frame) {
+      s.frames.push_back(std::move(frame));
+      return true;
+    });
+    s.label = kinectReplayActive() ? s.frames.front().source : "kinect";
+    s.kind = "kinect";
+  } else {
+    if (o.input.empty()) {
+      fail("capture: give an input (depth PNG, Middlebury PNG or fakenect folder) or --kinect");
+    }
+    const std::string format = inputFormat(o);
+    s.label = o.input;
+    s.kind = format;
+    if (format == "fakenect") {
+      s.recording = FakenectRecording::open(o.input);
+      for (const std::string& w : s.recording->warnings()) {
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
+      }
+    } else if (format == "png") {
+      DepthPngOptions d;
+      d.unitMetres = o.unit;
+      if (!o.intrinsics.empty()) {
+        const std::vector<float> v = parseNumbers("--intrinsics", o.intrinsics, 4, "fx,fy,cx,cy");
+        if (v[0] <= 0.0f || v[1] <= 0.0f) {
+          fail("--intrinsics: focal lengths must be > 0, got '{}'", o.intrinsics);
+        }
+        d.intrinsics = {v[0], v[1], v[2], v[3]};
+      }
+      DepthFrame frame = loadDepthPng(o.input, d);
+      if (!o.colour.empty()) {
+        Image colour = loadImage(o.colour);
+        if (colour.width() != frame.width || colour.height() != frame.height || colour.channels() < 3) {
+          fail("--colour {}: expected an RGB image of the depth's size {}x{}, got {}x{} with {} channels",
+               o.colour, frame.width, frame.height, colour.width(), colour.height(), colour.channels());
+        }
+        frame.colour = colour.converted(PixelType::U8);
+      }
+      s.frames.push_back(std::move(frame));
+    } else if (format == "middlebury") {
+      MiddleburyOptions m;
+      m.focalPx = o.focal;
+      m.baselineMetres = o.baseline;
+      m.doffsPx = o.doffs;
+      m.disparityScale = o.disparityScale;
+      s.frames.push_back(loadMiddlebury(o.input, m));
+    } else {
+      fail("--format: unknown format '{}'", format);
+    }
+  }
+  const int available =
+      s.recording ? static_cast<int>(s.recording->depthFrameCount()) : static_cast<int>(s.frames.size());
+  s.first = 0;
+  s.last = available - 1;
+  if (range) {
+    if (range->second >= available) {
+      fail("--frames {}: {} has {} depth frame{} (0..{})", o.frames, s.label, available,
+           available == 1 ? "" : "s", available - 1);
+    }
+    s.first = range->first;
+    s.last = range->second;
+  }
+  return s;
+}
+
+std::string stem(const std::string& label) {
+  std::string s = fs::path(label).filename().string();
+  if (s.empty()) {
+    s = fs::path(label).parent_path().filename().string();
+  }
+  const std::size_t dot = s.rfind('.');
+  if (dot != std::string::npos && dot > 0) {
+    s = s.substr(0, dot);
+  }
+  for (char& c : s) {
+    if (c == ':' || c == '/') {
+      c = '-';
+    }
+  }
+  return s.empty() ? std::string("capture") : s;
+}
+
+Image maskImage(const ExtractResult& r) {
+  Image img(r.width, r.height, 1, PixelType::U8);
+  std::copy(r.mask.begin(), r.mask.end(), img.values<std::uint8_t>().begin());
+  return img;
+}
+
+void writeStages(const fs::path& dir, const DepthFrame& frame, const ExtractResult& result) {
+  const auto range = depthRange(frame);
+  saveImage(dir / "1-depth.png", depthPreview(frame, range.first, range.second));
+  saveImage(dir / "2-mask.png", maskImage(result));
+  ExtractResult contours = result;
+  contours.blades.clear();
+  saveImage(dir / "3-contour.png", overlayImage(frame, contours));
+  if (!result.clusters.empty()) {
+    saveImage(dir / "4-signal.png", signalPlot(result.clusters.front(), 960, 280));
+  }
+  saveImage(dir / "5-blades.png", overlayImage(frame, result));
+}
+
+void runCapture(const CaptureOptions& o) {
+  const ExtractOptions extract = extractOptions(o);
+  const std::vector<int> levels = parseLevels(o.levels);
+  for (std::size_t i = 1; i < levels.size(); ++i) {
+    if (levels[i] >= levels[i - 1]) {
+      fail("--levels: counts must decrease strictly, got '{}'", o.levels);
+    }
+  }
+  if (levels.front() > o.knots) {
+    fail("--levels: {} knots is more than --knots {}", levels.front(), o.knots);
+  }
+  Source source = openSource(o);
+  const std::string base = o.name.empty() ? stem(source.label) : o.name;
+  std::string out = o.out;
+  std::string overlay = o.overlay;
+  if (out.empty() && overlay.empty() && o.stages.empty()) {
+    out = "out/capture/" + base + ".blades.json";
+    overlay = "out/capture/" + base + "-overlay.png";
+  }
+
+  // Extraction, frame by frame (a progress line on recordings).
+  std::vector<ExtractResult> results;
+  std::vector<std::string> warnings;
+  DepthFrame reference;
+  {
+    std::unique_ptr<Progress> progress;
+    if (source.count() > 1) {
+      progress =
+          std::make_unique<Progress>("capturing " + source.label, static_cast<std::size_t>(source.count()));
+    }
+    for (int i = source.first; i <= source.last; ++i) {
+      if (progress && progress->cancelled()) {
+        fail("capture: cancelled");
+      }
+      DepthFrame frame = source.frame(i);
+      ExtractResult r = extractBlades(frame, extract);
+      warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+      if (i == source.first) {
+        reference = std::move(frame);
+      }
+      results.push_back(std::move(r));
+      if (progress) {
+        progress->advance();
+      }
+    }
+  }
+  const std::size_t shownWarnings = 8;
+  for (std::size_t i = 0; i < warnings.size() && i < shownWarnings; ++i) {
+    std::fprintf(stderr, "warning: %s\n", warnings[i].c_str());
+  }
+  if (warnings.size() > shownWarnings) {
+    std::fprintf(stderr, "warning: … and %zu more\n", warnings.size() - shownWarnings);
+  }
+  const ExtractResult& first = results.front();
+  if (first.blades.empty()) {
+    fail("{}: no blades found{}", reference.label(),
+         first.warnings.empty() ? std::string() : " (" + first.warnings.front() + ")");
+  }
+
+  // Models: tracked through the recording, or swayed in simulation.
+  std::string motion = o.motion;
+  if (motion == "auto") {
+    motion = results.size() > 1 ? "recording" : "sway";
+  }
+  if (motion == "recording" && results.size() < 2) {
+    fail("--motion recording: needs a recording with at least 2 frames in --frames");
+  }
+  ModelOptions model;
+  model.levels = levels;
+  model.mu = o.mu;
+  model.simulateSway = motion == "sway";
+  std::vector<TrackedBlade> tracks = trackBlades(results);
+  BladeModelFile file;
+  file.generator = fmt::format("sylva capture {}: {}", SYLVA_VERSION, source.label);
+  for (std::size_t b = 0; b < tracks.size(); ++b) {
+    BladeSource meta;
+    meta.file = source.label;
+    meta.kind = depthSourceName(reference.kind);
+    meta.frame = reference.frame;
+    meta.cluster = tracks[b].reference.cluster;
+    meta.blade = static_cast<int>(b);
+    meta.intrinsics = reference.intrinsics;
+    meta.relativeDepth = reference.relativeDepth;
+    const KnotFrames empty;
+    BladeModel m =
+        makeBladeModel(tracks[b].reference, motion == "recording" ? tracks[b].motion : empty, model, meta);
+    m.name = fmt::format("{}-{}", base, b);
+    file.blades.push_back(std::move(m));
+  }
+
+  if (!o.quiet) {
+    std::printf("%s (%s, %dx%d%s): %zu blade%s in %zu cluster%s, depth %.3f-%.3f m%s\n",
+                reference.label().c_str(), source.kind.c_str(), reference.width, reference.height,
+                reference.relativeDepth ? ", relative depth" : "", first.blades.size(),
+                first.blades.size() == 1 ? "" : "s", first.clusters.size(),
+                first.clusters.size() == 1 ? "" : "s", first.nearMetres, first.farMetres,
+                first.colourRefined ? ", colour-refined edges" : "");
+    std::printf("  %-5s %6s %10s %10s %9s  %s\n", "blade", "knots", "length", "max width", "length px",
+                "skeleton");
+    for (std::size_t b = 0; b < first.blades.size(); ++b) {
+      const CapturedBlade& blade = first.blades[b];
+      const float maxWidth = *std::max_element(blade.widths.begin(), blade.widths.end());
+      std::printf("  %-5zu %6zu %8.1f cm %8.2f cm %9.0f  %s%s\n", b, blade.knots.size(),
+                  blade.lengthMetres * 100.0f, maxWidth * 100.0f, blade.lengthPx,
+                  blade.medialAxis ? "medial axis" : "symmetric matching",
+                  blade.touchesBorder ? ", cut by the border" : "");
+    }
+    std::printf("  refined to %s knots over %d frame%s (%s)\n", o.levels.c_str(),
+                file.blades.front().source.motionFrames,
+                file.blades.front().source.motionFrames == 1 ? "" : "s",
+                motion == "recording" ? "tracked through the recording"
+                : motion == "sway"    ? "simulated sway"
+                                      : "static");
+    if (o.explain) {
+      for (std::size_t c = 0; c < first.clusters.size(); ++c) {
+        const Cluster& cluster = first.clusters[c];
+        std::printf("  cluster %zu: %d px, centre (%.0f, %.0f) by %s, %zu junction%s, blades", c,
+                    cluster.areaPx, cluster.centre.x, cluster.centre.y, centreModeName(cluster.centreMode),
+                    cluster.junctions.size(), cluster.junctions.size() == 1 ? "" : "s");
+        for (int b : cluster.blades) {
+          std::printf(" %d", b);
+        }
+        std::printf("\n");
+        for (const Junction& j : cluster.junctions) {
+          std::printf("    junction at contour %d (%.0f, %.0f): %.0f px from the centre, prominence %.3f\n",
+                      j.index, j.px.x, j.px.y, j.distancePx, j.prominence);
+        }
+        for (const std::string& r : cluster.rejected) {
+          std::printf("    not a blade: %s\n", r.c_str());
+        }
+      }
+    }
+    if (results.size() > 1) {
+      int missing = 0;
+      for (const TrackedBlade& t : tracks) {
+        missing += t.missingFrames;
+      }
+      std::printf("  %zu frames, %d blade-frame%s not found (held)\n", results.size(), missing,
+                  missing == 1 ? "" : "s");
+    }
+  }
+
+  // Outputs last, each written atomically.
+  if (!o.stages.empty()) {
+    writeStages(o.stages, reference, first);
+  }
+  if (!overlay.empty()) {
+    saveImage(overlay, overlayImage(reference, first));
+  }
+  if (!out.empty()) {
+    saveBladeModels(out, file);
+  }
+  if (!o.quiet) {
+    for (const std::string& path : {out, overlay, o.stages}) {
+      if (!path.empty()) {
+        std::printf("wrote %s\n", path.c_str());
+      }
+    }
+  }
+}
+
+struct SynthOptions {
+  std::string shape = "slim";
+  int count = 5;
+  double bend = 0.3;
+  double orientation = 0.0;
+  double spread = 1.4;
+  double lobe = 0.0;
+  double distance = 0.65;
+  std::uint64_t seed = 1;
+  bool noNoise = false;
+  bool noColour = false;
+  int frames = 1;
+  double amplitude = 0.25;
+  double frequency = 0.8;
+  double fps = 30.0;
+  std::string out;
+  std::string truth;
+  bool evaluate = false;
+};
+
+nlohmann::json truthJson(const SyntheticScene& scene, const std::vector<SyntheticFrame>& frames) {
+  nlohmann::json j;
+  j["version"] = 1;
+  j["kind"] = "sylva-capture-truth";
+  j["intrinsics"] = {scene.intrinsics.fx, scene.intrinsics.fy, scene.intrinsics.cx, scene.intrinsics.cy};
+  nlohmann::json list = nlohmann::json::array();
+  for (const SyntheticFrame& f : frames) {
+    nlohmann::json blades = nlohmann::json::array();
+    for (std::size_t b = 0; b < f.truth.centrelinePx.size(); ++b) {
+      nlohmann::json blade;
+      blade["shape"] = bladeShapeName(scene.blades[b].shape);
+      nlohmann::json px = nlohmann::json::array();
+      nlohmann::json m = nlohmann::json::array();
+      for (std::size_t i = 0; i < f.truth.centrelinePx[b].size(); ++i) {
+        px.push_back({f.truth.centrelinePx[b][i].x, f.truth.centrelinePx[b][i].y, f.truth.widthsPx[b][i]});
+        const glm::vec3 p = f.truth.centrelineMetres[b][i];
+        m.push_back({p.x, p.y, p.z, f.truth.widthsMetres[b][i]});
+      }
+      blade["centrelinePx"] = std::move(px);
+      blade["centrelineMetres"] = std::move(m);
+      blades.push_back(std::move(blade));
+    }
+    list.push_back({{"frame", f.frame.frame}, {"blades", std::move(blades)}});
+  }
+  j["frames"] = std::move(list);
+  return j;
+}
+
+void runSynth(const SynthOptions& o) {
+  const std::optional<BladeShape> shape = parseBladeShape(o.shape);
+  if (!shape) {
+    fail("--shape: unknown shape '{}' (slim, quadratic, slender, bamboo, sharp)", o.shape);
+  }
+  SyntheticScene scene = makeCluster(*shape, o.count, static_cast<float>(o.bend),
+                                     static_cast<float>(o.orientation), o.seed, static_cast<float>(o.spread));
+  for (SyntheticBlade& b : scene.blades) {
+    b.lobe = static_cast<float>(o.lobe);
+  }
+  scene.rootMetres = {0.0f, 0.2f * static_cast<float>(o.distance) / 0.65f, static_cast<float>(o.distance)};
+  scene.noise = !o.noNoise;
+  scene.colour = !o.noColour;
+  std::string out = o.out;
+  if (out.empty()) {
+    out = o.frames > 1 ? "out/capture/synth-" + o.shape : "out/capture/synth-" + o.shape + ".png";
+  }
+  const bool recording = lowerExtension(out) != ".png";
+  if (!recording && o.frames > 1) {
+    fail("--out {}: a PNG holds one frame; give a folder for a {}-frame recording", out, o.frames);
+  }
+  std::vector<SyntheticFrame> frames;
+  {
+    Progress progress("drawing synthetic frames", static_cast<std::size_t>(o.frames));
+    if (o.frames == 1) {
+      frames.push_back(renderScene(scene));
+      progress.advance();
+    } else {
+      frames = swaySequence(scene, o.frames, o.fps, static_cast<float>(o.amplitude), o.frequency);
+      progress.advance(static_cast<std::size_t>(o.frames));
+    }
+  }
+  if (o.evaluate) {
+    for (const SyntheticFrame& f : frames) {
+      const AccuracyReport r = evaluateCapture(f.truth, extractBlades(f.frame));
+      std::printf(
+          "frame %d: blades %d/%d, silhouette IoU %.3f, width error %.1f %% (worst %.1f %%), skeleton "
+          "error %.2f px (worst %.2f px)\n",
+          f.frame.frame, r.bladesFound, r.bladesExpected, r.silhouetteIoU, 100.0 * r.widthError,
+          100.0 * r.widthErrorMax, r.skeletonErrorPx, r.skeletonErrorMaxPx);
+    }
+  }
+  if (recording) {
+    FakenectWriter writer(out);
+    for (const SyntheticFrame& f : frames) {
+      const double t = f.frame.timestamp;
+      if (!f.frame.colour.empty()) {
+        writer.addRgb(f.frame.colour, t);
+      }
+      writer.addDepth(f.frame, t + 1e-3);
+    }
+    writer.finish();
+  } else {
+    saveDepthPng(out, frames.front().frame);
+    if (!frames.front().frame.colour.empty()) {
+      fs::path colour(out);
+      colour.replace_filename(colour.stem().string() + "-colour.png");
+      saveImage(colour, frames.front().frame.colour);
+      std::printf("wrote %s\n", colour.string().c_str());
+    }
+  }
+  if (!o.truth.empty()) {
+    saveJsonFile(o.truth, truthJson(scene, frames));
+    std::printf("wrote %s\n", o.truth.c_str());
+  }
+  std::printf("wrote %s (%d frame%s, %d %s blade%s)\n", out.c_str(), o.frames, o.frames == 1 ? "" : "s",
+              o.count, o.shape.c_str(), o.count == 1 ? "" : "s");
+}
+
+void registerSynth(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "synth",
+      "Draw a synthetic blade cluster of known shape into a depth frame with Kinect-like noise: a 16-bit "
+      "depth PNG (with a registered colour PNG), or a fakenect recording of it swaying");
+  auto o = std::make_shared<SynthOptions>();
+  command->add_option("--shape", o->shape, "Blade shape: slim, quadratic, slender, bamboo, sharp")
+      ->check(CLI::IsMember({"slim", "quadratic", "slender", "bamboo", "sharp"}))
+      ->capture_default_str();
+  command->add_option("--count", o->count, "Blades in the cluster")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command
+      ->add_option("--bend", o->bend, "Turn of each blade from root to tip, radians (away from the centre)")
+      ->check(finiteRange(-3.0, 3.0))
+      ->capture_default_str();
+  command->add_option("--orientation", o->orientation, "Lean of the whole cluster from vertical, radians")
+      ->check(finiteRange(-1.5, 1.5))
+      ->capture_default_str();
+  command->add_option("--spread", o->spread, "Angle the blades fan over, radians")
+      ->check(finiteRange(0.0, 3.0))
+      ->capture_default_str();
+  command
+      ->add_option("--lobe", o->lobe, "A one-sided lobe on every blade, in blade widths (asymmetric blades)")
+      ->check(finiteRange(0.0, 5.0))
+      ->capture_default_str();
+  command->add_option("--distance", o->distance, "Depth of the cluster's root, metres")
+      ->check(finiteRange(0.4, 4.0))
+      ->capture_default_str();
+  command->add_option("--seed", o->seed, "Seed of the blade variation and the noise")
+      ->check(unsignedInteger());
+  command->add_flag("--no-noise", o->noNoise, "No sensor noise or quantisation (exact depth)");
+  command->add_flag("--no-colour", o->noColour, "No colour frame");
+  command->add_option("--frames", o->frames, "Frames of a swaying sequence (written as a fakenect recording)")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  command->add_option("--amplitude", o->amplitude, "Sway: extra tip bend amplitude, radians")
+      ->check(finiteRange(0.0, 2.0))
+      ->capture_default_str();
+  command->add_option("--frequency", o->frequency, "Sway frequency, Hz")
+      ->check(finiteRange(0.0, 30.0))
+      ->capture_default_str();
+  command->add_option("--fps", o->fps, "Frames per second of the sequence")
+      ->check(finiteRange(1.0, 120.0))
+      ->capture_default_str();
+  command->add_option(
+      "-o,--out", o->out,
+      "A .png (one frame) or a folder (fakenect recording); default out/capture/synth-<shape>[.png]");
+  command->add_option("--truth", o->truth, "Also write the ground truth (centrelines and widths) as JSON");
+  command->add_flag("--evaluate", o->evaluate, "Capture each frame and print its accuracy against the truth");
+  command->callback([o] { runSynth(*o); });
+}
+
+} // namespace
+
+void registerCapture(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "capture",
+      "Capture grass blades from depth: a 16-bit depth PNG (mm), a Middlebury disparity map, a fakenect "
+      "recording or a Kinect v1; writes blade models (JSON) and a debug overlay (docs/capture.md)");
+  auto o = std::make_shared<CaptureOptions>();
+  command->add_option("input", o->input, "Depth PNG, Middlebury disparity PNG or fakenect folder");
+  command->add_option("--format", o->format, "Input format: auto (by file), png, middlebury, fakenect")
+      ->check(CLI::IsMember({"auto", "png", "middlebury", "fakenect"}))
+      ->capture_default_str();
+  command->add_flag(
+      "--kinect", o->kinect,
+      "Capture from a Kinect v1 through libfreenect (replay a recording with `fakenect DIR sylva "
+      "capture --kinect`)");
+  command
+      ->add_option("--kinect-frames", o->kinectFrames, "Kinect frames to grab (0: 1 live, all in a replay)")
+      ->check(CLI::Range(0, 100000));
+  command->add_option("--unit", o->unit, "Depth PNG: metres per stored unit")
+      ->check(finiteRange(1e-6, 10.0))
+      ->capture_default_str();
+  command->add_option("--intrinsics", o->intrinsics,
+                      "Depth PNG: fx,fy,cx,cy in pixels (default: Kinect v1 scaled)");
+  command->add_option("--colour", o->colour,
+                      "Depth PNG: a registered colour image to refine the blade edges with");
+  command->add_option("--focal", o->focal, "Middlebury: focal length, pixels")
+      ->check(finiteRange(1.0, 1e6))
+      ->capture_default_str();
+  command->add_option("--baseline", o->baseline, "Middlebury: stereo baseline, metres")
+      ->check(finiteRange(1e-6, 100.0))
+      ->capture_default_str();
+  command->add_option("--doffs", o->doffs, "Middlebury: disparity offset, pixels")
+      ->check(finiteRange(0.0, 1e5))
+      ->capture_default_str();
+  command
+      ->add_option("--disparity-scale", o->disparityScale, "Middlebury: stored value to disparity in pixels")
+      ->check(finiteRange(1e-6, 1e3))
+      ->capture_default_str();
+  command->add_option("--near", o->nearM, "Nearest depth of the blades, metres (0: automatic)")
+      ->check(finiteRange(0.0, 1e4));
+  command->add_option("--far", o->farM, "Farthest depth of the blades, metres (0: automatic, Otsu)")
+      ->check(finiteRange(0.0, 1e4));
+  command->add_option("--roi", o->roi, "Region of interest x0,y0,x1,y1 in pixels");
+  command
+      ->add_option("--contour", o->contour, "Outline: mask (trace the depth-range mask) or canny (on depth)")
+      ->check(CLI::IsMember({"mask", "canny"}))
+      ->capture_default_str();
+  command->add_option("--canny", o->canny,
+                      "Canny thresholds low,high in metres of depth step (default 0.02,0.06)");
+  command->add_option("--centre", o->centre, "Cluster centre: auto, core, centroid, base or X,Y pixels")
+      ->capture_default_str();
+  command->add_option("--prominence", o->prominence, "Junction prominence, fraction of the largest distance")
+      ->check(finiteRange(1e-4, 0.99))
+      ->capture_default_str();
+  command->add_option("--smooth", o->smooth, "Smoothing of the distance signal, sigma in pixels")
+      ->check(finiteRange(0.0, 100.0))
+      ->capture_default_str();
+  command->add_option("--min-length", o->minLength, "Shortest blade beyond its junctions, pixels")
+      ->check(finiteRange(0.0, 1e5))
+      ->capture_default_str();
+  command->add_option("--min-elongation", o->minElongation, "Least length/width ratio of a blade")
+      ->check(finiteRange(0.0, 1e3))
+      ->capture_default_str();
+  command->add_option("--min-area", o->minArea, "Smallest cluster, pixels")
+      ->check(CLI::Range(1, 1 << 30))
+      ->capture_default_str();
+  command->add_option("--clean", o->clean, "Radius of the mask's morphological close, pixels")
+      ->check(CLI::Range(0, 32))
+      ->capture_default_str();
+  command->add_option("--knots", o->knots, "Knots of each captured skeleton before refining")
+      ->check(CLI::Range(4, 4096))
+      ->capture_default_str();
+  command
+      ->add_option("--symmetry", o->symmetry,
+                   "Side-length ratio above which the medial axis replaces matching")
+      ->check(finiteRange(1.0, 1e9))
+      ->capture_default_str();
+  command->add_flag("--no-colour", o->noColour, "Ignore colour frames (depth edges only)");
+  command->add_flag("--no-extend", o->noExtend, "Do not extend skeletons to the cluster centre");
+  command->add_option("--frames", o->frames, "Recording: frames A-B to use (0-based, inclusive)");
+  command->add_option("--levels", o->levels, "Refined knot counts, finest first")->capture_default_str();
+  command->add_option("--mu", o->mu, "Refining: weight of distance against movement variance (paper eq. 1)")
+      ->check(finiteRange(0.0, 1.0))
+      ->capture_default_str();
+  command
+      ->add_option("--motion", o->motion,
+                   "Refining motion: auto (recording if several frames, else sway), recording, sway, none")
+      ->check(CLI::IsMember({"auto", "recording", "sway", "none"}))
+      ->capture_default_str();
+  command->add_option("--name", o->name, "Name prefix of the blade models (default: the input's name)");
+  command->add_option("-o,--out", o->out, "Blade-model JSON (default out/capture/<name>.blades.json)");
+  command->add_option("--overlay", o->overlay, "Debug overlay PNG (default out/capture/<name>-overlay.png)");
+  command->add_option("--stages", o->stages, "Folder for a picture of every pipeline stage (for docs)");
+  command->add_flag("-q,--quiet", o->quiet, "No summary");
+  command->add_flag(
+      "--explain", o->explain,
+      "Also print each cluster's centre, junctions and the segments that were not blades, and why");
+  registerSynth(*command);
+  command->callback([o, command] {
+    if (command->get_subcommands().empty()) {
+      runCapture(*o);
+    }
+  });
+}
+
+} // namespace sylva::app
