@@ -1,3 +1,4 @@
+#include "BenchRows.hpp"
 #include "Commands.hpp"
 #include "TerrainFlags.hpp"
 
@@ -392,20 +393,6 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
 }
 
 #ifdef SYLVA_HAVE_FOLDING
-/** Seconds of each of `runs` calls of `fn` after `warmup` unmeasured calls. */
-std::vector<double> timeRuns(int warmup, int runs, const std::function<void()>& fn) {
-  std::vector<double> seconds;
-  for (int i = 0; i < warmup + runs; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    fn();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (i >= warmup) {
-      seconds.push_back(s);
-    }
-  }
-  return seconds;
-}
-
 /**
  * `bench fold`: the folding targets of docs/folding.md on the generated 1024x1024 case (FoldingCase.hpp):
  * synthesis per megapixel (modified Shepard with 100 and 1,000 anchors, Shepard IDW with 100; all worker
@@ -424,15 +411,7 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
   constexpr int kRuns = 5;
   volatile int sink = 0; // results are used, so no call is optimised away
   std::atomic<std::size_t> hits{0};
-  struct Row {
-    std::string metric;
-    double value;
-    std::string unit;
-    double target;
-    bool atMost; // the target is an upper bound (else a lower bound)
-    unsigned threads;
-    std::string note;
-  };
+  using Row = BenchRow;
   std::vector<Row> rows;
   const auto interp = [](Interpolation::Type type) {
     Interpolation i;
@@ -603,27 +582,7 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
                   "skipped: built without the folding GPU renderer"});
   dragRow(dragCpuOnly, nullptr, "built without the folding GPU renderer");
 #endif
-  std::printf("  %-62s %12s %-16s %8s %5s %7s  %s\n", "metric", "measured", "unit", "target", "", "threads",
-              "note");
-  nlohmann::json rowsJson = nlohmann::json::array();
-  for (const Row& r : rows) {
-    const bool measured = !std::isnan(r.value);
-    const bool pass = measured && (r.atMost ? r.value <= r.target : r.value >= r.target);
-    std::printf("  %-62s %12.4g %-16s %2s %5g %5s %7s  %s\n", r.metric.c_str(), r.value, r.unit.c_str(),
-                r.atMost ? "<=" : ">=", r.target,
-                !measured ? "-"
-                : pass    ? "ok"
-                          : "MISS",
-                r.threads == 0 ? "gpu" : std::to_string(r.threads).c_str(), r.note.c_str());
-    rowsJson.push_back({{"metric", r.metric},
-                        {"value", measured ? nlohmann::json(r.value) : nlohmann::json(nullptr)},
-                        {"unit", r.unit},
-                        {"target", r.target},
-                        {"target_is", r.atMost ? "at most" : "at least"},
-                        {"met", measured ? nlohmann::json(pass) : nlohmann::json(nullptr)},
-                        {"threads", r.threads},
-                        {"note", r.note}});
-  }
+  const nlohmann::json rowsJson = printBenchRows(rows);
   report = {{"benchmark", "fold"},
             {"machine", {{"host", machine.host}, {"cpu", machine.cpu}, {"cores", machine.cores}}},
             {"worker_threads", workerCount()},
@@ -644,8 +603,9 @@ void registerBench(CLI::App& app) {
       ->add_option("area", o->area,
                    "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or soak (long "
                    "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure) "
-                   "or fold (folding-texture targets on a generated 1 MP case)")
-      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold"}))
+                   "or fold (folding-texture targets on a generated 1 MP case) or capture (grass capture: "
+                   "extraction latency per 640x480 frame, refining)")
+      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -669,6 +629,17 @@ void registerBench(CLI::App& app) {
       ->capture_default_str();
   command->callback([o] {
     nlohmann::json report;
+    if (o->area == "capture") {
+#ifdef SYLVA_HAVE_CAPTURE
+      benchCapture(report);
+#else
+      fail("bench capture: this sylva was built without the capture module");
+#endif
+      const std::string out = o->out.empty() ? "out/bench-capture.json" : o->out;
+      saveJsonFile(out, report);
+      std::printf("%s\n", out.c_str());
+      return;
+    }
     if (o->area == "fold") {
 #ifdef SYLVA_HAVE_FOLDING
       // CPU rows need no GL; the GPU row makes its own context (and says why when it cannot).

@@ -73,8 +73,11 @@ struct CaptureOptions {
   // models
   std::string levels = "64,32,16";
   double mu = 0.5;
+  std::string variance = "displacement";
+  bool rawMetres = false;
   std::string motion = "auto";
   std::string name;
+  double scaleTo = 0.0;
   std::string out;
   std::string overlay;
   std::string stages;
@@ -325,7 +328,15 @@ void writeStages(const fs::path& dir, const DepthFrame& frame, const ExtractResu
   saveImage(dir / "2-mask.png", maskImage(result));
   ExtractResult contours = result;
   contours.blades.clear();
-  saveImage(dir / "3-contour.png", overlayImage(frame, contours));
+  std::size_t junctions = 0;
+  for (const Cluster& c : result.clusters) {
+    junctions += c.junctions.size();
+  }
+  saveImage(
+      dir / "3-contour.png",
+      overlayImage(frame, contours,
+                   fmt::format("{}: contours of {} cluster{}, centres and {} junctions", frame.label(),
+                               result.clusters.size(), result.clusters.size() == 1 ? "" : "s", junctions)));
   if (!result.clusters.empty()) {
     saveImage(dir / "4-signal.png", signalPlot(result.clusters.front(), 960, 280));
   }
@@ -378,17 +389,18 @@ void runCapture(const CaptureOptions& o) {
       }
     }
   }
+  const ExtractResult& first = results.front();
+  // Checked before the warnings are shown, so the failure stays one line (it quotes the first warning).
+  if (first.blades.empty()) {
+    fail("{}: no blades found{}", reference.label(),
+         first.warnings.empty() ? std::string() : " (" + first.warnings.front() + ")");
+  }
   const std::size_t shownWarnings = 8;
   for (std::size_t i = 0; i < warnings.size() && i < shownWarnings; ++i) {
     std::fprintf(stderr, "warning: %s\n", warnings[i].c_str());
   }
   if (warnings.size() > shownWarnings) {
     std::fprintf(stderr, "warning: … and %zu more\n", warnings.size() - shownWarnings);
-  }
-  const ExtractResult& first = results.front();
-  if (first.blades.empty()) {
-    fail("{}: no blades found{}", reference.label(),
-         first.warnings.empty() ? std::string() : " (" + first.warnings.front() + ")");
   }
 
   // Models: tracked through the recording, or swayed in simulation.
@@ -402,6 +414,9 @@ void runCapture(const CaptureOptions& o) {
   ModelOptions model;
   model.levels = levels;
   model.mu = o.mu;
+  model.measure =
+      o.variance == "distance" ? RefineOptions::Measure::Distance : RefineOptions::Measure::Displacement;
+  model.rawMetres = o.rawMetres;
   model.simulateSway = motion == "sway";
   std::vector<TrackedBlade> tracks = trackBlades(results);
   BladeModelFile file;
@@ -422,6 +437,25 @@ void runCapture(const CaptureOptions& o) {
     file.blades.push_back(std::move(m));
   }
 
+  if (o.scaleTo > 0.0) {
+    // Relative depth (Middlebury without calibration) has no true scale: the user gives the longest blade's.
+    float longest = 0.0f;
+    for (const BladeModel& m : file.blades) {
+      longest = std::max(longest, m.length());
+    }
+    const float factor = static_cast<float>(o.scaleTo) / std::max(longest, 1e-9f);
+    for (BladeModel& m : file.blades) {
+      for (BladeLod& lod : m.lods) {
+        for (glm::vec3& p : lod.positions) {
+          p *= factor;
+        }
+        for (float& w : lod.widths) {
+          w *= factor;
+        }
+      }
+    }
+    file.generator += fmt::format(" (scaled by {:.4g} so the longest blade is {} m)", factor, o.scaleTo);
+  }
   if (!o.quiet) {
     std::printf("%s (%s, %dx%d%s): %zu blade%s in %zu cluster%s, depth %.3f-%.3f m%s\n",
                 reference.label().c_str(), source.kind.c_str(), reference.width, reference.height,
@@ -749,11 +783,26 @@ void registerCapture(CLI::App& app) {
       ->check(finiteRange(0.0, 1.0))
       ->capture_default_str();
   command
+      ->add_option(
+          "--variance", o->variance,
+          "Refining: variance of the relative position (displacement: sees bending) or of the distance "
+          "(distance: the paper's eq. 3)")
+      ->check(CLI::IsMember({"displacement", "distance"}))
+      ->capture_default_str();
+  command->add_flag(
+      "--raw-metres", o->rawMetres,
+      "Refining: form D in metres as the paper does (default: in mean knot spacings, so --mu weighs "
+      "comparable terms)");
+  command
       ->add_option("--motion", o->motion,
                    "Refining motion: auto (recording if several frames, else sway), recording, sway, none")
       ->check(CLI::IsMember({"auto", "recording", "sway", "none"}))
       ->capture_default_str();
   command->add_option("--name", o->name, "Name prefix of the blade models (default: the input's name)");
+  command
+      ->add_option("--scale-to", o->scaleTo,
+                   "Scale the models so the longest blade is this long, metres (for relative depth)")
+      ->check(finiteRange(1e-4, 100.0));
   command->add_option("-o,--out", o->out, "Blade-model JSON (default out/capture/<name>.blades.json)");
   command->add_option("--overlay", o->overlay, "Debug overlay PNG (default out/capture/<name>-overlay.png)");
   command->add_option("--stages", o->stages, "Folder for a picture of every pipeline stage (for docs)");

@@ -41,6 +41,10 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include <fmt/format.h>
+
+#include <cstdlib>
+
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
@@ -269,8 +273,56 @@ BladeModel parseBlade(const Node& n) {
   return blade;
 }
 
+/**
+ * A float as the double of its shortest decimal form, so files hold "0.1" rather than "0.10000000149011612"
+ * (a third of the size); parsing it back and casting to float gives the same float.
+ */
+double shortest(float f) {
+  return std::strtod(fmt::format("{}", f).c_str(), nullptr);
+}
+
+/**
+ * Puts arrays that hold only numbers on one line ("[0.1, 0.2, 0.3]"): 2-space JSON with one number per line
+ * makes knot lists several times longer and harder to read.
+ */
+std::string compactNumberArrays(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  std::size_t i = 0;
+  while (i < text.size()) {
+    if (text[i] == '[') {
+      const std::size_t close = text.find_first_of("[]", i + 1);
+      if (close != std::string::npos && text[close] == ']') {
+        const std::string body = text.substr(i + 1, close - i - 1);
+        const bool numeric = body.find_first_not_of("0123456789.eE+-, \n") == std::string::npos &&
+                             body.find_first_of("0123456789") != std::string::npos;
+        if (numeric) {
+          out += '[';
+          bool pendingSpace = false;
+          for (const char ch : body) {
+            if (ch == ' ' || ch == '\n') {
+              continue;
+            }
+            if (pendingSpace) {
+              out += ' ';
+              pendingSpace = false;
+            }
+            out += ch;
+            pendingSpace = ch == ',';
+          }
+          out += ']';
+          i = close + 1;
+          continue;
+        }
+      }
+    }
+    out += text[i++];
+  }
+  return out;
+}
+
 json vecJson(const glm::vec3& v) {
-  return json::array({v.x, v.y, v.z});
+  return json::array({shortest(v.x), shortest(v.y), shortest(v.z)});
 }
 
 json lodJson(const BladeLod& lod) {
@@ -282,7 +334,11 @@ json lodJson(const BladeLod& lod) {
   for (const glm::vec3& n : lod.normals) {
     normals.push_back(vecJson(n));
   }
-  return {{"knots", lod.knotCount()}, {"positions", positions}, {"widths", lod.widths}, {"normals", normals}};
+  json widths = json::array();
+  for (const float w : lod.widths) {
+    widths.push_back(shortest(w));
+  }
+  return {{"knots", lod.knotCount()}, {"positions", positions}, {"widths", widths}, {"normals", normals}};
 }
 
 json sourceJson(const BladeSource& s) {
@@ -381,7 +437,7 @@ void saveBladeModels(const std::filesystem::path& path, const BladeModelFile& fi
   const json document = toJson(file);
   // Whatever is written must load again: the same checks, with the same messages, before anything is written.
   (void)parseBladeModels(document, path.string());
-  saveJsonFile(path, document);
+  writeTextFile(path, compactNumberArrays(document.dump(2)) + "\n");
 }
 
 } // namespace sylva::capture

@@ -160,7 +160,7 @@ void captureKinect(const KinectOptions& options, const std::function<bool(DepthF
   if (count == 0) {
     fail("no Kinect v1 found (libfreenect sees 0 devices): connect one, or replay a recording with `fakenect "
          "DIR "
-         "sylva capture kinect …`");
+         "sylva capture --kinect`");
   }
   if (options.device >= count) {
     fail("kinect: device {} does not exist (libfreenect sees {} device{})", options.device, count,

@@ -67,7 +67,7 @@ Image toImage(const cv::Mat& bgr) {
 
 } // namespace
 
-Image overlayImage(const DepthFrame& frame, const ExtractResult& result) {
+Image overlayImage(const DepthFrame& frame, const ExtractResult& result, const std::string& captionText) {
   if (frame.width <= 0 || frame.height <= 0 || result.width != frame.width || result.height != frame.height) {
     fail("{}: overlay: the capture result does not belong to this frame", frame.label());
   }
@@ -146,10 +146,13 @@ Image overlayImage(const DepthFrame& frame, const ExtractResult& result) {
     cv::line(img, c - cv::Point(r, 0), c + cv::Point(r, 0), {0, 0, 255}, thick + 1, cv::LINE_AA, 4);
     cv::line(img, c - cv::Point(0, r), c + cv::Point(0, r), {0, 0, 255}, thick + 1, cv::LINE_AA, 4);
   }
-  const std::string caption = fmt::format(
-      "{}: {} blade{} in {} cluster{}, depth {:.3f}-{:.3f} m{}", frame.label(), result.blades.size(),
-      result.blades.size() == 1 ? "" : "s", result.clusters.size(), result.clusters.size() == 1 ? "" : "s",
-      result.nearMetres, result.farMetres, result.colourRefined ? ", colour-refined" : "");
+  const std::string caption =
+      !captionText.empty()
+          ? captionText
+          : fmt::format("{}: {} blade{} in {} cluster{}, depth {:.3f}-{:.3f} m{}", frame.label(),
+                        result.blades.size(), result.blades.size() == 1 ? "" : "s", result.clusters.size(),
+                        result.clusters.size() == 1 ? "" : "s", result.nearMetres, result.farMetres,
+                        result.colourRefined ? ", colour-refined" : "");
   const double fontScale = 0.5 * std::max(1.0, img.cols / 900.0);
   cv::rectangle(img, {0, 0}, {img.cols, static_cast<int>(26 * fontScale / 0.5)}, {0, 0, 0}, cv::FILLED);
   cv::putText(img, caption, {8, static_cast<int>(18 * fontScale / 0.5)}, cv::FONT_HERSHEY_SIMPLEX, fontScale,

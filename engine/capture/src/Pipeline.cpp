@@ -131,11 +131,19 @@ BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion, 
   }
   model.bendAxis = axis;
 
+  // The unit of refining: the mean knot spacing of the captured skeleton.
+  float spacing = 0.0f;
+  for (std::size_t k = 1; k < n; ++k) {
+    spacing += glm::length(blade.knots[k] - blade.knots[k - 1]);
+  }
+  spacing = std::max(spacing / static_cast<float>(n - 1), 1e-9f);
   for (int level : options.levels) {
     RefineOptions refine;
     refine.knots = level;
     refine.mu = options.mu;
     refine.keepEnds = true;
+    refine.measure = options.measure;
+    refine.unitMetres = options.rawMetres ? 0.0 : spacing;
     const RefineResult r = refineKnots(frames, blade.widths, refine);
     BladeLod lod;
     const std::vector<glm::vec3>& pose = r.frames[0];

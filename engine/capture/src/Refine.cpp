@@ -56,6 +56,9 @@ std::size_t validate(const KnotFrames& frames, std::span<const float> widths, co
   if (options.knots < 2) {
     fail("refine: cannot refine to {} knots; at least 2 are needed", options.knots);
   }
+  if (!(options.unitMetres >= 0.0) || !std::isfinite(options.unitMetres)) {
+    fail("refine: unit {} m must be finite and ≥ 0", options.unitMetres);
+  }
   if (!(options.mu >= 0.0 && options.mu <= 1.0)) {
     fail("refine: mu = {} is outside [0, 1]", options.mu);
   }
@@ -84,22 +87,31 @@ Trajectories knotMajor(const KnotFrames& frames, std::size_t knots) {
 
 /** D of eq. 1–3 without validation (sizes equal and non-zero). Out of line: one code path for both refiners.
  */
-[[gnu::noinline]] double difference(std::span<const glm::vec3> a, std::span<const glm::vec3> b, double mu) {
+[[gnu::noinline]] double difference(std::span<const glm::vec3> a, std::span<const glm::vec3> b,
+                                    const RefineOptions& options) {
+  const double scale = options.unitMetres > 0.0 ? 1.0 / options.unitMetres : 1.0;
+  const double n = static_cast<double>(a.size());
   double sum = 0.0;
   double sumSquares = 0.0;
+  glm::dvec3 sumVector(0.0);
   for (std::size_t i = 0; i < a.size(); ++i) {
-    const double dx = static_cast<double>(a[i].x) - static_cast<double>(b[i].x);
-    const double dy = static_cast<double>(a[i].y) - static_cast<double>(b[i].y);
-    const double dz = static_cast<double>(a[i].z) - static_cast<double>(b[i].z);
-    const double squared = dx * dx + dy * dy + dz * dz;
+    const glm::dvec3 d = (glm::dvec3(a[i]) - glm::dvec3(b[i])) * scale;
+    const double squared = d.x * d.x + d.y * d.y + d.z * d.z;
     sum += std::sqrt(squared);
     sumSquares += squared;
+    sumVector += d;
   }
-  const double n = static_cast<double>(a.size());
   const double dis = sum / n;
-  // Σd²/n − (Σd)²/n²: the variance of d; rounding can leave a tiny negative value for constant d.
-  const double var = std::max(0.0, sumSquares / n - (sum * sum) / (n * n));
-  return mu * dis + (1.0 - mu) * var;
+  double var = 0.0;
+  if (options.measure == RefineOptions::Measure::Distance) {
+    // Σd²/n − (Σd)²/n²: the variance of d; rounding can leave a tiny negative value for constant d.
+    var = std::max(0.0, sumSquares / n - (sum * sum) / (n * n));
+  } else {
+    // Σ|Δ|²/n − |ΣΔ/n|²: the variance of the relative position Δ = a − b.
+    const glm::dvec3 mean = sumVector / n;
+    var = std::max(0.0, sumSquares / n - (mean.x * mean.x + mean.y * mean.y + mean.z * mean.z));
+  }
+  return options.mu * dis + (1.0 - options.mu) * var;
 }
 
 /**
@@ -148,7 +160,21 @@ double movementDifference(std::span<const glm::vec3> a, std::span<const glm::vec
   if (!(mu >= 0.0 && mu <= 1.0)) {
     fail("movementDifference: mu = {} is outside [0, 1]", mu);
   }
-  return difference(a, b, mu);
+  RefineOptions options;
+  options.mu = mu;
+  return difference(a, b, options);
+}
+
+double movementDifference(std::span<const glm::vec3> a, std::span<const glm::vec3> b,
+                          const RefineOptions& options) {
+  if (!(options.unitMetres >= 0.0) || !std::isfinite(options.unitMetres)) {
+    fail("movementDifference: unit {} m must be finite and ≥ 0", options.unitMetres);
+  }
+  const double d = movementDifference(a, b, options.mu);
+  if (options.measure == RefineOptions::Measure::Distance && options.unitMetres == 0.0) {
+    return d;
+  }
+  return difference(a, b, options);
 }
 
 RefineResult refineKnotsReference(const KnotFrames& frames, std::span<const float> widths,
@@ -175,7 +201,7 @@ RefineResult refineKnotsReference(const KnotFrames& frames, std::span<const floa
   while (knots.size() > target) {
     differences.clear();
     for (std::size_t i = 0; i + 1 < knots.size(); ++i) {
-      differences.push_back(difference(knots[i].trajectory, knots[i + 1].trajectory, options.mu));
+      differences.push_back(difference(knots[i].trajectory, knots[i + 1].trajectory, options));
     }
     // The first minimum: the pair nearest the root among equal differences.
     const std::size_t ind = static_cast<std::size_t>(
@@ -238,11 +264,11 @@ RefineResult refineKnots(const KnotFrames& frames, std::span<const float> widths
   heap.reserve(3 * inputKnots);
   const auto push = [&](std::uint32_t left, std::uint32_t right) {
     heap.push_back(
-        {difference(t.of(left), t.of(right), options.mu), left, right, version[left], version[right]});
+        {difference(t.of(left), t.of(right), options), left, right, version[left], version[right]});
     std::push_heap(heap.begin(), heap.end(), later);
   };
   for (std::uint32_t k = 0; k + 1 < inputKnots; ++k) {
-    heap.push_back({difference(t.of(k), t.of(k + 1), options.mu), k, k + 1, 0, 0});
+    heap.push_back({difference(t.of(k), t.of(k + 1), options), k, k + 1, 0, 0});
   }
   std::make_heap(heap.begin(), heap.end(), later);
 

@@ -314,9 +314,28 @@ TEST(MakeBladeModel, MotionFrames) {
   const BladeModel b = makeBladeModel(blade, {}, swaying, syntheticSource());
   EXPECT_EQ(b.source.motionFrames, 38);
   EXPECT_EQ(b.source.mu, 0.25);
-  // Refining never moves the root or the tip. (The simulated sway preserves segment lengths, so adjacent
-  // knots keep their distance in every frame: here it merges the same knots as the static pose.)
+  // Refining never moves the root or the tip.
   EXPECT_EQ(a.lods.back().positions.back(), b.lods.back().positions.back());
+  // The sway bends the blade most towards its tip: with the displacement variance (the default) refining
+  // keeps more knots there than the static pose does. The paper's distance variance cannot see it: the sway
+  // keeps segment lengths, so adjacent knots keep their distance in every frame and the same knots merge.
+  auto tipHalf = [](const BladeModel& m) {
+    const BladeLod& lod = m.lods.back();
+    const float half = 0.5f * lod.positions.back().y;
+    return std::count_if(lod.positions.begin(), lod.positions.end(),
+                         [half](const glm::vec3& p) { return p.y > half; });
+  };
+  ModelOptions stillDefault;
+  stillDefault.simulateSway = false;
+  ModelOptions swayDefault;
+  const BladeModel staticPose = makeBladeModel(blade, {}, stillDefault, syntheticSource());
+  const BladeModel swayed = makeBladeModel(blade, {}, swayDefault, syntheticSource());
+  EXPECT_GT(tipHalf(swayed), tipHalf(staticPose));
+  ModelOptions paper = swayDefault;
+  paper.measure = RefineOptions::Measure::Distance;
+  paper.rawMetres = true;
+  EXPECT_EQ(makeBladeModel(blade, {}, paper, syntheticSource()).lods.back().positions,
+            makeBladeModel(blade, {}, stillDefault, syntheticSource()).lods.back().positions);
 
   // A recording's motion.
   const Sway& s = sway();

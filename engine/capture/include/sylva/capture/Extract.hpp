@@ -186,10 +186,16 @@ ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& optio
  * skeleton in its own colour with width ticks, and labels. RGB8, the frame's size (at least 640 wide: small
  * frames are scaled up by an integer factor).
  */
-Image overlayImage(const DepthFrame& frame, const ExtractResult& result);
+Image overlayImage(const DepthFrame& frame, const ExtractResult& result, const std::string& caption = {});
 
 /** The distance signal of one cluster as a plot (RGB8, width × height): raw, smoothed and the junctions. */
 Image signalPlot(const Cluster& cluster, int width, int height);
+
+/**
+ * Threads OpenCV may use inside extraction (cv::setNumThreads; process-wide); 0 restores OpenCV's default.
+ * Benchmarks use 1 to measure on one core.
+ */
+void setExtractionThreads(int threads);
 
 /** Rasterises blades (skeleton ± half width) into a width × height mask (255 inside); for accuracy checks. */
 std::vector<std::uint8_t> rasteriseBlades(const std::vector<CapturedBlade>& blades, int width, int height);

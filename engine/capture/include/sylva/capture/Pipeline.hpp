@@ -34,6 +34,13 @@ struct ModelOptions {
   std::vector<int> levels{64, 32, 16};
   /** μ of refining. */
   double mu = 0.5;
+  /**
+   * The variance term of refining: Displacement (default) sees where the blade bends; Distance is the paper's
+   * eq. 3 as written. Lengths are measured in mean knot spacings of the captured skeleton either way, unless
+   * rawMetres (the paper's units, where the variance term is negligible).
+   */
+  RefineOptions::Measure measure = RefineOptions::Measure::Displacement;
+  bool rawMetres = false;
   /** Without a recording, refine over a simulated sway (swayFrames) instead of the static pose alone. */
   bool simulateSway = true;
   SwayOptions sway;

@@ -30,6 +30,26 @@ struct RefineOptions {
    * midpoint, which shortens the blade).
    */
   bool keepEnds = true;
+  /** What the variance term of D measures. */
+  enum class Measure {
+    /**
+     * The paper's eq. 3: the variance of the scalar distance |a − b|. Adjacent knots of an inextensible blade
+     * keep their distance however the blade bends, so this term sees stretching and noise only.
+     */
+    Distance,
+    /**
+     * The variance of the relative position a − b (a vector): it grows when the pair turns relative to the
+     * rest of the motion, i.e. where the blade bends, which is what "moves differently" means for a blade.
+     */
+    Displacement,
+  };
+  Measure measure = Measure::Distance;
+  /**
+   * Lengths are divided by this (metres) before D is formed, so that μ weighs comparable numbers: with a unit
+   * of the mean knot spacing, dis ≈ 1 for neighbours and var is in spacings². 0: raw metres (the paper),
+   * where var (m²) is negligible next to dis (m) at blade scale.
+   */
+  double unitMetres = 0.0;
 };
 
 /** Result of refining: the merged trajectories, widths and how many input knots each output knot stands for.
@@ -46,6 +66,10 @@ struct RefineResult {
  * variance (it grows with n), so the n² of the definition is used.
  */
 double movementDifference(std::span<const glm::vec3> a, std::span<const glm::vec3> b, double mu);
+
+/** D with the measure and unit of `options` (movementDifference is Distance in raw metres). */
+double movementDifference(std::span<const glm::vec3> a, std::span<const glm::vec3> b,
+                          const RefineOptions& options);
 
 /**
  * Greedy refining in O(n log n): a binary heap of adjacent-pair differences with lazy invalidation over a

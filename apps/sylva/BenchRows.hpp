@@ -1,0 +1,38 @@
+#pragma once
+
+// Target tables of `sylva bench <area>` for CPU work: each row is a measured value against a target from the
+// specs, printed as a table and returned as JSON.
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace sylva::app {
+
+/** One measured metric against its target. */
+struct BenchRow {
+  std::string metric;
+  /** NaN when not measured (the note says why). */
+  double value;
+  std::string unit;
+  double target;
+  /** The target is an upper bound (else a lower bound). */
+  bool atMost;
+  /** Threads the measurement used (0: the GPU). */
+  unsigned threads;
+  std::string note;
+};
+
+/** Seconds of each of `runs` calls of `fn` after `warmup` unmeasured calls. */
+std::vector<double> timeRuns(int warmup, int runs, const std::function<void()>& fn);
+
+/** Prints the rows as a table (measured, target, ok/MISS) and returns them as a JSON array. */
+nlohmann::json printBenchRows(const std::vector<BenchRow>& rows);
+
+/** `bench capture`: grass capture targets (docs/capture.md): extraction latency, refining. */
+void benchCapture(nlohmann::json& report);
+
+} // namespace sylva::app

@@ -1,0 +1,248 @@
+// `sylva capture` as a user runs it: a synthetic depth PNG and a synthetic fakenect recording through the
+// real command (blade models, overlay, stage pictures, tracked motion), the same recording replayed through
+// the real libfreenect API under `fakenect` (identical models), `--kinect` without a device, and bad inputs
+// and options that fail with one line naming the file, frame or option and leave no output behind.
+#include "CliRun.hpp"
+#include "TempDir.hpp"
+
+#include <sylva/capture/BladeModel.hpp>
+#include <sylva/capture/Depth.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Image.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sylva {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quote;
+
+const fs::path kFakenect = "/usr/bin/fakenect";
+
+test::RunResult runSylva(const test::TempDir& dir, const std::string& args) {
+  return test::runProgram(SYLVA_EXE, dir.path(), args);
+}
+
+/** `name` in the test's directory, as a quoted shell argument (the command runs elsewhere). */
+std::string at(const test::TempDir& dir, const std::string& name) {
+  return quote((dir / name).string());
+}
+
+std::size_t lineCount(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
+         (!text.empty() && text.back() != '\n' ? 1 : 0);
+}
+
+std::size_t countOf(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+/** The depth files of a recording, in INDEX.txt order. */
+std::vector<std::string> depthFiles(const fs::path& recording) {
+  std::vector<std::string> files;
+  std::istringstream index(readTextFile(recording / "INDEX.txt"));
+  std::string line;
+  while (std::getline(index, line)) {
+    if (line.starts_with("d-")) {
+      files.push_back(line);
+    }
+  }
+  return files;
+}
+
+void copyRecording(const fs::path& from, const fs::path& to) {
+  fs::copy(from, to, fs::copy_options::recursive);
+}
+
+TEST(CaptureCli, SyntheticPngGivesBladeModelsAndAnOverlay) {
+  const test::TempDir dir;
+  const test::RunResult synth =
+      runSylva(dir, "capture synth --shape slender -o " + at(dir, "s.png") + " --truth " + at(dir, "t.json"));
+  ASSERT_EQ(synth.status, 0) << synth.err;
+  ASSERT_TRUE(fs::exists(dir / "s-colour.png"));
+  ASSERT_TRUE(fs::exists(dir / "t.json"));
+
+  const test::RunResult r =
+      runSylva(dir, "capture " + at(dir, "s.png") + " --colour " + at(dir, "s-colour.png") + " -o " +
+                        at(dir, "m.json") + " --overlay " + at(dir, "o.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr("5 blades"));
+  EXPECT_THAT(r.out, testing::HasSubstr("colour-refined edges"));
+  const capture::BladeModelFile models = capture::loadBladeModels(dir / "m.json");
+  ASSERT_EQ(models.blades.size(), 5u);
+  for (const capture::BladeModel& blade : models.blades) {
+    ASSERT_EQ(blade.lods.size(), 3u) << blade.name;
+    EXPECT_EQ(blade.lods[0].knotCount(), 64u) << blade.name;
+    EXPECT_EQ(blade.lods[1].knotCount(), 32u) << blade.name;
+    EXPECT_EQ(blade.lods[2].knotCount(), 16u) << blade.name;
+    EXPECT_EQ(blade.source.kind, "depth-png") << blade.name;
+  }
+  const Image input = loadImage(dir / "s.png");
+  const Image overlay = loadImage(dir / "o.png");
+  EXPECT_EQ(overlay.width(), input.width());
+  EXPECT_EQ(overlay.height(), input.height());
+
+  // Other levels, and the stage pictures for the docs.
+  const test::RunResult levels = runSylva(dir, "capture " + at(dir, "s.png") + " --levels 32,8 -q -o " +
+                                                   at(dir, "l.json") + " --stages " + at(dir, "stages"));
+  ASSERT_EQ(levels.status, 0) << levels.err;
+  const capture::BladeModelFile coarse = capture::loadBladeModels(dir / "l.json");
+  ASSERT_EQ(coarse.blades.size(), 5u);
+  for (const capture::BladeModel& blade : coarse.blades) {
+    ASSERT_EQ(blade.lods.size(), 2u) << blade.name;
+    EXPECT_EQ(blade.lods[0].knotCount(), 32u) << blade.name;
+    EXPECT_EQ(blade.lods[1].knotCount(), 8u) << blade.name;
+  }
+  for (const char* stage : {"1-depth.png", "2-mask.png", "3-contour.png", "4-signal.png", "5-blades.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "stages" / stage)) << stage;
+  }
+}
+
+TEST(CaptureCli, SyntheticEvaluatePrintsEveryFrame) {
+  const test::TempDir dir;
+  const test::RunResult r = runSylva(dir, "capture synth --frames 3 --evaluate -o " + at(dir, "rec"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(countOf(r.out, "blades 5/5"), 3u) << r.out;
+  for (const char* frame : {"frame 0: ", "frame 1: ", "frame 2: "}) {
+    EXPECT_THAT(r.out, testing::HasSubstr(frame));
+  }
+}
+
+TEST(CaptureCli, RecordingIsTrackedAndReplaysThroughLibfreenect) {
+  const test::TempDir dir;
+  const test::RunResult synth = runSylva(dir, "capture synth --frames 8 -o " + at(dir, "rec"));
+  ASSERT_EQ(synth.status, 0) << synth.err;
+  ASSERT_TRUE(fs::exists(dir / "rec" / "INDEX.txt"));
+
+  const test::RunResult r = runSylva(dir, "capture " + at(dir, "rec") + " -o " + at(dir, "a.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr("5 blades"));
+  EXPECT_THAT(r.out, testing::HasSubstr("tracked through the recording"));
+  const nlohmann::json a = loadJsonFile(dir / "a.json");
+  ASSERT_EQ(a["blades"].size(), 5u);
+  for (const nlohmann::json& blade : a["blades"]) {
+    EXPECT_EQ(blade["source"]["motionFrames"], 8);
+    EXPECT_EQ(blade["source"]["kind"], "fakenect");
+  }
+
+  const test::RunResult part =
+      runSylva(dir, "capture " + at(dir, "rec") + " --frames 2-5 -q -o " + at(dir, "part.json"));
+  ASSERT_EQ(part.status, 0) << part.err;
+  const nlohmann::json p = loadJsonFile(dir / "part.json");
+  ASSERT_FALSE(p["blades"].empty());
+  for (const nlohmann::json& blade : p["blades"]) {
+    EXPECT_EQ(blade["source"]["motionFrames"], 4);
+    EXPECT_EQ(blade["source"]["frame"], 2);
+  }
+
+  if (!fs::exists(kFakenect)) {
+    GTEST_SKIP() << kFakenect.string() << " is missing (install libfreenect-bin): the replay is not tested";
+  }
+  const test::RunResult replay =
+      test::runProgram(kFakenect.string(), dir.path(),
+                       at(dir, "rec") + " " + quote(SYLVA_EXE) + " capture --kinect -o " + at(dir, "b.json"));
+  ASSERT_EQ(replay.status, 0) << replay.out << replay.err;
+  EXPECT_THAT(replay.out, testing::HasSubstr("tracked through the recording"));
+  const nlohmann::json b = loadJsonFile(dir / "b.json");
+  ASSERT_EQ(b["blades"].size(), a["blades"].size());
+  for (std::size_t i = 0; i < a["blades"].size(); ++i) {
+    EXPECT_EQ(b["blades"][i]["lods"], a["blades"][i]["lods"]) << "blade " << i;
+    EXPECT_EQ(b["blades"][i]["source"]["kind"], "kinect");
+    EXPECT_EQ(b["blades"][i]["source"]["motionFrames"], 8);
+  }
+}
+
+TEST(CaptureCli, KinectWithoutADeviceFailsWithOneLine) {
+  const test::TempDir dir;
+  // No replay: FAKENECT_PATH unset, whatever the test's environment holds.
+  const test::RunResult r =
+      test::runProgram("/usr/bin/env", dir.path(),
+                       "-u FAKENECT_PATH " + quote(SYLVA_EXE) + " capture --kinect -o " +
+                           at(dir, "out/k.json") + " --overlay " + at(dir, "out/k.png"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  const bool noDevice = r.err.find("no Kinect v1 found") != std::string::npos;
+  const bool noUsb = r.err.find("libfreenect could not start") != std::string::npos;
+  EXPECT_TRUE(noDevice || noUsb) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(CaptureCli, BadInputsFailWithOneLineAndWriteNothing) {
+  const test::TempDir dir;
+  ASSERT_EQ(runSylva(dir, "capture synth -o " + at(dir, "s.png")).status, 0);
+  ASSERT_EQ(runSylva(dir, "capture synth --frames 4 --no-colour -o " + at(dir, "rec")).status, 0);
+  const std::vector<std::string> depth = depthFiles(dir / "rec");
+  ASSERT_EQ(depth.size(), 4u);
+
+  saveImage(dir / "grey8.png", Image(64, 48, 1, PixelType::U8));
+  saveImage(dir / "zero16.png", Image(64, 48, 1, PixelType::U16));
+  capture::DepthFrame background(640, 480);
+  std::fill(background.depth.begin(), background.depth.end(), 1.5f);
+  capture::saveDepthPng(dir / "background.png", background);
+  copyRecording(dir / "rec", dir / "noindex");
+  fs::remove(dir / "noindex" / "INDEX.txt");
+  copyRecording(dir / "rec", dir / "truncated");
+  fs::resize_file(dir / "truncated" / depth[2], 1000);
+
+  struct Case {
+    std::string args;
+    std::vector<std::string> message;
+  };
+  const std::string png = "capture " + at(dir, "s.png");
+  const std::vector<Case> cases = {
+      {"capture " + at(dir, "grey8.png") + " --format png", {"grey8.png", "16-bit", "got 8-bit"}},
+      {"capture " + at(dir, "zero16.png"), {"zero16.png", "no valid depth pixel"}},
+      {"capture " + at(dir, "background.png"), {"background.png", "no blades found"}},
+      {"capture " + at(dir, "background.png") + " --near 0.3 --far 0.5",
+       {"background.png", "no blades found", "empty mask"}},
+      {"capture " + at(dir, "none.png"), {"none.png", "no such file"}},
+      {"capture " + at(dir, "noindex"), {"noindex", "INDEX.txt is missing"}},
+      {"capture " + at(dir, "truncated"), {depth[2], "frame 2", "truncated"}},
+      {"capture " + at(dir, "rec") + " --frames 2-9", {"--frames 2-9", "4 depth frames"}},
+      {png + " --frames 1", {"--frames 1", "s.png has 1 depth frame"}},
+      {png + " --levels 16,32", {"--levels", "16,32", "decrease"}},
+      {png + " --roi 100,0,50,10", {"--roi", "100,0,50,10"}},
+      {png + " --centre nonsense", {"--centre", "nonsense"}},
+      {png + " --levels 64,32 --knots 32", {"--levels", "--knots 32"}},
+  };
+  for (const Case& c : cases) {
+    const test::RunResult r =
+        runSylva(dir, c.args + " -o " + at(dir, "out/x.json") + " --overlay " + at(dir, "out/x.png"));
+    EXPECT_NE(r.status, 0) << c.args;
+    EXPECT_EQ(lineCount(r.err), 1u) << c.args << "\n" << r.err;
+    for (const std::string& part : c.message) {
+      EXPECT_THAT(r.err, testing::HasSubstr(part)) << c.args;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out")) << c.args;
+  }
+
+  // A depth file listed in INDEX.txt but missing is a warning naming it and its frame; the other frames are
+  // captured.
+  copyRecording(dir / "rec", dir / "gap");
+  fs::remove(dir / "gap" / depth[1]);
+  const test::RunResult gap = runSylva(dir, "capture " + at(dir, "gap") + " -q -o " + at(dir, "gap.json"));
+  ASSERT_EQ(gap.status, 0) << gap.err;
+  EXPECT_EQ(lineCount(gap.err), 1u) << gap.err;
+  EXPECT_THAT(gap.err, testing::HasSubstr("warning: "));
+  EXPECT_THAT(gap.err, testing::HasSubstr(depth[1]));
+  EXPECT_THAT(gap.err, testing::HasSubstr("frame 1"));
+  const nlohmann::json g = loadJsonFile(dir / "gap.json");
+  ASSERT_FALSE(g["blades"].empty());
+  EXPECT_EQ(g["blades"][0]["source"]["motionFrames"], 3);
+}
+
+} // namespace
+} // namespace sylva
