@@ -399,8 +399,9 @@ struct Context {
   const DepthFrame& frame;
   const ExtractOptions& options;
   ExtractResult& result;
-  cv::Mat depth; ///< CV_32F metres, possibly colour-refined
-  cv::Mat mask;  ///< CV_8U 0/255
+  cv::Mat depth;       ///< CV_32F metres, possibly colour-refined
+  cv::Mat mask;        ///< CV_8U 0/255
+  cv::Mat clusterDist; ///< CV_32F distance to the current cluster's border, pixels
 };
 
 /**
@@ -668,8 +669,7 @@ struct CentreCandidate {
  */
 std::vector<CentreCandidate> centreCandidates(Context& c, const cv::Mat& clusterMask,
                                               const std::vector<cv::Point>& contour) {
-  cv::Mat dist;
-  cv::distanceTransform(clusterMask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const cv::Mat& dist = c.clusterDist;
   double maxVal = 0.0;
   cv::Point maxLoc;
   cv::minMaxLoc(dist, nullptr, &maxVal, nullptr, &maxLoc);
@@ -972,7 +972,10 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
       maxWidth = *std::max_element(widths.begin(), widths.end());
     }
   }
-  const float lengthPx = polylineLength(line);
+  // A blade reaches from the centre to its tip: a leaf mostly hidden behind its neighbours shows only a
+  // short, wide end beyond its junctions, yet is as long as the others.
+  const float lengthPx =
+      polylineLength(line) + (o.extendToCentre ? glm::length(line.front() - cluster.centre) : 0.0f);
   if (lengthPx < o.minElongation * std::max(maxWidth, 1.0f)) {
     reason = fmt::format("not elongated ({:.0f} px long, {:.0f} px wide)", lengthPx, maxWidth);
     return false;
@@ -1001,7 +1004,13 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
       for (int s = 0; s < steps; ++s) {
         const float t = static_cast<float>(s) / static_cast<float>(steps);
         ext.push_back(cluster.centre + t * (base - cluster.centre));
-        extW.push_back(std::clamp(w0 - slope * (1.0f - t) * d, 0.25f * w0, w0));
+        // ...and never wider than the cluster is there (a straight extension cuts the corner of a bent
+        // blade).
+        const glm::vec2 q = ext.back();
+        const int qx = std::clamp(static_cast<int>(std::lround(q.x)), 0, c.clusterDist.cols - 1);
+        const int qy = std::clamp(static_cast<int>(std::lround(q.y)), 0, c.clusterDist.rows - 1);
+        const float room = std::max(2.0f * c.clusterDist.at<float>(qy, qx) - 1.0f, 1.0f);
+        extW.push_back(std::min(std::clamp(w0 - slope * (1.0f - t) * d, 0.25f * w0, w0), room));
       }
       line.insert(line.begin(), ext.begin(), ext.end());
       widths.insert(widths.begin(), extW.begin(), extW.end());
@@ -1011,16 +1020,22 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
   blade.skeletonPx = resample(line, o.knots, &widths, &blade.widthsPx);
   blade.lengthPx = polylineLength(blade.skeletonPx);
   blade.extensionPx = extension;
+  std::size_t onBorder = 0;
   for (const glm::vec2& p : blade.outline) {
+    bool border = p.x <= 0.0f || p.y <= 0.0f || p.x >= c.frame.width - 1 || p.y >= c.frame.height - 1;
     if (c.options.roi != std::array<int, 4>{0, 0, 0, 0}) {
-      if (p.x <= c.options.roi[0] + 1 || p.y <= c.options.roi[1] + 1 || p.x >= c.options.roi[2] - 2 ||
-          p.y >= c.options.roi[3] - 2) {
-        blade.touchesBorder = true;
-      }
+      border = border || p.x <= c.options.roi[0] + 1 || p.y <= c.options.roi[1] + 1 ||
+               p.x >= c.options.roi[2] - 2 || p.y >= c.options.roi[3] - 2;
     }
-    if (p.x <= 0.0f || p.y <= 0.0f || p.x >= c.frame.width - 1 || p.y >= c.frame.height - 1) {
-      blade.touchesBorder = true;
-    }
+    onBorder += border ? 1 : 0;
+  }
+  blade.touchesBorder = onBorder > 0;
+  // A blade cut by the border crosses it once, over its width; a segment that runs along it is the cut
+  // itself.
+  if (onBorder * 10 > blade.outline.size() * 3) {
+    reason = fmt::format("{:.0f} % of its outline is the border of the frame or region",
+                         100.0 * onBorder / blade.outline.size());
+    return false;
   }
   toMetres(c, blade);
   out.push_back(std::move(blade));
@@ -1145,6 +1160,7 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, int cl
   cv::drawContours(clusterMask, std::vector<std::vector<cv::Point>>{contourPts}, 0, cv::Scalar(255),
                    cv::FILLED);
   clusterMask &= c.mask;
+  cv::distanceTransform(clusterMask, c.clusterDist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   const std::vector<CentreCandidate> candidates = centreCandidates(c, clusterMask, contourPts);
   std::optional<Partition> best;
   for (const CentreCandidate& candidate : candidates) {
@@ -1203,7 +1219,7 @@ ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& optio
   ExtractResult result;
   result.width = frame.width;
   result.height = frame.height;
-  Context c{frame, options, result, {}, {}};
+  Context c{frame, options, result, {}, {}, {}};
   buildMask(c);
   if (cv::countNonZero(c.mask) == 0) {
     return result;
