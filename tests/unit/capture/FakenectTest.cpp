@@ -35,7 +35,10 @@ bool contains(const std::string& text, const std::string& part) {
 
 std::vector<std::byte> bytesOf(const std::string& text) {
   std::vector<std::byte> bytes(text.size());
-  std::memcpy(bytes.data(), text.data(), text.size());
+  // memcpy with a null pointer is undefined even for zero bytes (UBSan), and an empty vector has one.
+  if (!text.empty()) {
+    std::memcpy(bytes.data(), text.data(), text.size());
+  }
   return bytes;
 }
 
