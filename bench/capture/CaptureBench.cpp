@@ -4,8 +4,9 @@
 // contours), the frame generator for reference, and a blade model at 64/32/16 knots over a simulated sway.
 // Targets (shared/specs/grass.md): refine 128 → 16 knots ≤ 0.1 ms; a 640×480 frame to blades ≤ 30 ms on one
 // core. Run: taskset -c 0 sylva_benchmarks --benchmark_filter='Extract|Render|MakeBlade|Refine'. The
-// *_1thread cases set cv::setNumThreads(1) (OpenCV's own parallel loops off); the others use OpenCV's
-// default, which under taskset shares the one core.
+// *_1thread cases call setExtractionThreads(1) (OpenCV's own parallel loops off; Debian's TBB-backed
+// OpenCV 4.6 ignores OPENCV_FOR_THREADS_NUM); the others use OpenCV's default, which under taskset shares the
+// one core.
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Pipeline.hpp>
 #include <sylva/capture/Refine.hpp>
@@ -14,15 +15,6 @@
 #include <benchmark/benchmark.h>
 
 #include <vector>
-
-// OpenCV stays out of the benchmark's include path (sylva_opencv is private to sylva::capture), but its
-// libraries are linked through it: these two functions of opencv2/core/utility.hpp are all the benchmark
-// needs. OPENCV_FOR_THREADS_NUM is not honoured by Debian's TBB-backed OpenCV 4.6 (checked: getNumThreads()
-// stays 2 with it set to 1), so the *_1thread cases call setNumThreads(1) instead.
-namespace cv {
-void setNumThreads(int nthreads);
-int getNumThreads();
-} // namespace cv
 
 namespace {
 
@@ -48,15 +40,28 @@ BenchBlade benchBlade(int knots, int frames) {
   return blade;
 }
 
-/** Args: input knots, frames, output knots. */
-void BM_Refine(benchmark::State& state) {
+/**
+ * Args: input knots, frames, output knots. Reference: the paper's Algorithm 1 as written (all differences
+ * recomputed per merge) instead of the heap.
+ */
+template <bool Reference> void refineCase(benchmark::State& state) {
   const BenchBlade blade = benchBlade(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   RefineOptions options;
   options.knots = static_cast<int>(state.range(2));
   for (auto _ : state) {
-    benchmark::DoNotOptimize(refineKnots(blade.frames, blade.widths, options));
+    if constexpr (Reference) {
+      benchmark::DoNotOptimize(refineKnotsReference(blade.frames, blade.widths, options));
+    } else {
+      benchmark::DoNotOptimize(refineKnots(blade.frames, blade.widths, options));
+    }
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+void BM_Refine(benchmark::State& state) {
+  refineCase<false>(state);
+}
+void BM_RefineReference(benchmark::State& state) {
+  refineCase<true>(state);
 }
 BENCHMARK(BM_Refine)
     ->ArgNames({"knots", "frames", "to"})
@@ -65,17 +70,6 @@ BENCHMARK(BM_Refine)
     ->Args({128, 60, 32})
     ->Args({128, 60, 64})
     ->Unit(benchmark::kMicrosecond);
-
-/** The paper's Algorithm 1 as written (all differences recomputed per merge), same cases. */
-void BM_RefineReference(benchmark::State& state) {
-  const BenchBlade blade = benchBlade(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  RefineOptions options;
-  options.knots = static_cast<int>(state.range(2));
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(refineKnotsReference(blade.frames, blade.widths, options));
-  }
-  state.SetItemsProcessed(state.iterations() * state.range(0));
-}
 BENCHMARK(BM_RefineReference)
     ->ArgNames({"knots", "frames", "to"})
     ->Args({128, 1, 16})
@@ -106,20 +100,14 @@ const SyntheticFrame& benchFrame() {
   return frame;
 }
 
-/** Sets OpenCV's thread count for one benchmark and restores it afterwards. */
+/** Limits OpenCV to `threads` for one benchmark (0: leave its default) and restores the default afterwards.
+ */
 class CvThreads {
 public:
-  explicit CvThreads(int threads) : mSaved(cv::getNumThreads()) {
-    if (threads > 0) {
-      cv::setNumThreads(threads);
-    }
-  }
-  ~CvThreads() { cv::setNumThreads(mSaved); }
+  explicit CvThreads(int threads) { setExtractionThreads(threads); }
+  ~CvThreads() { setExtractionThreads(0); }
   CvThreads(const CvThreads&) = delete;
   CvThreads& operator=(const CvThreads&) = delete;
-
-private:
-  int mSaved;
 };
 
 /** Args: colour refinement (0/1), contour (0 mask, 1 Canny), OpenCV threads (0: OpenCV's default). */
@@ -136,31 +124,22 @@ void extractCase(benchmark::State& state, int threads) {
     benchmark::DoNotOptimize(result.blades.data());
   }
   state.counters["blades"] = static_cast<double>(blades);
-  state.counters["cv_threads"] = static_cast<double>(cv::getNumThreads());
+  state.counters["cv_threads"] = threads;
   state.SetItemsProcessed(state.iterations());
 }
 
+void extractArgs(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"colour", "canny"})->Args({1, 0})->Args({0, 0})->Args({0, 1})->Args({1, 1});
+  b->Unit(benchmark::kMillisecond);
+}
 void BM_ExtractBlades(benchmark::State& state) {
   extractCase(state, 0);
 }
-BENCHMARK(BM_ExtractBlades)
-    ->ArgNames({"colour", "canny"})
-    ->Args({1, 0})
-    ->Args({0, 0})
-    ->Args({0, 1})
-    ->Args({1, 1})
-    ->Unit(benchmark::kMillisecond);
-
+BENCHMARK(BM_ExtractBlades)->Apply(extractArgs);
 void BM_ExtractBlades_1thread(benchmark::State& state) {
   extractCase(state, 1);
 }
-BENCHMARK(BM_ExtractBlades_1thread)
-    ->ArgNames({"colour", "canny"})
-    ->Args({1, 0})
-    ->Args({0, 0})
-    ->Args({0, 1})
-    ->Args({1, 1})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExtractBlades_1thread)->Apply(extractArgs);
 
 /** The synthetic generator: one 640×480 frame with noise and colour (reference for the extraction cost). */
 void BM_RenderScene(benchmark::State& state) {

@@ -23,24 +23,14 @@
 namespace sylva {
 namespace {
 
+using test::at;
+using test::lineCount;
+using test::runSylva;
+
 namespace fs = std::filesystem;
 using test::quote;
 
 const fs::path kFakenect = "/usr/bin/fakenect";
-
-test::RunResult runSylva(const test::TempDir& dir, const std::string& args) {
-  return test::runProgram(SYLVA_EXE, dir.path(), args);
-}
-
-/** `name` in the test's directory, as a quoted shell argument (the command runs elsewhere). */
-std::string at(const test::TempDir& dir, const std::string& name) {
-  return quote((dir / name).string());
-}
-
-std::size_t lineCount(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
-         (!text.empty() && text.back() != '\n' ? 1 : 0);
-}
 
 std::size_t countOf(const std::string& text, const std::string& needle) {
   std::size_t n = 0;

@@ -27,6 +27,9 @@
 namespace sylva {
 namespace {
 
+using test::lineCount;
+using test::runSylva;
+
 namespace fs = std::filesystem;
 
 using test::quote;
@@ -34,15 +37,6 @@ using test::readAll;
 using test::RunResult;
 
 /** Runs `sylva <args>` (args already shell-quoted where needed) with stdout and stderr captured. */
-RunResult runSylva(const test::TempDir& dir, const std::string& args) {
-  return test::runProgram(SYLVA_EXE, dir.path(), args);
-}
-
-std::size_t lineCount(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
-         (!text.empty() && text.back() != '\n' ? 1 : 0);
-}
-
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> result;
   std::istringstream in(text);

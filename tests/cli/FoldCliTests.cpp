@@ -26,6 +26,9 @@
 namespace sylva {
 namespace {
 
+using test::lineCount;
+using test::runSylva;
+
 namespace fs = std::filesystem;
 using test::quote;
 using test::readAll;
@@ -33,19 +36,10 @@ using test::readAll;
 constexpr int kWidth = 72;
 constexpr int kHeight = 56;
 
-test::RunResult runSylva(const test::TempDir& dir, const std::string& args) {
-  return test::runProgram(SYLVA_EXE, dir.path(), args);
-}
-
 /** `sylva <args>` with PATH set to `path` (so which ffmpeg it finds, if any, is the test's choice). */
 test::RunResult runWithPath(const test::TempDir& dir, const std::string& path, const std::string& args) {
   return test::runProgram("/usr/bin/env", dir.path(),
                           quote("PATH=" + path) + " " + quote(SYLVA_EXE) + " " + args);
-}
-
-std::size_t lineCount(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
-         (!text.empty() && text.back() != '\n' ? 1 : 0);
 }
 
 /** Every entry under `root` (files and directories), none if it does not exist. */

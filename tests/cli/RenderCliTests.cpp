@@ -19,12 +19,10 @@
 namespace sylva {
 namespace {
 
+using test::runSylva;
+
 namespace fs = std::filesystem;
 using test::quote;
-
-test::RunResult runSylva(const test::TempDir& dir, const std::string& args) {
-  return test::runProgram(SYLVA_EXE, dir.path(), args);
-}
 
 /** Fraction of pixels that are not the sky (the clear colour, linear (0.62, 0.72, 0.85) stored as 8 bits). */
 double terrainFraction(const Image& image) {

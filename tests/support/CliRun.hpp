@@ -2,6 +2,10 @@
 
 // Running the built `sylva` binary from tests: shell quoting, captured output, whole-file reads.
 
+#include "TempDir.hpp"
+
+#include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -23,5 +27,23 @@ std::string readAll(const std::filesystem::path& path);
 /** Runs `<exe> <args>` (args already shell-quoted) in the current directory, capturing into files in `dir`.
  */
 RunResult runProgram(const std::string& exe, const std::filesystem::path& dir, const std::string& args);
+
+#ifdef SYLVA_EXE
+/** Runs the `sylva` binary under test (SYLVA_EXE, defined per CLI test target) with `args` in `dir`. */
+inline RunResult runSylva(const TempDir& dir, const std::string& args) {
+  return runProgram(SYLVA_EXE, dir.path(), args);
+}
+#endif
+
+/** `name` in the test's directory, as a quoted shell argument (the command runs elsewhere). */
+inline std::string at(const TempDir& dir, const std::string& name) {
+  return quote((dir / name).string());
+}
+
+/** Lines in `text` (a last line without a newline counts). */
+inline std::size_t lineCount(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
+         (!text.empty() && text.back() != '\n' ? 1 : 0);
+}
 
 } // namespace sylva::test

@@ -37,6 +37,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/JsonNode.hpp>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -47,7 +48,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 
 namespace sylva::capture {
 
@@ -62,144 +62,32 @@ constexpr double kMaxCoordinate = 1000.0;
 constexpr double kUnitTolerance = 1e-3;
 constexpr const char* kKind = "sylva-blade-models";
 
-/** A JSON value with its path, for errors like `grass.json: blades[0].lods[1].positions[3]: expected [x, y,
- * z]`. */
-class Node {
-public:
-  Node(const json& value, const std::string& where, std::string path)
-      : mValue(value), mWhere(where), mPath(std::move(path)) {}
+/** `[x, y, z]` with every coordinate in [lo, hi]. Errors: `expected [x, y, z]`, then those of number(). */
+glm::vec3 vec3(const JsonNode& n, double lo, double hi) {
+  if (!n.value().is_array() || n.value().size() != 3) {
+    n.error("expected [x, y, z]");
+  }
+  return {static_cast<float>(n[std::size_t{0}].number(lo, hi)), static_cast<float>(n[1].number(lo, hi)),
+          static_cast<float>(n[2].number(lo, hi))};
+}
 
-  [[noreturn]] void error(const std::string& reason) const {
-    fail("{}: {}: {}", mWhere, mPath.empty() ? "(top level)" : mPath, reason);
+/** A unit vector `[x, y, z]`: length within kUnitTolerance of 1. */
+glm::vec3 unitVector(const JsonNode& n) {
+  const glm::vec3 v = vec3(n, -2.0, 2.0);
+  const double length = glm::length(glm::dvec3(v));
+  if (std::abs(length - 1.0) > kUnitTolerance) {
+    n.error(fmt::format("expected a unit vector (length 1 ± {}), got length {:.6g}", kUnitTolerance, length));
   }
+  return v;
+}
 
-  /** Requires an object whose keys are all in `allowed`; an unknown one is named in the error. */
-  const Node& object(std::initializer_list<const char*> allowed) const {
-    if (!mValue.is_object()) {
-      error("expected a JSON object");
-    }
-    for (const auto& item : mValue.items()) {
-      const std::string& key = item.key();
-      if (std::none_of(allowed.begin(), allowed.end(), [&](const char* name) { return key == name; })) {
-        Node(item.value(), mWhere, join(key)).error(fmt::format("unknown field '{}'", key));
-      }
-    }
-    return *this;
-  }
-  bool has(const char* key) const { return mValue.is_object() && mValue.contains(key); }
-  Node operator[](const char* key) const {
-    if (!has(key)) {
-      Node(mValue, mWhere, join(key)).error("missing field");
-    }
-    return Node(mValue.at(key), mWhere, join(key));
-  }
-  Node operator[](std::size_t i) const {
-    return Node(mValue.at(i), mWhere, mPath + "[" + std::to_string(i) + "]");
-  }
-  std::size_t array(std::size_t minCount, std::size_t maxCount) const {
-    if (!mValue.is_array()) {
-      error("expected an array");
-    }
-    if (mValue.size() < minCount) {
-      error(fmt::format("expected at least {} entries, got {}", minCount, mValue.size()));
-    }
-    if (mValue.size() > maxCount) {
-      error(fmt::format("at most {} entries allowed, got {}", maxCount, mValue.size()));
-    }
-    return mValue.size();
-  }
-  /** An array of exactly `count` entries (`what` says where the count comes from). */
-  void arrayOf(std::size_t count, const char* what) const {
-    if (!mValue.is_array()) {
-      error("expected an array");
-    }
-    if (mValue.size() != count) {
-      error(fmt::format("expected {} entries ({}), got {}", count, what, mValue.size()));
-    }
-  }
-  double number() const {
-    if (!mValue.is_number()) {
-      error("expected a number");
-    }
-    const double v = mValue.get<double>();
-    if (!std::isfinite(v)) {
-      error("expected a finite number");
-    }
-    return v;
-  }
-  double number(double lo, double hi) const {
-    const double v = number();
-    if (v < lo || v > hi) {
-      error(fmt::format("{} is out of range [{}, {}]", v, lo, hi));
-    }
-    return v;
-  }
-  double nonNegative() const {
-    if (!mValue.is_number() || !std::isfinite(mValue.get<double>()) || mValue.get<double>() < 0.0) {
-      error("expected a finite number ≥ 0");
-    }
-    return mValue.get<double>();
-  }
-  int integer(int lo, int hi) const {
-    if (!mValue.is_number()) {
-      error("expected an integer");
-    }
-    const double v = mValue.get<double>();
-    if (!std::isfinite(v) || v != std::floor(v)) {
-      error("expected an integer");
-    }
-    if (v < lo || v > hi) {
-      error(fmt::format("{} is out of range [{}, {}]", v, lo, hi));
-    }
-    return static_cast<int>(v);
-  }
-  bool boolean() const {
-    if (!mValue.is_boolean()) {
-      error("expected true or false");
-    }
-    return mValue.get<bool>();
-  }
-  std::string string(bool allowEmpty) const {
-    if (!mValue.is_string()) {
-      error("expected a string");
-    }
-    std::string s = mValue.get<std::string>();
-    if (s.empty() && !allowEmpty) {
-      error("must not be empty");
-    }
-    return s;
-  }
-  glm::vec3 vec3(double lo, double hi) const {
-    if (!mValue.is_array() || mValue.size() != 3) {
-      error("expected [x, y, z]");
-    }
-    return {static_cast<float>((*this)[std::size_t{0}].number(lo, hi)),
-            static_cast<float>((*this)[1].number(lo, hi)), static_cast<float>((*this)[2].number(lo, hi))};
-  }
-  glm::vec3 unitVector() const {
-    const glm::vec3 v = vec3(-2.0, 2.0);
-    const double length = glm::length(glm::dvec3(v));
-    if (std::abs(length - 1.0) > kUnitTolerance) {
-      error(fmt::format("expected a unit vector (length 1 ± {}), got length {:.6g}", kUnitTolerance, length));
-    }
-    return v;
-  }
-
-private:
-  std::string join(const std::string& key) const { return mPath.empty() ? key : mPath + "." + key; }
-
-  const json& mValue;
-  const std::string& mWhere;
-  std::string mPath;
-};
-
-BladeLod parseLod(const Node& n) {
+BladeLod parseLod(const JsonNode& n) {
   n.object({"knots", "positions", "widths", "normals"});
   const auto knots = static_cast<std::size_t>(n["knots"].integer(2, static_cast<int>(kMaxKnots)));
   BladeLod lod;
-  const Node positions = n["positions"];
-  const Node widths = n["widths"];
-  const Node normals = n["normals"];
+  const JsonNode positions = n["positions"];
+  const JsonNode widths = n["widths"];
+  const JsonNode normals = n["normals"];
   positions.arrayOf(knots, "'knots'");
   widths.arrayOf(knots, "'knots'");
   normals.arrayOf(knots, "'knots'");
@@ -207,7 +95,7 @@ BladeLod parseLod(const Node& n) {
   lod.widths.reserve(knots);
   lod.normals.reserve(knots);
   for (std::size_t k = 0; k < knots; ++k) {
-    lod.positions.push_back(positions[k].vec3(-kMaxCoordinate, kMaxCoordinate));
+    lod.positions.push_back(vec3(positions[k], -kMaxCoordinate, kMaxCoordinate));
   }
   for (std::size_t k = 0; k < knots; ++k) {
     lod.widths.push_back(static_cast<float>(widths[k].nonNegative()));
@@ -216,12 +104,12 @@ BladeLod parseLod(const Node& n) {
     }
   }
   for (std::size_t k = 0; k < knots; ++k) {
-    lod.normals.push_back(normals[k].unitVector());
+    lod.normals.push_back(unitVector(normals[k]));
   }
   return lod;
 }
 
-CameraIntrinsics parseIntrinsics(const Node& n) {
+CameraIntrinsics parseIntrinsics(const JsonNode& n) {
   n.object({"fx", "fy", "cx", "cy"});
   CameraIntrinsics in;
   in.fx = n["fx"].number(1e-6, 1e9);
@@ -231,7 +119,7 @@ CameraIntrinsics parseIntrinsics(const Node& n) {
   return in;
 }
 
-BladeSource parseSource(const Node& n) {
+BladeSource parseSource(const JsonNode& n) {
   n.object({"file", "kind", "frame", "cluster", "blade", "intrinsics", "relativeDepth", "medialAxis",
             "motionFrames", "mu"});
   constexpr int kMaxIndex = 1 << 30;
@@ -249,19 +137,19 @@ BladeSource parseSource(const Node& n) {
   return s;
 }
 
-BladeModel parseBlade(const Node& n) {
+BladeModel parseBlade(const JsonNode& n) {
   n.object({"name", "bendAxis", "colour", "source", "lods"});
   BladeModel blade;
   blade.name = n["name"].string(false);
-  blade.bendAxis = n["bendAxis"].unitVector();
+  blade.bendAxis = unitVector(n["bendAxis"]);
   if (n.has("colour")) {
     blade.hasColour = true;
-    blade.colour = n["colour"].vec3(0.0, 1.0);
+    blade.colour = vec3(n["colour"], 0.0, 1.0);
   }
   if (n.has("source")) {
     blade.source = parseSource(n["source"]);
   }
-  const Node lods = n["lods"];
+  const JsonNode lods = n["lods"];
   const std::size_t count = lods.array(1, kMaxLods);
   for (std::size_t i = 0; i < count; ++i) {
     blade.lods.push_back(parseLod(lods[i]));
@@ -410,7 +298,7 @@ nlohmann::json toJson(const BladeModelFile& file) {
 
 BladeModelFile parseBladeModels(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, kBladeModelVersion, where);
-  const Node root(json, where, "");
+  const JsonNode root(json, where, "");
   root.object({"version", "kind", "generator", "blades"});
   const std::string kind = root["kind"].string(true);
   if (kind != kKind) {
@@ -420,7 +308,7 @@ BladeModelFile parseBladeModels(const nlohmann::json& json, const std::string& w
   if (root.has("generator")) {
     file.generator = root["generator"].string(true);
   }
-  const Node blades = root["blades"];
+  const JsonNode blades = root["blades"];
   const std::size_t count = blades.array(1, kMaxBlades);
   file.blades.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {

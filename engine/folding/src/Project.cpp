@@ -4,6 +4,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/JsonNode.hpp>
 #include <sylva/folding/Field.hpp>
 
 #include <nlohmann/json.hpp>
@@ -17,146 +18,45 @@ namespace {
 
 using nlohmann::json;
 
-/** A JSON value with its path, for error messages like `cat.json: zones[0].shape.pts[2]: expected [x, y]`. */
-class Node {
-public:
-  Node(const json& value, std::string where, std::string path)
-      : mValue(value), mWhere(std::move(where)), mPath(std::move(path)) {}
+/** `[x, y]` with both coordinates in [-limit, limit]. Error: `expected [x, y]`, then those of number(). */
+Vec2 vec2(const JsonNode& n, double limit = 1e6) {
+  if (!n.value().is_array() || n.value().size() != 2) {
+    n.error("expected [x, y]");
+  }
+  return {n[std::size_t{0}].number(-limit, limit), n[1].number(-limit, limit)};
+}
 
-  [[noreturn]] void error(const std::string& reason) const {
-    fail("{}: {}: {}", mWhere, mPath.empty() ? "(top level)" : mPath, reason);
+/** An array of `minCount` … `maxCount` points `[x, y]`. */
+std::vector<Vec2> points(const JsonNode& n, std::size_t minCount, std::size_t maxCount) {
+  const std::size_t count = n.array(minCount, maxCount);
+  std::vector<Vec2> pts;
+  pts.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    pts.push_back(vec2(n[i]));
   }
-  const json& value() const { return mValue; }
-  const std::string& path() const { return mPath; }
+  return pts;
+}
 
-  /** Requires an object whose keys are all in `allowed`. */
-  const Node& object(std::initializer_list<const char*> allowed) const {
-    if (!mValue.is_object()) {
-      error("expected a JSON object");
-    }
-    for (const auto& [key, _] : mValue.items()) {
-      bool known = false;
-      for (const char* name : allowed) {
-        known = known || key == name;
-      }
-      if (!known) {
-        Node(mValue[key], mWhere, join(key)).error("unknown field");
-      }
-    }
-    return *this;
+/** A simple polygon: ≥ 3 vertices, non-zero area, no self-intersection. */
+std::vector<Vec2> polygon(const JsonNode& n) {
+  std::vector<Vec2> pts = points(n, 3, kMaxPolygonVertices);
+  if (pts.front() == pts.back()) {
+    pts.pop_back(); // a closed ring is accepted and stored open
   }
-  bool has(const char* key) const { return mValue.is_object() && mValue.contains(key); }
-  Node operator[](const char* key) const {
-    if (!has(key)) {
-      Node(json(), mWhere, join(key)).error("missing field");
-    }
-    return Node(mValue.at(key), mWhere, join(key));
+  bool collinear = true;
+  for (std::size_t i = 2; i < pts.size(); ++i) {
+    const Vec2 a = pts[1] - pts[0];
+    const Vec2 b = pts[i] - pts[0];
+    collinear = collinear && std::abs(a.x * b.y - a.y * b.x) < 1e-9;
   }
-  Node operator[](std::size_t i) const {
-    return Node(mValue.at(i), mWhere, mPath + "[" + std::to_string(i) + "]");
+  if (pts.size() < 3 || collinear) {
+    n.error("degenerate polygon (zero area)");
   }
-  std::size_t array(std::size_t minCount, std::size_t maxCount) const {
-    if (!mValue.is_array()) {
-      error("expected an array");
-    }
-    if (mValue.size() < minCount) {
-      error(fmt::format("expected at least {} entries, got {}", minCount, mValue.size()));
-    }
-    if (mValue.size() > maxCount) {
-      error(fmt::format("at most {} entries allowed, got {}", maxCount, mValue.size()));
-    }
-    return mValue.size();
+  if (selfIntersects(pts)) {
+    n.error("self-intersecting polygon");
   }
-  double number(double lo = -1e9, double hi = 1e9) const {
-    if (!mValue.is_number()) {
-      error("expected a number");
-    }
-    const double v = mValue.get<double>();
-    if (!std::isfinite(v)) {
-      error("must be a finite number");
-    }
-    if (v < lo || v > hi) {
-      error(fmt::format("{} is out of range [{}, {}]", v, lo, hi));
-    }
-    return v;
-  }
-  int integer(int lo, int hi) const {
-    const double v = number(lo, hi);
-    if (v != std::floor(v)) {
-      error("expected an integer");
-    }
-    return static_cast<int>(v);
-  }
-  bool boolean() const {
-    if (!mValue.is_boolean()) {
-      error("expected true or false");
-    }
-    return mValue.get<bool>();
-  }
-  std::string string() const {
-    if (!mValue.is_string()) {
-      error("expected a string");
-    }
-    std::string s = mValue.get<std::string>();
-    if (s.empty()) {
-      error("must not be empty");
-    }
-    return s;
-  }
-  std::string choice(std::initializer_list<const char*> names) const {
-    const std::string s = string();
-    std::string list;
-    for (const char* name : names) {
-      if (s == name) {
-        return s;
-      }
-      list += (list.empty() ? "" : ", ") + std::string(name);
-    }
-    error(fmt::format("'{}' is not one of: {}", s, list));
-  }
-  Vec2 vec2(double limit = 1e6) const {
-    if (!mValue.is_array() || mValue.size() != 2) {
-      error("expected [x, y]");
-    }
-    return {(*this)[std::size_t{0}].number(-limit, limit), (*this)[1].number(-limit, limit)};
-  }
-  std::vector<Vec2> points(std::size_t minCount, std::size_t maxCount) const {
-    const std::size_t n = array(minCount, maxCount);
-    std::vector<Vec2> pts;
-    pts.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      pts.push_back((*this)[i].vec2());
-    }
-    return pts;
-  }
-  /** A simple polygon: ≥ 3 vertices, non-zero area, no self-intersection. */
-  std::vector<Vec2> polygon() const {
-    std::vector<Vec2> pts = points(3, kMaxPolygonVertices);
-    if (pts.front() == pts.back()) {
-      pts.pop_back(); // a closed ring is accepted and stored open
-    }
-    bool collinear = true;
-    for (std::size_t i = 2; i < pts.size(); ++i) {
-      const Vec2 a = pts[1] - pts[0];
-      const Vec2 b = pts[i] - pts[0];
-      collinear = collinear && std::abs(a.x * b.y - a.y * b.x) < 1e-9;
-    }
-    if (pts.size() < 3 || collinear) {
-      error("degenerate polygon (zero area)");
-    }
-    if (selfIntersects(pts)) {
-      error("self-intersecting polygon");
-    }
-    return pts;
-  }
-
-private:
-  std::string join(const std::string& key) const { return mPath.empty() ? key : mPath + "." + key; }
-
-  const json& mValue;
-  std::string mWhere;
-  std::string mPath;
-};
+  return pts;
+}
 
 const char* functionName(PositionFunction::Type type) {
   switch (type) {
@@ -174,7 +74,7 @@ const char* functionName(PositionFunction::Type type) {
   return "linear";
 }
 
-PositionFunction parseFunction(const Node& n) {
+PositionFunction parseFunction(const JsonNode& n) {
   PositionFunction fn;
   const std::string type = n["type"].choice({"linear", "piecewise", "exponential", "sigmoid", "sine"});
   if (type == "linear") {
@@ -185,10 +85,10 @@ PositionFunction parseFunction(const Node& n) {
   } else if (type == "piecewise") {
     n.object({"type", "knots"});
     fn.type = PositionFunction::Type::Piecewise;
-    const Node knots = n["knots"];
+    const JsonNode knots = n["knots"];
     const std::size_t count = knots.array(2, kMaxKnots);
     for (std::size_t i = 0; i < count; ++i) {
-      const Vec2 k = knots[i].vec2();
+      const Vec2 k = vec2(knots[i]);
       if (k.x < 0.0 || k.x > 1.0) {
         knots[i].error("knot phase must lie in [0, 1]");
       }
@@ -261,32 +161,32 @@ json pointsJson(const std::vector<Vec2>& pts) {
   return j;
 }
 
-std::array<Vec2, 4> bezierControl(const Node& n) {
-  const std::vector<Vec2> pts = n.points(4, 4);
+std::array<Vec2, 4> bezierControl(const JsonNode& n) {
+  const std::vector<Vec2> pts = points(n, 4, 4);
   return {pts[0], pts[1], pts[2], pts[3]};
 }
 
-Tool parseTool(const Node& n) {
+Tool parseTool(const JsonNode& n) {
   const std::string type =
       n["type"].choice({"translate", "scale", "points", "curve", "lasso", "zero", "fly_over"});
   if (type == "translate") {
     n.object({"type", "v"});
-    return TranslateTool{n["v"].vec2()};
+    return TranslateTool{vec2(n["v"])};
   }
   if (type == "scale") {
     n.object({"type", "factor", "centre"});
     ScaleTool tool;
     tool.factor = n["factor"].number(1e-3, 1e3);
-    tool.centre = n["centre"].vec2();
+    tool.centre = vec2(n["centre"]);
     return tool;
   }
   if (type == "points") {
     n.object({"type", "pairs"});
     PointsTool tool;
-    const Node pairs = n["pairs"];
+    const JsonNode pairs = n["pairs"];
     const std::size_t count = pairs.array(1, 100000);
     for (std::size_t i = 0; i < count; ++i) {
-      const std::vector<Vec2> pair = pairs[i].points(2, 2);
+      const std::vector<Vec2> pair = points(pairs[i], 2, 2);
       tool.pairs.push_back({pair[0], pair[1]});
     }
     return tool;
@@ -301,10 +201,10 @@ Tool parseTool(const Node& n) {
     if (n.has("dest")) {
       tool.dest = bezierControl(n["dest"]);
     } else {
-      const Node vectors = n["vectors"];
+      const JsonNode vectors = n["vectors"];
       const std::size_t count = vectors.array(1, kMaxCurveSamples);
       for (std::size_t i = 0; i < count; ++i) {
-        const Node entry = vectors[i];
+        const JsonNode entry = vectors[i];
         if (!entry.value().is_array() || entry.value().size() != 2) {
           entry.error("expected [u, [x, y]]");
         }
@@ -312,7 +212,7 @@ Tool parseTool(const Node& n) {
         if (i > 0 && u <= tool.vectors.back().first) {
           entry[std::size_t{0}].error("curve parameters must increase");
         }
-        tool.vectors.emplace_back(u, entry[1].vec2());
+        tool.vectors.emplace_back(u, vec2(entry[1]));
       }
     }
     tool.samples = n.has("samples") ? n["samples"].integer(2, kMaxCurveSamples) : 16;
@@ -321,8 +221,8 @@ Tool parseTool(const Node& n) {
   if (type == "lasso") {
     n.object({"type", "from", "to", "interior"});
     LassoTool tool;
-    tool.from = n["from"].polygon();
-    tool.to = n["to"].points(3, kMaxPolygonVertices);
+    tool.from = polygon(n["from"]);
+    tool.to = points(n["to"], 3, kMaxPolygonVertices);
     if (tool.to.size() == tool.from.size() + 1 && tool.to.front() == tool.to.back()) {
       tool.to.pop_back();
     }
@@ -339,13 +239,13 @@ Tool parseTool(const Node& n) {
   }
   if (type == "zero") {
     n.object({"type", "pts"});
-    return ZeroTool{n["pts"].points(1, kMaxPolygonVertices)};
+    return ZeroTool{points(n["pts"], 1, kMaxPolygonVertices)};
   }
   n.object({"type", "object", "from", "to"});
   FlyOverTool tool;
   tool.object = n["object"].string();
-  tool.from = n["from"].vec2();
-  tool.to = n["to"].vec2();
+  tool.from = vec2(n["from"]);
+  tool.to = vec2(n["to"]);
   return tool;
 }
 
@@ -391,7 +291,7 @@ json toolJson(const Tool& tool) {
       tool);
 }
 
-Interpolation parseInterpolation(const Node& n) {
+Interpolation parseInterpolation(const JsonNode& n) {
   Interpolation interp;
   const std::string type = n["type"].choice({"shepard", "modified_shepard", "modified_shepard_random"});
   if (type == "shepard") {
@@ -426,21 +326,21 @@ json interpolationJson(const Interpolation& interp) {
   return {};
 }
 
-Shape parseShape(const Node& n) {
+Shape parseShape(const JsonNode& n) {
   Shape shape;
   const std::string type = n["type"].choice({"rect", "polygon"});
   if (type == "rect") {
     n.object({"type", "min", "max"});
     shape.type = Shape::Type::Rect;
-    shape.min = n["min"].vec2();
-    shape.max = n["max"].vec2();
+    shape.min = vec2(n["min"]);
+    shape.max = vec2(n["max"]);
     if (!(shape.max.x > shape.min.x && shape.max.y > shape.min.y)) {
       n.error("a rect needs max > min on both axes");
     }
   } else {
     n.object({"type", "pts"});
     shape.type = Shape::Type::Polygon;
-    shape.pts = n["pts"].polygon();
+    shape.pts = polygon(n["pts"]);
   }
   return shape;
 }
@@ -452,20 +352,20 @@ json shapeJson(const Shape& shape) {
   return {{"type", "polygon"}, {"pts", pointsJson(shape.pts)}};
 }
 
-Folding parseFolding(const Node& n) {
+Folding parseFolding(const JsonNode& n) {
   Folding folding;
   const std::string type = n["type"].choice({"polygon", "polygons", "mask", "object"});
   if (type == "polygon") {
     n.object({"type", "pts", "outside"});
     folding.type = Folding::Type::Polygons;
-    folding.polygons.push_back(n["pts"].polygon());
+    folding.polygons.push_back(polygon(n["pts"]));
   } else if (type == "polygons") {
     n.object({"type", "polygons", "outside"});
     folding.type = Folding::Type::Polygons;
-    const Node list = n["polygons"];
+    const JsonNode list = n["polygons"];
     const std::size_t count = list.array(1, 256);
     for (std::size_t i = 0; i < count; ++i) {
-      folding.polygons.push_back(list[i].polygon());
+      folding.polygons.push_back(polygon(list[i]));
     }
   } else if (type == "mask") {
     n.object({"type", "file", "outside"});
@@ -503,7 +403,7 @@ json foldingJson(const Folding& folding) {
   return j;
 }
 
-void requireUnique(const Node& list, std::size_t count, std::set<std::string>& ids, const std::string& id,
+void requireUnique(const JsonNode& list, std::size_t count, std::set<std::string>& ids, const std::string& id,
                    std::size_t i) {
   (void)count;
   if (!ids.insert(id).second) {
@@ -547,7 +447,7 @@ std::filesystem::path Project::resolve(const std::filesystem::path& file) const 
 }
 
 Project parseProject(const json& root, const std::string& where) {
-  const Node top(root, where, "");
+  const JsonNode top(root, where, "");
   top.object({"format", "version", "seed", "canvas", "jump_layers", "atlas", "profiles", "zones", "outputs"});
   if (top["format"].string() != "sylva-fold") {
     top["format"].error("expected \"sylva-fold\"");
@@ -560,7 +460,7 @@ Project parseProject(const json& root, const std::string& where) {
   }
   Project p;
   if (top.has("seed")) {
-    const Node seed = top["seed"];
+    const JsonNode seed = top["seed"];
     if (!seed.value().is_number_integer() ||
         (!seed.value().is_number_unsigned() && seed.value().get<std::int64_t>() < 0)) {
       seed.error("expected a non-negative integer");
@@ -568,13 +468,13 @@ Project parseProject(const json& root, const std::string& where) {
     p.seed = seed.value().get<std::uint64_t>();
   }
 
-  const Node atlas = top["atlas"].object({"gutter_px", "images"});
+  const JsonNode atlas = top["atlas"].object({"gutter_px", "images"});
   p.gutter = atlas.has("gutter_px") ? atlas["gutter_px"].integer(2, 64) : 4;
-  const Node images = atlas["images"];
+  const JsonNode images = atlas["images"];
   const std::size_t imageCount = images.array(1, kMaxImages);
   std::set<std::string> ids;
   for (std::size_t i = 0; i < imageCount; ++i) {
-    const Node n = images[i].object({"id", "file", "crop"});
+    const JsonNode n = images[i].object({"id", "file", "crop"});
     ImageEntry entry;
     entry.id = n["id"].string();
     requireUnique(images, imageCount, ids, entry.id, i);
@@ -590,7 +490,7 @@ Project parseProject(const json& root, const std::string& where) {
   }
 
   if (top.has("jump_layers")) {
-    const Node layers = top["jump_layers"];
+    const JsonNode layers = top["jump_layers"];
     const std::size_t count = layers.array(2, kMaxJumpLayers + 1);
     p.jumpLayers.clear();
     for (std::size_t i = 0; i < count; ++i) {
@@ -605,11 +505,11 @@ Project parseProject(const json& root, const std::string& where) {
     }
   }
 
-  const Node profiles = top["profiles"];
+  const JsonNode profiles = top["profiles"];
   const std::size_t profileCount = profiles.array(1, kMaxProfiles);
   ids.clear();
   for (std::size_t i = 0; i < profileCount; ++i) {
-    const Node n = profiles[i].object({"id", "period_s", "shift", "fn", "loop"});
+    const JsonNode n = profiles[i].object({"id", "period_s", "shift", "fn", "loop"});
     Profile profile;
     profile.id = n["id"].string();
     requireUnique(profiles, profileCount, ids, profile.id, i);
@@ -627,11 +527,11 @@ Project parseProject(const json& root, const std::string& where) {
     p.profiles.push_back(std::move(profile));
   }
 
-  const Node zones = top["zones"];
+  const JsonNode zones = top["zones"];
   const std::size_t zoneCount = zones.array(0, 256);
   ids.clear();
   for (std::size_t i = 0; i < zoneCount; ++i) {
-    const Node n =
+    const JsonNode n =
         zones[i].object({"id", "image", "shape", "profile", "layer", "phase", "phase_gradient", "interp",
                          "zero_anchors", "zero_spacing_px", "feather_px", "freeze_mask", "tools", "folding"});
     Zone zone;
@@ -648,7 +548,7 @@ Project parseProject(const json& root, const std::string& where) {
     }
     zone.layer = n.has("layer") ? n["layer"].integer(0, static_cast<int>(p.jumpLayers.size()) - 2) : 0;
     zone.phase = n.has("phase") ? n["phase"].number(-1e3, 1e3) : 0.0;
-    zone.phaseGradient = n.has("phase_gradient") ? n["phase_gradient"].vec2(1e3) : Vec2(0.0);
+    zone.phaseGradient = n.has("phase_gradient") ? vec2(n["phase_gradient"], 1e3) : Vec2(0.0);
     zone.interp = n.has("interp") ? parseInterpolation(n["interp"]) : Interpolation{};
     if (n.has("zero_anchors")) {
       zone.zeroBoundary = n["zero_anchors"].choice({"none", "zone_boundary"}) == "zone_boundary";
@@ -659,7 +559,7 @@ Project parseProject(const json& root, const std::string& where) {
       zone.freezeMask = n["freeze_mask"].string();
     }
     if (n.has("tools")) {
-      const Node tools = n["tools"];
+      const JsonNode tools = n["tools"];
       const std::size_t toolCount = tools.array(0, 4096);
       for (std::size_t t = 0; t < toolCount; ++t) {
         Tool tool = parseTool(tools[t]);
@@ -686,7 +586,7 @@ Project parseProject(const json& root, const std::string& where) {
   }
 
   if (top.has("outputs")) {
-    const Node n = top["outputs"].object({"encoding", "color", "init", "jump"});
+    const JsonNode n = top["outputs"].object({"encoding", "color", "init", "jump"});
     if (n.has("encoding")) {
       p.outputs.encoding = n["encoding"].choice({"rgba16", "exr"}) == "exr" ? Outputs::Encoding::Exr
                                                                             : Outputs::Encoding::Rgba16;

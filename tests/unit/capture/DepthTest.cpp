@@ -4,6 +4,8 @@
 
 #include "TempDir.hpp"
 
+#include "CaptureTestUtil.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,21 +16,10 @@
 namespace sylva::capture {
 namespace {
 
+using testutil::contains;
+using testutil::errorOf;
+
 namespace fs = std::filesystem;
-
-/** The message of the sylva::Error `body` throws ("" when it does not throw). */
-template <typename F> std::string errorOf(F&& body) {
-  try {
-    body();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 TEST(KinectRaw, KnownValuesAndNoData) {
   // z = 1 / (raw·(−0.0030711016) + 3.3309495161).

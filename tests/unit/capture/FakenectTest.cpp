@@ -6,6 +6,8 @@
 #include "CliRun.hpp"
 #include "TempDir.hpp"
 
+#include "CaptureTestUtil.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,20 +20,10 @@
 namespace sylva::capture {
 namespace {
 
+using testutil::contains;
+using testutil::errorOf;
+
 namespace fs = std::filesystem;
-
-template <typename F> std::string errorOf(F&& body) {
-  try {
-    body();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 std::vector<std::byte> bytesOf(const std::string& text) {
   std::vector<std::byte> bytes(text.size());

@@ -11,6 +11,8 @@
 #include "TempDir.hpp"
 
 #include <glm/geometric.hpp>
+#include "CaptureTestUtil.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +25,9 @@
 
 namespace sylva::capture {
 namespace {
+
+using testutil::contains;
+using testutil::errorOf;
 
 constexpr int kSwayFrames = 20;
 constexpr double kSwayFps = 30.0;
@@ -82,15 +87,6 @@ float lineLength(const std::vector<glm::vec3>& line) {
     length += glm::length(line[i] - line[i - 1]);
   }
   return length;
-}
-
-template <typename F> std::string errorOf(F&& body) {
-  try {
-    body();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 TEST(TrackBlades, FollowsEverySwayingBladeThroughTheSequence) {
@@ -374,25 +370,7 @@ TEST(MakeBladeModel, SavesAndLoadsExactly) {
   file.blades.push_back(makeBladeModel(uprightBlade(), {}, {}, syntheticSource()));
   file.blades.back().name = "upright";
   saveBladeModels(dir / "grass.json", file);
-  const BladeModelFile loaded = loadBladeModels(dir / "grass.json");
-  EXPECT_EQ(loaded.generator, file.generator);
-  ASSERT_EQ(loaded.blades.size(), file.blades.size());
-  for (std::size_t i = 0; i < file.blades.size(); ++i) {
-    const BladeModel& x = file.blades[i];
-    const BladeModel& y = loaded.blades[i];
-    EXPECT_EQ(x.name, y.name);
-    EXPECT_EQ(x.bendAxis, y.bendAxis);
-    EXPECT_EQ(x.hasColour, y.hasColour);
-    EXPECT_EQ(x.colour, y.colour);
-    EXPECT_EQ(x.source.motionFrames, y.source.motionFrames);
-    EXPECT_EQ(x.source.intrinsics, y.source.intrinsics);
-    ASSERT_EQ(x.lods.size(), y.lods.size());
-    for (std::size_t l = 0; l < x.lods.size(); ++l) {
-      EXPECT_EQ(x.lods[l].positions, y.lods[l].positions);
-      EXPECT_EQ(x.lods[l].widths, y.lods[l].widths);
-      EXPECT_EQ(x.lods[l].normals, y.lods[l].normals);
-    }
-  }
+  testutil::expectEqual(loadBladeModels(dir / "grass.json"), file);
 }
 
 TEST(FakenectSway, ARecordingOfTheSequenceExtractsTheSame) {

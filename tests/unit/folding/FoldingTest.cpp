@@ -646,7 +646,7 @@ TEST(FoldingProject, BadInputNamesTheField) {
     return errorOf(j);
   };
   using ::testing::HasSubstr;
-  EXPECT_THAT(with("/zones/0/colour", 1), HasSubstr("bad.json: zones[0].colour: unknown field"));
+  EXPECT_THAT(with("/zones/0/colour", 1), HasSubstr("bad.json: zones[0].colour: unknown field 'colour'"));
   EXPECT_THAT(with("/version", 2), HasSubstr("newer than this sylva understands"));
   EXPECT_THAT(with("/zones/0/shape/pts/2", {1, "x"}),
               HasSubstr("zones[0].shape.pts[2][1]: expected a number"));
@@ -692,10 +692,10 @@ TEST(FoldingProject, NaNAndInfinityAreRefused) {
   }
   json j = baseProject(richZone());
   j["profiles"][0]["period_s"] = std::nan("");
-  EXPECT_THAT(errorOf(j), ::testing::HasSubstr("profiles[0].period_s: must be a finite number"));
+  EXPECT_THAT(errorOf(j), ::testing::HasSubstr("profiles[0].period_s: expected a finite number"));
   j = baseProject(richZone());
   j["zones"][0]["tools"][0]["pairs"][0][1][0] = std::numeric_limits<double>::infinity();
-  EXPECT_THAT(errorOf(j), ::testing::HasSubstr("zones[0].tools[0].pairs[0][1][0]: must be a finite number"));
+  EXPECT_THAT(errorOf(j), ::testing::HasSubstr("zones[0].tools[0].pairs[0][1][0]: expected a finite number"));
 }
 
 TEST(FoldingEdit, UndoRedoAndInvalidEditsChangeNothing) {
