@@ -63,20 +63,12 @@ void BM_Refine(benchmark::State& state) {
 void BM_RefineReference(benchmark::State& state) {
   refineCase<true>(state);
 }
-BENCHMARK(BM_Refine)
-    ->ArgNames({"knots", "frames", "to"})
-    ->Args({128, 1, 16})
-    ->Args({128, 60, 16})
-    ->Args({128, 60, 32})
-    ->Args({128, 60, 64})
-    ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_RefineReference)
-    ->ArgNames({"knots", "frames", "to"})
-    ->Args({128, 1, 16})
-    ->Args({128, 60, 16})
-    ->Args({128, 60, 32})
-    ->Args({128, 60, 64})
-    ->Unit(benchmark::kMicrosecond);
+void refineArgs(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"knots", "frames", "to"})->Args({128, 1, 16})->Args({128, 60, 16})->Args({128, 60, 32});
+  b->Args({128, 60, 64})->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK(BM_Refine)->Apply(refineArgs);
+BENCHMARK(BM_RefineReference)->Apply(refineArgs);
 
 /** D (eq. 1–3) of the root and tip knots over 60 frames. */
 void BM_RefineMovementDifference(benchmark::State& state) {
