@@ -1,0 +1,59 @@
+#pragma once
+// One wind field for everything that moves in it (grass, trees): a mean flow, coherent gusts that travel
+// downwind, and turbulence. windVelocity() here and windVelocity() in shaders/common/wind.glsl perform the
+// same float operations, so a blade bent on the GPU and a simulated one on the CPU feel the same wind.
+
+#include <shared/Wind.h>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace sylva::wind {
+
+/** What a user sets (scene files, the viewer, the CLI). Directions in world (x, z); y is up. */
+struct WindSettings {
+  /** Direction the wind blows towards, world (x, z); normalised on use. */
+  glm::vec2 direction{1.0f, 0.0f};
+  /** Mean speed, m/s (3: a gentle breeze, 10: strong). */
+  float speed = 3.0f;
+  /** Speed added at a gust's peak, as a fraction of the mean speed. */
+  float gustStrength = 0.8f;
+  /** Gust size along the wind and across it, metres. */
+  float gustLength = 20.0f;
+  float gustWidth = 10.0f;
+  /** Gusts travel downwind at this fraction of the mean speed. */
+  float gustTravel = 1.0f;
+  /** Turbulence: strength as a fraction of the mean speed, eddy size in metres, rate in Hz. */
+  float turbulence = 0.25f;
+  float turbulenceScale = 2.0f;
+  float turbulenceRate = 0.7f;
+  std::uint32_t seed = 1;
+};
+
+/**
+ * Throws sylva::Error "<where>.<field>: …" for non-finite values, a zero direction, negative speeds or
+ * strengths, and non-positive sizes or rates.
+ */
+void validate(const WindSettings& settings, const std::string& where = "wind");
+
+/** The uniforms for time `seconds` (validated settings). */
+gpu::WindUniforms toUniforms(const WindSettings& settings, float seconds);
+
+/** Wind velocity in m/s, world (x, z), at world position (x, z) metres: the same operations as wind.glsl. */
+glm::vec2 windVelocity(const gpu::WindUniforms& wind, glm::vec2 position);
+
+/** The mean-flow-plus-gust part alone (no turbulence), m/s along the mean direction; ≥ the mean speed. */
+float gustSpeed(const gpu::WindUniforms& wind, glm::vec2 position);
+
+/** 3D value noise in [−1, 1] on an integer lattice with smoothstep blending (shared with wind.glsl). */
+float valueNoise(glm::vec3 p, std::uint32_t seed);
+
+/** JSON object of the settings (scene files); fromJson validates with errors naming `where`. */
+nlohmann::json toJson(const WindSettings& settings);
+WindSettings windSettingsFromJson(const nlohmann::json& json, const std::string& where);
+
+} // namespace sylva::wind
