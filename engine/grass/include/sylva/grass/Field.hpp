@@ -1,0 +1,111 @@
+#pragma once
+// The field: a grid of tiles over the terrain, each drawing a contiguous range of the patch whose start comes
+// from the tile's position (paper §4.5), thinned by a density map (seeded Perlin noise, paper Fig. 8, with
+// rules on height, slope and an optional paint mask). Blade roots sit on the terrain surface as the terrain's
+// tessellation evaluation shader samples it (bilinear, terrain::heightAt).
+
+#include <sylva/core/Image.hpp>
+#include <sylva/grass/Patch.hpp>
+#include <sylva/terrain/HeightField.hpp>
+#include <sylva/terrain/Noise.hpp>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+
+namespace sylva::grass {
+
+/** Where grass grows. Densities are in [0, 1]: the fraction of a tile's blades drawn. */
+struct DensitySettings {
+  /** Overall density. */
+  float base = 1.0f;
+  /** Perlin density map: frequency per metre, fraction of ground it covers, and how sharp its edges are. */
+  float noiseFrequency = 0.03f;
+  float coverage = 0.7f;
+  float contrast = 8.0f;
+  std::uint64_t seed = 3;
+  /** Heights (metres) where grass grows, faded over heightFade metres at both ends. */
+  float minHeight = -std::numeric_limits<float>::infinity();
+  float maxHeight = std::numeric_limits<float>::infinity();
+  float heightFade = 2.0f;
+  /** Steepest slope (degrees) with grass, faded over slopeFade degrees. */
+  float maxSlopeDegrees = 38.0f;
+  float slopeFade = 8.0f;
+  /**
+   * Optional paint mask (first channel, 0..1) over the world rectangle paintMin..paintMax (x, z metres),
+   * bilinear, multiplied in; outside the rectangle the density is unchanged.
+   */
+  std::shared_ptr<const Image> paint;
+  glm::vec2 paintMin{0.0f};
+  glm::vec2 paintMax{0.0f};
+};
+
+/** Evaluates the density rules (thread-safe, pure). */
+class DensityMap {
+public:
+  /** Throws sylva::Error naming the field for non-finite values, empty ranges, a paint mask with no area. */
+  explicit DensityMap(DensitySettings settings);
+  /** The Perlin part alone at world (x, z), [0, 1]. */
+  float noise(float x, float z) const;
+  /** Density at world (x, z) with terrain height (m) and slope (degrees) there, [0, 1]. */
+  float at(float x, float z, float height, float slopeDegrees) const;
+  const DensitySettings& settings() const { return mSettings; }
+
+private:
+  DensitySettings mSettings;
+  terrain::ProceduralNoise mNoise;
+};
+
+/** The grid of tiles. */
+struct FieldLayout {
+  /** World (x, z) of tile (0, 0)'s corner, metres. */
+  glm::vec2 origin{0.0f};
+  float tileSize = 2.0f;
+  int tilesX = 0;
+  int tilesZ = 0;
+  /** Blades a tile draws at density 1 (≤ the patch size). */
+  int bladesPerTile = 64;
+};
+
+/** Tiles covering the terrain's footprint. Throws sylva::Error for a tile size ≤ 0 or more than 2^26 tiles.
+ */
+FieldLayout layoutOver(const terrain::HeightField& terrain, float tileSize, int bladesPerTile);
+
+/**
+ * First patch blade of tile (tx, tz): a hash of the tile's position modulo the patch size, so neighbouring
+ * tiles draw different ranges and nothing per tile is stored. The tile draws blades start, start + 1, … (mod
+ * patch).
+ */
+std::uint32_t tileStart(int tx, int tz, std::uint32_t patchBlades);
+
+/** One blade of the field, in world space. */
+struct FieldBlade {
+  /** Root on the terrain surface, world metres. */
+  glm::vec3 root{0.0f};
+  /** Index into the patch, and the blade's position j in its tile's range. */
+  std::uint32_t patchIndex = 0;
+  int rangeIndex = 0;
+  int tileX = 0;
+  int tileZ = 0;
+};
+
+/**
+ * The blades tile (tx, tz) draws: the first layout.bladesPerTile entries of its range, where entry j is kept
+ * when (j + 0.5) / bladesPerTile < density at its root (the patch is shuffled, so the kept ones are an
+ * unbiased sample whatever the density). Roots outside the terrain's footprint and roots on absent (NaN)
+ * heights are dropped.
+ */
+void forEachTileBlade(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
+                      const terrain::HeightField& terrain, const DensityMap& density, int tx, int tz,
+                      const std::function<void(const FieldBlade&)>& visit);
+
+/** Blades of the whole field (every tile). */
+std::size_t countFieldBlades(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
+                             const terrain::HeightField& terrain, const DensityMap& density);
+
+} // namespace sylva::grass
