@@ -26,9 +26,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sylva::app {
@@ -200,9 +202,15 @@ std::string inputFormat(const CaptureOptions& o) {
   if (lowerExtension(path) != ".png") {
     fail("{}: expected a depth PNG, a Middlebury disparity PNG or a fakenect folder (use --format)", o.input);
   }
-  // 16-bit: depth in millimetres; 8-bit: a disparity map.
-  const Image probe = loadPng(path);
-  return probe.type() == PixelType::U8 ? "middlebury" : "png";
+  // 16-bit: depth in millimetres; 8-bit: a disparity map. The bit depth is byte 24 of a PNG (signature, the
+  // IHDR chunk's length and type, width, height, then bit depth); a file too short or not a PNG is left to
+  // the depth loader, whose error names the problem.
+  std::ifstream in(path, std::ios::binary);
+  char header[25] = {};
+  in.read(header, sizeof(header));
+  const bool png = in.gcount() == static_cast<std::streamsize>(sizeof(header)) &&
+                   std::string_view(header + 1, 3) == "PNG" && std::string_view(header + 12, 4) == "IHDR";
+  return png && static_cast<unsigned char>(header[24]) == 8 ? "middlebury" : "png";
 }
 
 /** The frames to process, loaded lazily (recordings can be long). */

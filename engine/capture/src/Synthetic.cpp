@@ -58,7 +58,6 @@ struct BladeGeometry {
   std::vector<glm::vec3> centre;
   std::vector<glm::vec3> left;
   std::vector<glm::vec3> right;
-  std::vector<float> width;
 };
 
 BladeGeometry sweep(const SyntheticBlade& blade, const glm::vec3& root, float extraBend) {
@@ -66,7 +65,6 @@ BladeGeometry sweep(const SyntheticBlade& blade, const glm::vec3& root, float ex
   g.centre.resize(kSamples);
   g.left.resize(kSamples);
   g.right.resize(kSamples);
-  g.width.resize(kSamples);
   const float ds = blade.lengthMetres / static_cast<float>(kSamples - 1);
   const float cosTilt = std::cos(blade.tiltRadians);
   const float sinTilt = std::sin(blade.tiltRadians);
@@ -82,7 +80,6 @@ BladeGeometry sweep(const SyntheticBlade& blade, const glm::vec3& root, float ex
     }
     const float w = blade.widthMetres * bladeWidthProfile(blade.shape, t);
     g.centre[i] = p;
-    g.width[i] = w * (1.0f - 0.5f * blade.asymmetry);
     g.left[i] = p - side * (0.5f * w);
     const float bulge =
         blade.lobe * blade.widthMetres * std::exp(-0.5f * (t - 0.5f) * (t - 0.5f) / (0.08f * 0.08f));

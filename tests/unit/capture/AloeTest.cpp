@@ -1,8 +1,8 @@
 // Blade extraction on real data: the Middlebury 2006 Aloe disparity map (data/external/aloeGT.png, fetched by
 // scripts/fetch-sample-data.sh). There is no ground truth for the leaves, so the checks are plausibility
 // bounds that the rosette's leaves meet and clearly wrong captures (the pot as a blade, leaves cut into
-// stubs, one giant blob, skeletons off the leaves) do not. The options are the ones docs/capture.md uses:
-// the region above the pot (y < 760) and the rosette's core as the centre.
+// short fragments, one giant blob, skeletons off the leaves) do not. The options are the ones docs/capture.md
+// uses: the region above the pot (y < 760) and the rosette's core as the centre.
 #include <sylva/capture/Depth.hpp>
 #include <sylva/capture/Extract.hpp>
 #include <sylva/core/Image.hpp>
