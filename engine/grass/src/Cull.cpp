@@ -14,6 +14,8 @@ void validate(const CullSettings& s) {
   const std::pair<float, const char*> values[] = {{s.maxDistance, "maxDistance"},
                                                   {s.lodDistances[0], "lodDistances[0]"},
                                                   {s.lodDistances[1], "lodDistances[1]"},
+                                                  {s.lodFade, "lodFade"},
+                                                  {s.farFade, "farFade"},
                                                   {s.orientationDistance, "orientationDistance"},
                                                   {s.orientationCos, "orientationCos"}};
   for (const auto& [v, name] : values) {
@@ -24,62 +26,68 @@ void validate(const CullSettings& s) {
   if (s.lodDistances[0] > s.lodDistances[1]) {
     fail("grass culling: lodDistances must increase, got {} then {}", s.lodDistances[0], s.lodDistances[1]);
   }
+  if (s.farFade > s.maxDistance) {
+    fail("grass culling: farFade {} m is longer than maxDistance {} m", s.farFade, s.maxDistance);
+  }
+  const float half = 0.5f * s.lodFade;
+  if (s.lodDistances[0] + half > s.lodDistances[1] - half ||
+      s.lodDistances[1] + half > s.maxDistance - s.farFade || s.lodDistances[0] < half) {
+    fail("grass culling: lodFade {} m makes the bands around lodDistances {} and {} m overlap each other, "
+         "the camera or the far fade (which starts at {} m)",
+         s.lodFade, s.lodDistances[0], s.lodDistances[1], s.maxDistance - s.farFade);
+  }
 }
 
 int lodForDistance(const CullSettings& s, float distance) {
   return distance < s.lodDistances[0] ? 0 : distance < s.lodDistances[1] ? 1 : 2;
 }
 
-CullStats cullField(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
-                    const std::vector<BladeType>& types, const terrain::HeightField& terrain,
-                    const DensityMap& density, const glm::mat4& viewProj, const glm::vec3& eye,
+void lodInstances(const CullSettings& s, float distance, std::vector<VisibleBlade>& out) {
+  // grassLodInstances() in shaders/grass/cull.comp, in the same order.
+  if (distance > s.maxDistance) {
+    return;
+  }
+  const float half = 0.5f * s.lodFade;
+  for (int k = 0; k < 2; ++k) {
+    const float start = s.lodDistances[static_cast<std::size_t>(k)] - half;
+    if (s.lodFade > 0.0f && distance >= start && distance < start + s.lodFade) {
+      const float amount = (distance - start) / s.lodFade;
+      out.push_back({{}, k, Fade::FadeOut, amount});
+      out.push_back({{}, k + 1, Fade::FadeIn, amount});
+      return;
+    }
+  }
+  const int lod = lodForDistance(s, distance);
+  const float farStart = s.maxDistance - s.farFade;
+  if (s.farFade > 0.0f && distance >= farStart) {
+    out.push_back({{}, lod, Fade::FadeOut, std::min((distance - farStart) / s.farFade, 1.0f)});
+    return;
+  }
+  out.push_back({{}, lod, Fade::Full, 0.0f});
+}
+
+CullStats cullField(const GrassField& field, const glm::mat4& viewProj, const glm::vec3& eye,
                     const CullSettings& settings, std::vector<VisibleBlade>* visible) {
   validate(settings);
-  if (types.empty()) {
-    fail("grass culling: no blade types");
-  }
-  std::vector<float> heights;
-  float tallest = 0.0f;
-  for (const BladeType& t : types) {
-    heights.push_back(t.length());
-    tallest = std::max(tallest, t.length());
-  }
-  float maxScale = 0.0f;
-  for (const gpu::GrassBlade& b : patch) {
-    maxScale = std::max(maxScale, b.placement.w);
-  }
-  const float bladeTop = tallest * maxScale;
+  const FieldLayout& layout = field.layout();
+  const std::vector<gpu::GrassBlade>& patch = field.patch();
+  const std::vector<float>& lengths = field.typeLengths();
+  const float bladeTop = field.bladeTop();
   const Frustum frustum(viewProj);
   CullStats stats;
+  std::vector<VisibleBlade> instances;
   for (int tz = 0; tz < layout.tilesZ; ++tz) {
     for (int tx = 0; tx < layout.tilesX; ++tx) {
       ++stats.tiles;
       // The tile's box: terrain samples inside it and on its border, up to the tallest blade.
+      const glm::vec2 range = field.tileRange(tx, tz);
+      if (!(range.x <= range.y)) {
+        continue;
+      }
       const glm::vec2 lo =
           layout.origin + glm::vec2(static_cast<float>(tx), static_cast<float>(tz)) * layout.tileSize;
       const glm::vec2 hi = lo + glm::vec2(layout.tileSize);
-      const int i0 =
-          std::clamp(static_cast<int>(std::floor(lo.x / terrain.spacingX())), 0, terrain.width() - 1);
-      const int i1 =
-          std::clamp(static_cast<int>(std::ceil(hi.x / terrain.spacingX())), 0, terrain.width() - 1);
-      const int j0 =
-          std::clamp(static_cast<int>(std::floor(lo.y / terrain.spacingZ())), 0, terrain.height() - 1);
-      const int j1 =
-          std::clamp(static_cast<int>(std::ceil(hi.y / terrain.spacingZ())), 0, terrain.height() - 1);
-      float minY = std::numeric_limits<float>::infinity();
-      float maxY = -std::numeric_limits<float>::infinity();
-      for (int j = j0; j <= j1; ++j) {
-        for (int i = i0; i <= i1; ++i) {
-          if (terrain.valid(i, j)) {
-            minY = std::min(minY, terrain.at(i, j));
-            maxY = std::max(maxY, terrain.at(i, j));
-          }
-        }
-      }
-      if (!(minY <= maxY)) {
-        continue;
-      }
-      const Aabb box{{lo.x, minY, lo.y}, {hi.x, maxY + bladeTop, hi.y}};
+      const Aabb box{{lo.x, range.x, lo.y}, {hi.x, range.y + bladeTop, hi.y}};
       if (!frustum.intersects(box)) {
         continue;
       }
@@ -89,9 +97,9 @@ CullStats cullField(const FieldLayout& layout, const std::vector<gpu::GrassBlade
         continue;
       }
       ++stats.tilesVisible;
-      forEachTileBlade(layout, patch, terrain, density, tx, tz, [&](const FieldBlade& fb) {
+      field.forEachTileBlade(tx, tz, [&](const FieldBlade& fb) {
         const gpu::GrassBlade& b = patch[fb.patchIndex];
-        const float height = heights[std::min<std::size_t>(b.info.x, heights.size() - 1)] * b.placement.w;
+        const float height = lengths[std::min<std::size_t>(b.info.x, lengths.size() - 1)] * b.placement.w;
         const glm::vec3 centre = fb.root + glm::vec3(0.0f, 0.5f * height, 0.0f);
         if (!frustum.intersectsSphere(centre, 0.5f * height)) {
           ++stats.culledFrustum;
@@ -105,17 +113,22 @@ CullStats cullField(const FieldLayout& layout, const std::vector<gpu::GrassBlade
         if (distance > settings.orientationDistance) {
           // The face normal after the blade's turn about the vertical (+Z turned by the rotation).
           const glm::vec2 face(std::sin(b.placement.z), std::cos(b.placement.z));
-          glm::vec2 view(fb.root.x - eye.x, fb.root.z - eye.z);
+          const glm::vec2 view(fb.root.x - eye.x, fb.root.z - eye.z);
           const float len = glm::length(view);
           if (len > 1e-6f && std::abs(glm::dot(face, view / len)) < settings.orientationCos) {
             ++stats.culledOrientation;
             return;
           }
         }
-        const int lod = lodForDistance(settings, distance);
-        ++stats.bladesPerLod[static_cast<std::size_t>(lod)];
-        if (visible != nullptr) {
-          visible->push_back({fb, lod});
+        instances.clear();
+        lodInstances(settings, distance, instances);
+        ++stats.blades;
+        for (VisibleBlade& v : instances) {
+          ++stats.bladesPerLod[static_cast<std::size_t>(v.lod)];
+          if (visible != nullptr) {
+            v.blade = fb;
+            visible->push_back(v);
+          }
         }
       });
     }

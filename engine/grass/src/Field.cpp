@@ -1,6 +1,7 @@
 #include <sylva/grass/Field.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Parallel.hpp>
 #include <sylva/core/Random.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 
@@ -16,6 +17,16 @@ terrain::ProceduralSpec noiseSpec(const DensitySettings& s) {
   terrain::ProceduralSpec spec;
   spec.seed = s.seed;
   return spec;
+}
+
+/** Chris Wellons' lowbias32 integer hash. */
+std::uint32_t lowbias32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
 }
 
 /** 0 below a, 1 above b, smooth between (a ≤ b; a == b is a step). */
@@ -98,6 +109,107 @@ float DensityMap::at(float x, float z, float height, float slopeDegrees) const {
   return std::clamp(d, 0.0f, 1.0f);
 }
 
+DensityGrid::DensityGrid(const DensityMap& map, const terrain::HeightField& terrain, float maxSpacing) {
+  if (!(maxSpacing > 0.0f) || !std::isfinite(maxSpacing)) {
+    fail("grass density: grid spacing {} m must be a finite number > 0", maxSpacing);
+  }
+  const double ex = std::max(terrain.extentX(), 1e-3f);
+  const double ez = std::max(terrain.extentZ(), 1e-3f);
+  double cellsX = std::ceil(ex / maxSpacing);
+  double cellsZ = std::ceil(ez / maxSpacing);
+  constexpr double kMaxSamples = 16777216.0;
+  if ((cellsX + 1.0) * (cellsZ + 1.0) > kMaxSamples) {
+    const double f = std::sqrt((cellsX + 1.0) * (cellsZ + 1.0) / kMaxSamples);
+    cellsX = std::floor(cellsX / f) - 1.0;
+    cellsZ = std::floor(cellsZ / f) - 1.0;
+  }
+  mWidth = static_cast<int>(std::max(cellsX, 1.0)) + 1;
+  mHeight = static_cast<int>(std::max(cellsZ, 1.0)) + 1;
+  mSpacing = glm::vec2(static_cast<float>(ex / (mWidth - 1)), static_cast<float>(ez / (mHeight - 1)));
+  mValues.assign(static_cast<std::size_t>(mWidth) * static_cast<std::size_t>(mHeight), 0.0f);
+  parallelFor(
+      static_cast<std::size_t>(mHeight),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t j = begin; j < end; ++j) {
+          for (int i = 0; i < mWidth; ++i) {
+            const float x = std::min(static_cast<float>(i) * mSpacing.x, terrain.extentX());
+            const float z = std::min(static_cast<float>(j) * mSpacing.y, terrain.extentZ());
+            const float h = terrain::heightAt(terrain, x, z);
+            float d = 0.0f;
+            if (!std::isnan(h)) {
+              const glm::vec3 n = terrain::normalAt(terrain, x, z);
+              const float slope = std::acos(std::clamp(n.y, -1.0f, 1.0f)) * 57.29578f;
+              d = map.at(x, z, h, std::isnan(slope) ? 90.0f : slope);
+            }
+            mValues[j * static_cast<std::size_t>(mWidth) + static_cast<std::size_t>(i)] = d;
+          }
+        }
+      },
+      4);
+}
+
+float DensityGrid::at(float x, float z) const {
+  if (mValues.empty()) {
+    return 0.0f;
+  }
+  // The same arithmetic as grassDensity() in shaders/grass/grass.glsl.
+  const float gx = std::clamp(x / mSpacing.x, 0.0f, static_cast<float>(mWidth - 1));
+  const float gz = std::clamp(z / mSpacing.y, 0.0f, static_cast<float>(mHeight - 1));
+  const int i0 = std::min(static_cast<int>(std::floor(gx)), mWidth - 2);
+  const int j0 = std::min(static_cast<int>(std::floor(gz)), mHeight - 2);
+  const float fx = gx - static_cast<float>(i0);
+  const float fz = gz - static_cast<float>(j0);
+  const auto v = [&](int i, int j) {
+    return mValues[static_cast<std::size_t>(j) * static_cast<std::size_t>(mWidth) +
+                   static_cast<std::size_t>(i)];
+  };
+  const float top = v(i0, j0) * (1.0f - fx) + v(i0 + 1, j0) * fx;
+  const float bottom = v(i0, j0 + 1) * (1.0f - fx) + v(i0 + 1, j0 + 1) * fx;
+  return top * (1.0f - fz) + bottom * fz;
+}
+
+float rootHeight(const terrain::HeightField& terrain, float x, float z) {
+  const int w = terrain.width();
+  const int h = terrain.height();
+  if (w < 2 || h < 2) {
+    return std::numeric_limits<float>::quiet_NaN();
+  }
+  // terrainHeight() of shaders/terrain/terrain.glsl (and grassTerrainHeight()), in the same order.
+  const float gx = std::clamp(x / terrain.spacingX(), 0.0f, static_cast<float>(w - 1));
+  const float gz = std::clamp(z / terrain.spacingZ(), 0.0f, static_cast<float>(h - 1));
+  const int i0 = std::min(static_cast<int>(std::floor(gx)), w - 2);
+  const int j0 = std::min(static_cast<int>(std::floor(gz)), h - 2);
+  if (!terrain.valid(i0, j0) || !terrain.valid(i0 + 1, j0) || !terrain.valid(i0, j0 + 1) ||
+      !terrain.valid(i0 + 1, j0 + 1)) {
+    return std::numeric_limits<float>::quiet_NaN();
+  }
+  const float fx = gx - static_cast<float>(i0);
+  const float fz = gz - static_cast<float>(j0);
+  const float top = terrain.at(i0, j0) * (1.0f - fx) + terrain.at(i0 + 1, j0) * fx;
+  const float bottom = terrain.at(i0, j0 + 1) * (1.0f - fx) + terrain.at(i0 + 1, j0 + 1) * fx;
+  return top * (1.0f - fz) + bottom * fz;
+}
+
+glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField& terrain, int tx, int tz) {
+  const glm::vec2 lo =
+      layout.origin + glm::vec2(static_cast<float>(tx), static_cast<float>(tz)) * layout.tileSize;
+  const glm::vec2 hi = lo + glm::vec2(layout.tileSize);
+  const int i0 = std::clamp(static_cast<int>(std::floor(lo.x / terrain.spacingX())), 0, terrain.width() - 1);
+  const int i1 = std::clamp(static_cast<int>(std::ceil(hi.x / terrain.spacingX())), 0, terrain.width() - 1);
+  const int j0 = std::clamp(static_cast<int>(std::floor(lo.y / terrain.spacingZ())), 0, terrain.height() - 1);
+  const int j1 = std::clamp(static_cast<int>(std::ceil(hi.y / terrain.spacingZ())), 0, terrain.height() - 1);
+  glm::vec2 range(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
+  for (int j = j0; j <= j1; ++j) {
+    for (int i = i0; i <= i1; ++i) {
+      if (terrain.valid(i, j)) {
+        range.x = std::min(range.x, terrain.at(i, j));
+        range.y = std::max(range.y, terrain.at(i, j));
+      }
+    }
+  }
+  return range;
+}
+
 FieldLayout layoutOver(const terrain::HeightField& terrain, float tileSize, int bladesPerTile) {
   if (!(tileSize > 0.0f) || !std::isfinite(tileSize)) {
     fail("grass: tile size {} m must be a finite number > 0", tileSize);
@@ -119,13 +231,14 @@ FieldLayout layoutOver(const terrain::HeightField& terrain, float tileSize, int 
 }
 
 std::uint32_t tileStart(int tx, int tz, std::uint32_t patchBlades) {
-  const std::uint64_t key =
-      (static_cast<std::uint64_t>(static_cast<std::uint32_t>(tx)) << 32) | static_cast<std::uint32_t>(tz);
-  return static_cast<std::uint32_t>(hash64(key) % patchBlades);
+  // grassTileStart() in shaders/grass/grass.glsl: 32-bit arithmetic wraps the same in C++ and GLSL.
+  const std::uint32_t key =
+      static_cast<std::uint32_t>(tx) * 0x9e3779b1u ^ lowbias32(static_cast<std::uint32_t>(tz) ^ 0x85ebca6bu);
+  return lowbias32(key) % patchBlades;
 }
 
 void forEachTileBlade(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
-                      const terrain::HeightField& terrain, const DensityMap& density, int tx, int tz,
+                      const terrain::HeightField& terrain, const DensityGrid& density, int tx, int tz,
                       const std::function<void(const FieldBlade&)>& visit) {
   if (patch.empty()) {
     return;
@@ -142,14 +255,11 @@ void forEachTileBlade(const FieldLayout& layout, const std::vector<gpu::GrassBla
     if (xz.x < 0.0f || xz.y < 0.0f || xz.x > terrain.extentX() || xz.y > terrain.extentZ()) {
       continue;
     }
-    const float height = terrain::heightAt(terrain, xz.x, xz.y);
+    const float height = rootHeight(terrain, xz.x, xz.y);
     if (std::isnan(height)) {
       continue;
     }
-    const glm::vec3 normal = terrain::normalAt(terrain, xz.x, xz.y);
-    const float slope = std::acos(std::clamp(normal.y, -1.0f, 1.0f)) * 57.29578f;
-    if ((static_cast<float>(j) + 0.5f) / static_cast<float>(layout.bladesPerTile) >=
-        density.at(xz.x, xz.y, height, slope)) {
+    if ((static_cast<float>(j) + 0.5f) / static_cast<float>(layout.bladesPerTile) >= density.at(xz.x, xz.y)) {
       continue;
     }
     visit({glm::vec3(xz.x, height, xz.y), index, j, tx, tz});
@@ -157,7 +267,7 @@ void forEachTileBlade(const FieldLayout& layout, const std::vector<gpu::GrassBla
 }
 
 std::size_t countFieldBlades(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
-                             const terrain::HeightField& terrain, const DensityMap& density) {
+                             const terrain::HeightField& terrain, const DensityGrid& density) {
   std::size_t count = 0;
   for (int tz = 0; tz < layout.tilesZ; ++tz) {
     for (int tx = 0; tx < layout.tilesX; ++tx) {

@@ -15,24 +15,13 @@
 namespace sylva::grass {
 namespace {
 
-struct Scene {
-  terrain::HeightField field;
-  std::vector<gpu::GrassBlade> patch;
-  std::vector<BladeType> types = proceduralBladeTypes();
-  FieldLayout layout;
-  DensityMap density{DensitySettings{}};
-};
-
-Scene scene() {
-  Scene s;
+GrassField scene() {
   terrain::ProceduralSpec spec = terrain::defaultLandscapeSpec(9);
   spec.heightScale = 8.0f;
-  s.field = terrain::generate(spec, 0.0, 0.0, 81, 81, 1.0f);
-  PatchSettings ps;
-  ps.blades = 4096;
-  s.patch = makePatch(ps, 3);
-  s.layout = layoutOver(s.field, ps.tileSize, 96);
-  return s;
+  FieldSettings fs;
+  fs.patch.blades = 4096;
+  fs.bladesPerTile = 96;
+  return GrassField(terrain::generate(spec, 0.0, 0.0, 81, 81, 1.0f), proceduralBladeTypes(), fs);
 }
 
 glm::mat4 viewProj(const glm::vec3& eye, const glm::vec3& at, float fovDegrees) {
@@ -41,24 +30,24 @@ glm::mat4 viewProj(const glm::vec3& eye, const glm::vec3& at, float fovDegrees) 
 }
 
 TEST(GrassCull, TileCullingIsConservative) {
-  const Scene s = scene();
+  const GrassField s = scene();
   const glm::vec3 eye(10.0f, 12.0f, 5.0f);
   const glm::mat4 vp = viewProj(eye, {40.0f, 2.0f, 45.0f}, 60.0f);
   CullSettings settings;
   std::vector<VisibleBlade> visible;
-  const CullStats stats =
-      cullField(s.layout, s.patch, s.types, s.field, s.density, vp, eye, settings, &visible);
+  const CullStats stats = cullField(s, vp, eye, settings, &visible);
   EXPECT_LT(stats.tilesVisible, stats.tiles);
   EXPECT_GT(stats.drawn(), 1000u);
-  EXPECT_EQ(visible.size(), stats.drawn());
+  EXPECT_EQ(visible.size(), stats.instances());
+  EXPECT_GE(stats.instances(), stats.drawn());
   // The oracle: every blade of every tile through the per-blade tests alone.
   const Frustum frustum(vp);
   std::size_t expected = 0;
-  for (int tz = 0; tz < s.layout.tilesZ; ++tz) {
-    for (int tx = 0; tx < s.layout.tilesX; ++tx) {
-      forEachTileBlade(s.layout, s.patch, s.field, s.density, tx, tz, [&](const FieldBlade& fb) {
-        const gpu::GrassBlade& b = s.patch[fb.patchIndex];
-        const float h = s.types[b.info.x].length() * b.placement.w;
+  for (int tz = 0; tz < s.layout().tilesZ; ++tz) {
+    for (int tx = 0; tx < s.layout().tilesX; ++tx) {
+      s.forEachTileBlade(tx, tz, [&](const FieldBlade& fb) {
+        const gpu::GrassBlade& b = s.patch()[fb.patchIndex];
+        const float h = s.types()[b.info.x].length() * b.placement.w;
         const float d = glm::length(fb.root - eye);
         if (!frustum.intersectsSphere(fb.root + glm::vec3(0.0f, 0.5f * h, 0.0f), 0.5f * h) ||
             d > settings.maxDistance) {
@@ -77,18 +66,28 @@ TEST(GrassCull, TileCullingIsConservative) {
 }
 
 TEST(GrassCull, LevelsFollowDistance) {
-  const Scene s = scene();
+  const GrassField s = scene();
   const glm::vec3 eye(2.0f, 6.0f, 2.0f);
   const glm::mat4 vp = viewProj(eye, {60.0f, 0.0f, 60.0f}, 75.0f);
   CullSettings settings;
   settings.lodDistances = {10.0f, 30.0f};
   std::vector<VisibleBlade> visible;
-  const CullStats stats =
-      cullField(s.layout, s.patch, s.types, s.field, s.density, vp, eye, settings, &visible);
+  const CullStats stats = cullField(s, vp, eye, settings, &visible);
+  std::size_t fading = 0;
   for (const VisibleBlade& v : visible) {
     const float d = glm::length(v.blade.root - eye);
-    EXPECT_EQ(v.lod, lodForDistance(settings, d));
+    if (v.fade == Fade::Full) {
+      EXPECT_EQ(v.lod, lodForDistance(settings, d));
+    } else if (v.lod < 2 || d < settings.maxDistance - settings.farFade) {
+      // Inside a cross-fade band: both levels around the boundary, the amount rising with distance.
+      ++fading;
+      const float boundary =
+          settings.lodDistances[static_cast<std::size_t>(v.fade == Fade::FadeOut ? v.lod : v.lod - 1)];
+      EXPECT_LE(std::abs(d - boundary), 0.5f * settings.lodFade + 1e-4f);
+      EXPECT_NEAR(v.amount, (d - boundary) / settings.lodFade + 0.5f, 1e-4f);
+    }
   }
+  EXPECT_GT(fading, 0u);
   EXPECT_GT(stats.bladesPerLod[0], 0u);
   EXPECT_GT(stats.bladesPerLod[1], stats.bladesPerLod[0]);
   EXPECT_GT(stats.bladesPerLod[2], 0u);
@@ -97,21 +96,20 @@ TEST(GrassCull, LevelsFollowDistance) {
   open.maxDistance = 1e4f;
   open.orientationCos = 0.0f;
   const glm::vec3 above(40.0f, 300.0f, 40.01f);
-  const CullStats all = cullField(s.layout, s.patch, s.types, s.field, s.density,
-                                  viewProj(above, {40.0f, 0.0f, 40.0f}, 60.0f), above, open);
-  EXPECT_EQ(all.drawn(), countFieldBlades(s.layout, s.patch, s.field, s.density));
+  const CullStats all = cullField(s, viewProj(above, {40.0f, 0.0f, 40.0f}, 60.0f), above, open);
+  EXPECT_EQ(all.drawn(), s.countBlades());
   EXPECT_EQ(all.tilesVisible, all.tiles);
 }
 
 TEST(GrassCull, EdgeOnFarBladesAreSkipped) {
-  const Scene s = scene();
+  const GrassField s = scene();
   const glm::vec3 eye(-30.0f, 10.0f, 40.0f);
   const glm::mat4 vp = viewProj(eye, {40.0f, 2.0f, 40.0f}, 60.0f);
   CullSettings with;
   CullSettings without = with;
   without.orientationCos = 0.0f;
-  const CullStats a = cullField(s.layout, s.patch, s.types, s.field, s.density, vp, eye, with);
-  const CullStats b = cullField(s.layout, s.patch, s.types, s.field, s.density, vp, eye, without);
+  const CullStats a = cullField(s, vp, eye, with);
+  const CullStats b = cullField(s, vp, eye, without);
   EXPECT_EQ(b.culledOrientation, 0u);
   EXPECT_EQ(a.drawn() + a.culledOrientation, b.drawn());
   // Rotations are uniform: |cos| < 0.12 holds for about 7.7 % of the far blades.
@@ -119,6 +117,32 @@ TEST(GrassCull, EdgeOnFarBladesAreSkipped) {
   CullSettings bad;
   bad.lodDistances = {30.0f, 10.0f};
   EXPECT_THROW(validate(bad), Error);
+  CullSettings overlapping;
+  overlapping.lodFade = 30.0f;
+  EXPECT_THROW(validate(overlapping), Error);
+}
+
+TEST(GrassCull, CrossFadesCoverEachBladeOnce) {
+  CullSettings s;
+  std::vector<VisibleBlade> out;
+  for (float d = 0.0f; d <= s.maxDistance + 5.0f; d += 0.05f) {
+    out.clear();
+    lodInstances(s, d, out);
+    if (d > s.maxDistance) {
+      EXPECT_TRUE(out.empty());
+      continue;
+    }
+    ASSERT_FALSE(out.empty());
+    ASSERT_LE(out.size(), 2u);
+    // Coverage: a Full instance covers everything; FadeOut covers 1 - amount, FadeIn amount.
+    float coverage = 0.0f;
+    for (const VisibleBlade& v : out) {
+      coverage += v.fade == Fade::Full ? 1.0f : v.fade == Fade::FadeOut ? 1.0f - v.amount : v.amount;
+    }
+    const float farStart = s.maxDistance - s.farFade;
+    const float expected = d < farStart ? 1.0f : 1.0f - (d - farStart) / s.farFade;
+    EXPECT_NEAR(coverage, expected, 1e-4f) << d;
+  }
 }
 
 } // namespace

@@ -145,11 +145,11 @@ TEST(Field, RootsSitOnTheTerrainAndFollowTheDensity) {
   full.coverage = 1.0f;
   full.contrast = 100.0f;
   full.maxSlopeDegrees = 90.0f;
-  const DensityMap everywhere(full);
+  const DensityGrid everywhere(DensityMap(full), field);
   std::size_t interior = 0;
   forEachTileBlade(layout, patch, field, everywhere, 5, 7, [&](const FieldBlade& b) {
-    // Exactly the terrain query the tessellation shader matches.
-    EXPECT_EQ(b.root.y, terrain::heightAt(field, b.root.x, b.root.z));
+    // The tessellation shader's float bilinear height: within 1 mm of the double-precision query.
+    EXPECT_NEAR(b.root.y, terrain::heightAt(field, b.root.x, b.root.z), 1e-3f);
     EXPECT_GE(b.root.x, 5 * 2.0f);
     EXPECT_LT(b.root.x, 6 * 2.0f);
     EXPECT_GE(b.root.z, 7 * 2.0f);
@@ -160,12 +160,34 @@ TEST(Field, RootsSitOnTheTerrainAndFollowTheDensity) {
   DensitySettings none = full;
   none.maxHeight = -100.0f;
   none.minHeight = -200.0f;
-  EXPECT_EQ(countFieldBlades(layout, patch, field, DensityMap(none)), 0u);
+  EXPECT_EQ(countFieldBlades(layout, patch, field, DensityGrid(DensityMap(none), field)), 0u);
   const std::size_t all = countFieldBlades(layout, patch, field, everywhere);
-  const std::size_t some = countFieldBlades(layout, patch, field, DensityMap(DensitySettings{}));
+  const DensityGrid patchy(DensityMap(DensitySettings{}), field);
+  const std::size_t some = countFieldBlades(layout, patch, field, patchy);
   EXPECT_GT(some, all / 5);
   EXPECT_LT(some, all);
-  EXPECT_EQ(some, countFieldBlades(layout, patch, field, DensityMap(DensitySettings{})));
+  EXPECT_EQ(some, countFieldBlades(layout, patch, field, DensityGrid(DensityMap(DensitySettings{}), field)));
+  // The grid reproduces the rules at its samples and interpolates between them.
+  const DensityMap rules{DensitySettings{}};
+  for (int i = 0; i < 20; ++i) {
+    const float x = static_cast<float>(i) * patchy.spacing().x;
+    const float z = static_cast<float>(i % 7) * patchy.spacing().y;
+    const glm::vec3 n = terrain::normalAt(field, x, z);
+    EXPECT_NEAR(patchy.at(x, z), rules.at(x, z, terrain::heightAt(field, x, z), std::acos(n.y) * 57.29578f),
+                1e-5f);
+  }
+  // Absent terrain: no root there.
+  terrain::HeightField holed = field;
+  for (int j = 0; j < field.height(); ++j) {
+    for (int i = 0; i < 20; ++i) {
+      holed.at(i, j) = std::nanf("");
+    }
+  }
+  EXPECT_TRUE(std::isnan(rootHeight(holed, 5.0f, 5.0f)));
+  EXPECT_FALSE(std::isnan(rootHeight(holed, 40.0f, 5.0f)));
+  const std::size_t fewer = countFieldBlades(layout, patch, holed, DensityGrid(DensityMap(full), holed));
+  EXPECT_LT(fewer, all * 3 / 4);
+  EXPECT_GT(fewer, all / 2);
 }
 
 TEST(Field, DensityRules) {

@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace sylva::grass {
 
@@ -61,6 +62,42 @@ private:
   terrain::ProceduralNoise mNoise;
 };
 
+/**
+ * The density baked on a regular grid over the terrain (samples at (i·spacingX, j·spacingZ), like the
+ * terrain's), read bilinearly in float by both the CPU reference and the culling shader, so both keep the
+ * same blades. Absent terrain gives density 0.
+ */
+class DensityGrid {
+public:
+  DensityGrid() = default;
+  /**
+   * Bakes `map` over `terrain`'s footprint with the largest spacing ≤ `maxSpacing` metres that divides the
+   * extent evenly (coarser when that would exceed 2^24 samples); height and slope come from the terrain at
+   * each grid sample. Throws sylva::Error for a spacing that is not finite and > 0.
+   */
+  DensityGrid(const DensityMap& map, const terrain::HeightField& terrain, float maxSpacing = 2.0f);
+  /** Bilinear density at world (x, z), clamped to the edge samples. */
+  float at(float x, float z) const;
+  int width() const { return mWidth; }
+  int height() const { return mHeight; }
+  glm::vec2 spacing() const { return mSpacing; }
+  /** Row-major samples, width() × height(). */
+  const std::vector<float>& values() const { return mValues; }
+
+private:
+  int mWidth = 0;
+  int mHeight = 0;
+  glm::vec2 mSpacing{1.0f};
+  std::vector<float> mValues;
+};
+
+/**
+ * The terrain height at world (x, z) as the terrain's tessellation evaluation shader computes it (bilinear in
+ * float from the four samples around, clamped to the field), or NaN when any of the four is absent: the
+ * culling shader's arithmetic, operation for operation.
+ */
+float rootHeight(const terrain::HeightField& terrain, float x, float z);
+
 /** The grid of tiles. */
 struct FieldLayout {
   /** World (x, z) of tile (0, 0)'s corner, metres. */
@@ -97,15 +134,21 @@ struct FieldBlade {
 /**
  * The blades tile (tx, tz) draws: the first layout.bladesPerTile entries of its range, where entry j is kept
  * when (j + 0.5) / bladesPerTile < density at its root (the patch is shuffled, so the kept ones are an
- * unbiased sample whatever the density). Roots outside the terrain's footprint and roots on absent (NaN)
- * heights are dropped.
+ * unbiased sample whatever the density). Roots outside the terrain's footprint and roots on absent terrain
+ * (rootHeight NaN) are dropped.
  */
 void forEachTileBlade(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
-                      const terrain::HeightField& terrain, const DensityMap& density, int tx, int tz,
+                      const terrain::HeightField& terrain, const DensityGrid& density, int tx, int tz,
                       const std::function<void(const FieldBlade&)>& visit);
 
 /** Blades of the whole field (every tile). */
 std::size_t countFieldBlades(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
-                             const terrain::HeightField& terrain, const DensityMap& density);
+                             const terrain::HeightField& terrain, const DensityGrid& density);
+
+/**
+ * Height range (x min, y max, metres) of the terrain samples inside tile (tx, tz) and on its border; x > y
+ * when none is valid. With the tallest blade on top, the tile's bounding box for culling.
+ */
+glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField& terrain, int tx, int tz);
 
 } // namespace sylva::grass

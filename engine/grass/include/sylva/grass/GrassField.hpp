@@ -1,0 +1,72 @@
+#pragma once
+// Everything the grass field needs on the CPU, made once from the terrain and the blade types: the patch, the
+// tile grid, the baked density grid and every tile's height range. The GPU side uploads exactly these, and
+// the CPU references (culling, expansion) read them, so both see the same field.
+
+#include <sylva/grass/BladeType.hpp>
+#include <sylva/grass/Field.hpp>
+#include <sylva/grass/Patch.hpp>
+#include <sylva/terrain/HeightField.hpp>
+
+#include <glm/vec2.hpp>
+
+#include <functional>
+#include <vector>
+
+namespace sylva::grass {
+
+/** How a field is made. */
+struct FieldSettings {
+  PatchSettings patch;
+  /** Blades a tile draws at density 1 (the paper's field: 64 per 2 m tile); at most patch.blades. */
+  int bladesPerTile = 64;
+  DensitySettings density;
+  /** Largest spacing of the baked density grid, metres. */
+  float densitySpacing = 2.0f;
+};
+
+/** The field's CPU data. Immutable after construction. */
+class GrassField {
+public:
+  /**
+   * Builds the field over `terrain` (heights as drawn, world metres) with `types` (at least one). Throws
+   * sylva::Error naming the setting for bad values (see makePatch, layoutOver, DensityMap) and for no types.
+   */
+  GrassField(terrain::HeightField terrain, std::vector<BladeType> types, const FieldSettings& settings);
+
+  const terrain::HeightField& terrain() const { return mTerrain; }
+  const std::vector<BladeType>& types() const { return mTypes; }
+  const std::vector<gpu::GrassBlade>& patch() const { return mPatch; }
+  const FieldLayout& layout() const { return mLayout; }
+  const DensityGrid& density() const { return mDensity; }
+  const FieldSettings& settings() const { return mSettings; }
+  /** Height range (min, max; min > max when the tile has no terrain) of tile (tx, tz), metres. */
+  glm::vec2 tileRange(int tx, int tz) const {
+    return mTileRanges[static_cast<std::size_t>(tz) * static_cast<std::size_t>(mLayout.tilesX) +
+                       static_cast<std::size_t>(tx)];
+  }
+  /** Row-major tile height ranges, tilesX × tilesZ. */
+  const std::vector<glm::vec2>& tileRanges() const { return mTileRanges; }
+  /** Height of the tallest blade the patch can hold (tallest type × largest scale), metres. */
+  float bladeTop() const { return mBladeTop; }
+  /** Length of each type's finest knot line, metres (index = type). */
+  const std::vector<float>& typeLengths() const { return mTypeLengths; }
+
+  /** The blades tile (tx, tz) draws (forEachTileBlade over this field). */
+  void forEachTileBlade(int tx, int tz, const std::function<void(const FieldBlade&)>& visit) const;
+  /** Blades of the whole field. */
+  std::size_t countBlades() const;
+
+private:
+  terrain::HeightField mTerrain;
+  std::vector<BladeType> mTypes;
+  FieldSettings mSettings;
+  std::vector<gpu::GrassBlade> mPatch;
+  FieldLayout mLayout;
+  DensityGrid mDensity;
+  std::vector<glm::vec2> mTileRanges;
+  std::vector<float> mTypeLengths;
+  float mBladeTop = 0.0f;
+};
+
+} // namespace sylva::grass
