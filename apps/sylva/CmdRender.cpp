@@ -2,9 +2,11 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
+#include <sylva/core/Log.hpp>
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/RenderTarget.hpp>
 
+#include "GrassFlags.hpp"
 #include "TerrainFlags.hpp"
 
 #include <cstdio>
@@ -19,6 +21,7 @@ void registerRender(CLI::App& app) {
     std::string scene = "terrain";
     TerrainFlags terrain;
     CameraFlags camera;
+    GrassFlags grass;
     std::string view = "shaded";
     std::string out = "out/terrain.png";
     int width = 1280;
@@ -35,6 +38,7 @@ void registerRender(CLI::App& app) {
       ->capture_default_str();
   o->terrain.add(*command);
   o->camera.add(*command);
+  o->grass.add(*command);
   command->add_option("--view", o->view, "Terrain view: shaded, lod (LOD colours), normals or splat")
       ->check(CLI::IsMember({"shaded", "lod", "normals", "splat"}))
       ->capture_default_str();
@@ -58,6 +62,9 @@ void registerRender(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   command->callback([o] {
     o->camera.check();
+    if (o->grass.enabled) {
+      o->grass.check();
+    }
     auto context = platform::createHeadlessContext(o->context.options());
     shader::Library library(o->shaderDir);
     render::RenderTarget target(o->width, o->height);
@@ -68,13 +75,28 @@ void registerRender(CLI::App& app) {
       scene.render(scene.defaultCamera(), o->width, o->height, o->time, nullptr, o->wireframe);
     } else {
       auto scene = o->terrain.build(library);
-      const render::Camera camera = o->camera.camera(*scene, target.aspect());
+      std::unique_ptr<grass::GrassRenderer> grass;
+      render::Camera camera = o->camera.camera(*scene, target.aspect());
+      if (o->grass.enabled) {
+        auto field = o->grass.buildField(*scene);
+        grass = std::make_unique<grass::GrassRenderer>(library, field, o->grass.cullSettings());
+        log::info("grass: {} blade types, {} tiles of {} m, {} blades in the field, patch {:.2f} MB",
+                  field->types().size(),
+                  static_cast<long long>(field->layout().tilesX) * field->layout().tilesZ,
+                  field->layout().tileSize, field->countBlades(),
+                  static_cast<double>(grass::patchBytes(field->patch().size(), field->types().size())) / 1e6);
+        if (o->camera.cameraPos.empty()) {
+          camera = grassCamera(*scene, *field, glm::radians(o->camera.fovDegrees), o->grass.windDirection);
+        }
+      }
       target.begin(glm::vec4(environment.fogColor, 1.0f));
-      scene->update(camera, target.aspect());
       terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->camera.fog);
       options.view = parseTerrainView(o->view);
       options.wireframe = o->wireframe;
-      scene->draw(camera, o->width, o->height, o->time, nullptr, options);
+      grass::GrassDrawOptions grassOptions;
+      grassOptions.view = o->grass.grassView();
+      grassOptions.wind = o->grass.wind();
+      drawTerrainWithGrass(*scene, grass.get(), camera, o->width, o->height, o->time, options, grassOptions);
     }
     saveImage(o->out, target.readColor());
     std::printf("%s\n", o->out.c_str());

@@ -44,19 +44,22 @@ void main() {
   vec3 V = normalize(toEye);
   vec3 N = normalize(vNormal);
   N = dot(N, V) < 0.0 ? -N : N;
+  // Blades in a field catch light like the canopy they form: their normals lean towards the sky, more so near
+  // the tip, which keeps a sunlit field bright instead of a mass of dark edge-on strips.
+  vec3 Nlit = normalize(mix(N, vec3(0.0, 1.0, 0.0), 0.35 + 0.25 * vAlong));
   vec3 L = normalize(frame.sunDirection.xyz);
   float sun = frame.sunDirection.w;
   // Darker, greener base; lighter tips.
   vec3 albedo = vColour * mix(0.7, 1.12, vAlong);
-  float diffuse = max(dot(N, L), 0.0);
+  float diffuse = max(dot(Nlit, L), 0.0);
   vec3 H = normalize(L + V);
-  float specular = 0.1 * pow(max(dot(N, H), 0.0), 24.0);
+  float specular = 0.1 * pow(max(dot(Nlit, H), 0.0), 24.0);
   // Translucency: light through the blade when the sun is behind it, strongest looking towards the sun;
   // thinner (brighter) towards the tip.
   float through = max(dot(-N, L), 0.0);
   float towards = pow(max(dot(-V, L), 0.0), 4.0);
   vec3 translucent = vColour * vec3(1.15, 1.3, 0.55) * (0.45 * through + 0.5 * towards) * (0.35 + 0.65 * vAlong);
-  float sky = 0.5 + 0.5 * N.y;
+  float sky = 0.5 + 0.5 * Nlit.y;
   vec3 ambient = mix(vec3(0.18, 0.16, 0.14), vec3(0.32, 0.38, 0.48), sky);
   // Root occlusion: the field shades its own lower parts.
   float occlusion = mix(0.3, 1.0, smoothstep(0.0, 0.55, vAlong));

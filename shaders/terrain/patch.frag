@@ -16,6 +16,12 @@ vec3 lodColour(int level) {
   return colours[level % 8];
 }
 
+// Ground tint (TerrainDrawOptions::groundTint): rgb colour and strength (0 = off); the map's inverse
+// sample spacing (x, z, 1/m) and size in samples.
+uniform vec4 uGroundTint;
+uniform vec4 uGroundTintMap;
+layout(binding = 5) uniform sampler2D groundTintMap;
+
 void main() {
   vec2 xz = teWorldPos.xz;
   if (any(lessThan(xz, vec2(0.0))) || any(greaterThan(xz, terrain.extent.xy))) {
@@ -58,6 +64,11 @@ void main() {
     }
   }
   albedo = total > 0.0 ? albedo / total : vec3(0.3);
+  if (uGroundTint.a > 0.0) {
+    // The far representation of a grass field: the ground takes the field's average colour where it grows.
+    vec2 tintUv = (xz * uGroundTintMap.xy + 0.5) / uGroundTintMap.zw;
+    albedo = mix(albedo, uGroundTint.rgb, uGroundTint.a * texture(groundTintMap, tintUv).r);
+  }
   if (view == 1) {
     albedo = mix(albedo, lodColour(teLevel), 0.7);
   } else if (view == 3) {

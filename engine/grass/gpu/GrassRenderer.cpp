@@ -343,6 +343,17 @@ GrassRenderer::captureExpansion(const std::vector<VisibleBlade>& instances, cons
   return out;
 }
 
+terrain::GroundTint GrassRenderer::groundTint(float strength) const {
+  terrain::GroundTint tint;
+  tint.texture = mDensity.id();
+  tint.spacing = mField->density().spacing();
+  tint.size = {mField->density().width(), mField->density().height()};
+  // The ground between blades is partly shaded by them: a little darker than the blades' own colour.
+  tint.colour = mAverageColour * 0.8f;
+  tint.strength = strength;
+  return tint;
+}
+
 std::size_t GrassRenderer::gpuBytes() const {
   const GrassField& f = *mField;
   return mPatch.size() + mTypes.size() + mTileRanges.size() + mVisibleTiles.size() + mInstances.size() +

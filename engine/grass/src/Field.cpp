@@ -62,14 +62,21 @@ float paintAt(const DensitySettings& s, float x, float z) {
 DensityMap::DensityMap(DensitySettings settings)
     : mSettings(std::move(settings)), mNoise(noiseSpec(mSettings)) {
   const DensitySettings& s = mSettings;
-  const std::pair<float, const char*> finite[] = {
-      {s.base, "base"},          {s.noiseFrequency, "noiseFrequency"}, {s.coverage, "coverage"},
-      {s.contrast, "contrast"},  {s.heightFade, "heightFade"},         {s.maxSlopeDegrees, "maxSlopeDegrees"},
-      {s.slopeFade, "slopeFade"}};
+  const std::pair<float, const char*> finite[] = {{s.base, "base"},
+                                                  {s.noiseFrequency, "noiseFrequency"},
+                                                  {s.coverage, "coverage"},
+                                                  {s.contrast, "contrast"},
+                                                  {s.heightFade, "heightFade"},
+                                                  {s.maxSlopeDegrees, "maxSlopeDegrees"},
+                                                  {s.slopeFade, "slopeFade"},
+                                                  {s.verticalScale, "verticalScale"}};
   for (const auto& [v, name] : finite) {
     if (!std::isfinite(v) || v < 0.0f) {
       fail("grass density: {} must be a finite number ≥ 0, got {}", name, v);
     }
+  }
+  if (!(s.verticalScale > 0.0f)) {
+    fail("grass density: verticalScale must be > 0, got {}", s.verticalScale);
   }
   if (std::isnan(s.minHeight) || std::isnan(s.maxHeight) || s.minHeight > s.maxHeight) {
     fail("grass density: height range [{}, {}] is empty", s.minHeight, s.maxHeight);
@@ -106,6 +113,12 @@ float DensityMap::at(float x, float z, float height, float slopeDegrees) const {
   }
   d *= 1.0f - ramp(s.maxSlopeDegrees - s.slopeFade, s.maxSlopeDegrees, slopeDegrees);
   d *= paintAt(s, x, z);
+  if (s.layer) {
+    const float trueSlope =
+        std::atan(std::tan(std::clamp(slopeDegrees, 0.0f, 89.9f) * 0.01745329f) / s.verticalScale) *
+        57.29578f;
+    d *= std::clamp(terrain::splatWeight(*s.layer, height / s.verticalScale, trueSlope), 0.0f, 1.0f);
+  }
   return std::clamp(d, 0.0f, 1.0f);
 }
 

@@ -251,6 +251,16 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
     }
     const auto surfaces = static_cast<GLsizei>(selection.nodes.size());
     mSurface.setUniform("uNodeOffset", 0);
+    if (options.groundTint && options.groundTint->texture != 0) {
+      const GroundTint& tint = *options.groundTint;
+      glBindTextureUnit(5, tint.texture);
+      mSurface.setUniform("uGroundTint", glm::vec4(tint.colour, std::clamp(tint.strength, 0.0f, 1.0f)));
+      mSurface.setUniform("uGroundTintMap",
+                          glm::vec4(1.0f / tint.spacing.x, 1.0f / tint.spacing.y,
+                                    static_cast<float>(tint.size.x), static_cast<float>(tint.size.y)));
+    } else {
+      mSurface.setUniform("uGroundTint", glm::vec4(0.0f));
+    }
     glDrawArraysInstanced(GL_PATCHES, 0, 4, surfaces);
     if (count) {
       mInvocations.end();

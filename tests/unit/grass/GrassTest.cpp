@@ -214,6 +214,23 @@ TEST(Field, DensityRules) {
   EXPECT_EQ(painted.at(1.0f, 4.0f, 0.0f, 0.0f), 0.0f);
   EXPECT_EQ(painted.at(7.0f, 4.0f, 0.0f, 0.0f), 1.0f);
   EXPECT_EQ(painted.at(20.0f, 4.0f, 0.0f, 0.0f), 1.0f);
+  // The terrain's grass splat layer as a rule, in true metres under a vertical exaggeration of 2.
+  DensitySettings layered;
+  layered.coverage = 1.0f;
+  layered.contrast = 100.0f;
+  layered.maxSlopeDegrees = 90.0f;
+  terrain::SplatLayer grassLayer;
+  grassLayer.name = "grass";
+  grassLayer.minHeight = 0.0f;
+  grassLayer.maxHeight = 50.0f;
+  grassLayer.maxSlope = 30.0f;
+  layered.layer = grassLayer;
+  layered.verticalScale = 2.0f;
+  const DensityMap onLayer(layered);
+  EXPECT_EQ(onLayer.at(3.0f, 4.0f, 80.0f, 10.0f), 1.0f);  // 40 m true
+  EXPECT_EQ(onLayer.at(3.0f, 4.0f, 120.0f, 10.0f), 0.0f); // 60 m true
+  EXPECT_EQ(onLayer.at(3.0f, 4.0f, 80.0f, 45.0f), 1.0f);  // atan(tan 45° / 2) = 26.6° true
+  EXPECT_EQ(onLayer.at(3.0f, 4.0f, 80.0f, 60.0f), 0.0f);  // 40.9° true
   DensitySettings bad;
   bad.coverage = std::nanf("");
   EXPECT_THROW(DensityMap{bad}, Error);

@@ -8,6 +8,7 @@
 #include <sylva/grass/Patch.hpp>
 #include <sylva/terrain/HeightField.hpp>
 #include <sylva/terrain/Noise.hpp>
+#include <sylva/terrain/TerrainMaps.hpp>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -44,6 +45,14 @@ struct DensitySettings {
   std::shared_ptr<const Image> paint;
   glm::vec2 paintMin{0.0f};
   glm::vec2 paintMax{0.0f};
+  /**
+   * Optional terrain splat layer (rules in true metres and degrees): the density is multiplied by its raw
+   * weight (terrain::splatWeight), so grass grows where the terrain shows that layer (e.g. "grass").
+   */
+  std::optional<terrain::SplatLayer> layer;
+  /** Vertical exaggeration of the heights given to at(): the layer rule sees height / scale and the true
+   * slope. */
+  float verticalScale = 1.0f;
 };
 
 /** Evaluates the density rules (thread-safe, pure). */

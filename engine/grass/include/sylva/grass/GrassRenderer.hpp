@@ -17,6 +17,7 @@
 #include <sylva/render/FrameUniforms.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
+#include <sylva/terrain/TerrainRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include <shared/Grass.h>
@@ -84,6 +85,8 @@ public:
 
   /** The baked density (r32f over the terrain's footprint), for the terrain's ground tint. */
   const gl::Texture& densityTexture() const { return mDensity; }
+  /** The ground tint matching this field (its density map and average colour): its far representation. */
+  terrain::GroundTint groundTint(float strength = 0.85f) const;
   /** The average linear colour of the field's blades (weighted by the patch's type frequencies). */
   glm::vec3 averageColour() const { return mAverageColour; }
   /** Instances each level's list holds. */

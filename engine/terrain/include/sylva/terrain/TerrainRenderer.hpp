@@ -31,6 +31,21 @@ enum class TerrainView : int {
   WorldPosition = 4,
 };
 
+/**
+ * A tint over the terrain's albedo (Shaded view): the far representation of a grass field, so the ground
+ * keeps the field's colour where blades thin out with distance.
+ */
+struct GroundTint {
+  /** GL texture (first channel 0..1, linear filtering) whose sample (i, j) sits at world (i·spacing.x,
+   * j·spacing.y). */
+  GLuint texture = 0;
+  glm::vec2 spacing{1.0f};
+  glm::ivec2 size{1};
+  /** Linear colour the ground moves towards, and how far (0..1) where the map is 1. */
+  glm::vec3 colour{0.2f, 0.4f, 0.1f};
+  float strength = 0.85f;
+};
+
 /** Per-draw options of TerrainRenderer::draw. */
 struct TerrainDrawOptions {
   TerrainView view = TerrainView::Shaded;
@@ -55,6 +70,8 @@ struct TerrainDrawOptions {
    * the Shaded view; nullopt = no water.
    */
   std::optional<float> waterLevel;
+  /** Ground tint (grass far representation); nullopt = none. */
+  std::optional<GroundTint> groundTint;
 };
 
 /**

@@ -99,6 +99,7 @@ public:
   const HeightField& field() const { return mField; }
   Quadtree& quadtree() { return mQuadtree; }
   TerrainRenderer& renderer() { return *mRenderer; }
+  const TerrainRenderer& renderer() const { return *mRenderer; }
   const QuadtreeSelection& selection() const { return mSelection; }
   /** Height range of the valid samples, metres as drawn (× exaggeration). */
   float minHeight() const { return mInfo.minHeight; }

@@ -1,0 +1,266 @@
+#include "GrassFlags.hpp"
+
+#include "SourceOptions.hpp"
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/core/Log.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace sylva::app {
+
+grass::FieldSettings GrassFlags::defaultField() {
+  grass::FieldSettings f;
+  f.patch.blades = 16384;
+  f.patch.tileSize = 2.0f;
+  f.bladesPerTile = 256;
+  return f;
+}
+
+grass::GrassView parseGrassView(const std::string& name) {
+  if (name == "shaded") {
+    return grass::GrassView::Shaded;
+  }
+  if (name == "lod") {
+    return grass::GrassView::LodColours;
+  }
+  if (name == "tiles") {
+    return grass::GrassView::Tiles;
+  }
+  fail("--grass-view: unknown view '{}' (expected shaded, lod or tiles)", name);
+}
+
+void GrassFlags::add(CLI::App& command) {
+  command.add_flag("--grass", enabled, "Grow a grass field on the terrain (docs/grass.md)");
+  command
+      .add_option("--grass-types", types,
+                  "Blade types: 'procedural' (meadow, fescue, broadleaf) or comma-separated blade-model "
+                  "files from `sylva capture` (e.g. data/blades/slim.json)")
+      ->capture_default_str();
+  command.add_option("--grass-blades", field.patch.blades, "Blades in the patch every tile draws from")
+      ->check(CLI::Range(1, 1 << 22))
+      ->capture_default_str();
+  command.add_option("--grass-per-tile", field.bladesPerTile, "Blades a tile draws at full density")
+      ->check(CLI::Range(1, 1 << 22))
+      ->capture_default_str();
+  command.add_option("--grass-tile", field.patch.tileSize, "Tile (and patch) side, metres")
+      ->check(finiteRange(0.1, 1000.0))
+      ->capture_default_str();
+  command.add_option("--grass-density", field.density.base, "Overall density, 0..1")
+      ->check(finiteRange(0.0, 1.0))
+      ->capture_default_str();
+  command
+      .add_option("--grass-coverage", field.density.coverage,
+                  "Fraction of the ground the Perlin density map covers, 0..1")
+      ->check(finiteRange(0.0, 1.0))
+      ->capture_default_str();
+  command.add_option("--grass-seed", field.patch.seed, "Seed of the patch and (+1) of the density map")
+      ->check(unsignedInteger())
+      ->capture_default_str();
+  command.add_option("--grass-paint", paint,
+                     "Paint mask image (first channel 0..1) stretched over the terrain's footprint; "
+                     "multiplies the density");
+  command
+      .add_option("--grass-layer", layer,
+                  "Grow only where the terrain's splat layer of this name applies ('none': everywhere)")
+      ->capture_default_str();
+  command.add_option("--grass-distance", cull.maxDistance, "Draw distance of blades, metres")
+      ->check(finiteRange(1.0, 100000.0))
+      ->capture_default_str();
+  command.add_option("--grass-lod", lod, "Distances (m) where blades drop to 8 and to 4 knots: A,B")
+      ->capture_default_str();
+  command.add_option("--grass-view", view, "Blade view: shaded, lod (level colours) or tiles")
+      ->check(CLI::IsMember({"shaded", "lod", "tiles"}))
+      ->capture_default_str();
+  command.add_option("--wind-speed", windSpeed, "Mean wind speed, m/s")
+      ->check(finiteRange(0.0, 60.0))
+      ->capture_default_str();
+  command
+      .add_option("--wind-direction", windDirection,
+                  "Direction the wind blows towards, degrees from east (+x) towards south (+z)")
+      ->check(finiteRange(-360.0, 360.0))
+      ->capture_default_str();
+  command
+      .add_option("--wind-gusts", gusts, "Gust strength: fraction of the mean speed added at a gust's peak")
+      ->check(finiteRange(0.0, 10.0))
+      ->capture_default_str();
+  command.add_option("--wind-seed", windSeed, "Seed of the gust and turbulence patterns")
+      ->check(unsignedInteger())
+      ->capture_default_str();
+}
+
+grass::CullSettings GrassFlags::cullSettings() const {
+  grass::CullSettings c = cull;
+  const std::vector<float> d = parseNumbers("--grass-lod", lod, 2, "A,B in metres");
+  c.lodDistances = {d[0], d[1]};
+  c.farFade = std::min(c.farFade, 0.25f * c.maxDistance);
+  c.orientationDistance = std::min(c.orientationDistance, c.maxDistance);
+  try {
+    grass::validate(c);
+  } catch (const Error& e) {
+    fail("--grass-lod/--grass-distance: {}", e.what());
+  }
+  return c;
+}
+
+void GrassFlags::check() const {
+  (void)cullSettings();
+  (void)parseGrassView(view);
+  if (field.bladesPerTile > field.patch.blades) {
+    fail("--grass-per-tile: {} is more than the patch's {} blades (--grass-blades)", field.bladesPerTile,
+         field.patch.blades);
+  }
+}
+
+wind::WindSettings GrassFlags::wind() const {
+  wind::WindSettings w;
+  const float a = glm::radians(windDirection);
+  w.direction = {std::cos(a), std::sin(a)};
+  w.speed = windSpeed;
+  w.gustStrength = gusts;
+  w.seed = windSeed;
+  return w;
+}
+
+grass::GrassView GrassFlags::grassView() const {
+  return parseGrassView(view);
+}
+
+namespace {
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    if (comma > start) {
+      out.push_back(text.substr(start, comma - start));
+    }
+    start = comma + 1;
+  }
+  return out;
+}
+
+} // namespace
+
+std::shared_ptr<const grass::GrassField> GrassFlags::buildField(const terrain::TerrainScene& scene) const {
+  check();
+  std::vector<grass::BladeType> bladeTypes;
+  if (types == "procedural") {
+    bladeTypes = grass::proceduralBladeTypes();
+  } else {
+    for (const std::string& file : splitList(types)) {
+      std::vector<grass::BladeType> loaded = grass::loadBladeTypes(file);
+      bladeTypes.insert(bladeTypes.end(), loaded.begin(), loaded.end());
+    }
+    if (bladeTypes.empty()) {
+      fail("--grass-types: no blade-model file in '{}'", types);
+    }
+  }
+  grass::FieldSettings settings = field;
+  settings.density.seed = field.patch.seed + 1;
+  const terrain::HeightField& terrain = scene.field();
+  const float e = scene.exaggeration();
+  settings.density.verticalScale = e;
+  if (scene.seaLevel()) {
+    settings.density.minHeight = (*scene.seaLevel() + 0.3f) * e;
+    settings.density.heightFade = 1.0f * e;
+  }
+  if (!paint.empty()) {
+    auto image = std::make_shared<Image>(loadImage(paint));
+    if (image->width() < 2 || image->height() < 2) {
+      fail("--grass-paint {}: {}x{} pixels is too small (at least 2x2)", paint, image->width(),
+           image->height());
+    }
+    const double imageAspect = static_cast<double>(image->width()) / image->height();
+    const double groundAspect = static_cast<double>(terrain.extentX()) / terrain.extentZ();
+    if (std::abs(imageAspect / groundAspect - 1.0) > 0.02) {
+      fail("--grass-paint {}: {}x{} pixels does not match the terrain's {:.0f} x {:.0f} m footprint (aspect "
+           "{:.3f}, the image's {:.3f})",
+           paint, image->width(), image->height(), terrain.extentX(), terrain.extentZ(), groundAspect,
+           imageAspect);
+    }
+    settings.density.paint = image;
+    settings.density.paintMin = {0.0f, 0.0f};
+    settings.density.paintMax = {terrain.extentX(), terrain.extentZ()};
+  }
+  if (layer != "none") {
+    const auto& layers = scene.renderer().layers();
+    const auto it =
+        std::find_if(layers.begin(), layers.end(), [&](const auto& l) { return l.name == layer; });
+    if (it == layers.end()) {
+      std::string names;
+      for (const auto& l : layers) {
+        names += (names.empty() ? "" : ", ") + l.name;
+      }
+      fail("--grass-layer: the terrain has no splat layer '{}' (it has: {}; or 'none')", layer, names);
+    }
+    settings.density.layer = *it;
+  }
+  return std::make_shared<grass::GrassField>(terrain, std::move(bladeTypes), settings);
+}
+
+render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,
+                           float windDirectionDegrees) {
+  const terrain::HeightField& t = scene.field();
+  // The densest grass on a coarse grid over the middle half of the terrain (ties: nearest the centre).
+  glm::vec2 best(0.5f * t.extentX(), 0.5f * t.extentZ());
+  float bestScore = -1.0f;
+  for (int j = 0; j <= 24; ++j) {
+    for (int i = 0; i <= 24; ++i) {
+      const glm::vec2 p(t.extentX() * (0.25f + 0.5f * i / 24.0f), t.extentZ() * (0.25f + 0.5f * j / 24.0f));
+      float d = 0.0f;
+      for (int k = 0; k < 9; ++k) {
+        d += field.density().at(p.x + 6.0f * static_cast<float>(k % 3 - 1),
+                                p.y + 6.0f * static_cast<float>(k / 3 - 1));
+      }
+      const glm::vec3 n = terrain::normalAt(t, p.x, p.y);
+      const float score =
+          d -
+          0.01f * glm::length(p - 0.5f * glm::vec2(t.extentX(), t.extentZ())) / std::max(t.extentX(), 1.0f) -
+          2.0f * (1.0f - n.y);
+      if (score > bestScore) {
+        bestScore = score;
+        best = p;
+      }
+    }
+  }
+  const float a = glm::radians(windDirectionDegrees + 35.0f);
+  const glm::vec2 dir(std::cos(a), std::sin(a));
+  const glm::vec2 ahead = best + dir * 25.0f;
+  render::Camera camera;
+  camera.position = glm::vec3(best.x, terrain::heightAt(t, best.x, best.y) + 1.7f, best.y);
+  camera.target = glm::vec3(ahead.x, terrain::heightAt(t, ahead.x, ahead.y) - 1.0f, ahead.y);
+  if (std::isnan(camera.position.y) || std::isnan(camera.target.y)) {
+    camera.position.y = scene.maxHeight() + 1.7f;
+    camera.target.y = scene.maxHeight();
+  }
+  camera.fovY = fovY;
+  render::fitClipPlanes(camera, scene.bounds());
+  camera.nearPlane = 0.05f;
+  return camera;
+}
+
+void drawTerrainWithGrass(terrain::TerrainScene& scene, grass::GrassRenderer* grass,
+                          const render::Camera& camera, int width, int height, double time,
+                          terrain::TerrainDrawOptions terrainOptions,
+                          const grass::GrassDrawOptions& grassOptions, render::GpuTimers* timers) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  scene.update(camera, aspect);
+  if (grass != nullptr && terrainOptions.view == terrain::TerrainView::Shaded) {
+    terrainOptions.groundTint = grass->groundTint();
+  }
+  scene.draw(camera, width, height, time, timers, terrainOptions);
+  if (grass != nullptr) {
+    grass->cull(camera, aspect, timers);
+    grass::GrassDrawOptions options = grassOptions;
+    options.environment = terrainOptions.environment;
+    grass->draw(camera, width, height, time, timers, options);
+  }
+}
+
+} // namespace sylva::app

@@ -1,0 +1,68 @@
+#pragma once
+// Command-line options for the grass field on a terrain (`sylva render --grass`, `sylva view --grass`,
+// `sylva bench grass`), and the shared frame that draws terrain and grass together.
+
+#include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/terrain/TerrainScene.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <string>
+
+namespace sylva::app {
+
+/** --grass and its settings. */
+struct GrassFlags {
+  bool enabled = false;
+  /** "procedural", or comma-separated blade-model files (sylva capture output, e.g. data/blades/slim.json). */
+  std::string types = "procedural";
+  grass::FieldSettings field = defaultField();
+  grass::CullSettings cull;
+  std::string lod = "12,35";
+  std::string view = "shaded";
+  std::string paint;
+  std::string layer = "grass";
+  float windSpeed = 3.0f;
+  float windDirection = 30.0f;
+  float gusts = 0.8f;
+  std::uint64_t windSeed = 5;
+
+  static grass::FieldSettings defaultField();
+  /** Adds --grass, --grass-types, --grass-blades, --grass-per-tile, --grass-tile, --grass-density,
+   * --grass-coverage, --grass-seed, --grass-paint, --grass-layer, --grass-distance, --grass-lod,
+   * --grass-view, --wind-speed, --wind-direction, --wind-gusts, --wind-seed. */
+  void add(CLI::App& command);
+  /** Throws naming the option when a value is malformed (before any work is done). */
+  void check() const;
+  /** The culling settings with --grass-lod applied. */
+  grass::CullSettings cullSettings() const;
+  wind::WindSettings wind() const;
+  grass::GrassView grassView() const;
+  /**
+   * The field over `scene`'s terrain (heights as drawn): blade types, patch, density with the paint mask and
+   * the scene's splat layer named --grass-layer, grass only above the sea level. Errors name the option/file.
+   */
+  std::shared_ptr<const grass::GrassField> buildField(const terrain::TerrainScene& scene) const;
+};
+
+/**
+ * A camera at eye height (1.7 m) over the densest grass near the terrain's centre, looking along the wind
+ * across the field, slightly down: the default view of a grass render.
+ */
+render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,
+                           float windDirectionDegrees);
+
+/**
+ * Draws one frame of terrain with grass into the bound framebuffer: the terrain with the field's ground tint
+ * (its far representation), then the culled field in one draw.
+ */
+void drawTerrainWithGrass(terrain::TerrainScene& scene, grass::GrassRenderer* grass,
+                          const render::Camera& camera, int width, int height, double time,
+                          terrain::TerrainDrawOptions terrainOptions,
+                          const grass::GrassDrawOptions& grassOptions, render::GpuTimers* timers = nullptr);
+
+/** "shaded" | "lod" | "tiles" → GrassView; throws naming the option otherwise. */
+grass::GrassView parseGrassView(const std::string& name);
+
+} // namespace sylva::app
