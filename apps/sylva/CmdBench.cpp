@@ -1,5 +1,6 @@
 #include "BenchRows.hpp"
 #include "Commands.hpp"
+#include "GrassFlags.hpp"
 #include "TerrainFlags.hpp"
 
 #include <sylva/core/Error.hpp>
@@ -593,6 +594,193 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
 }
 #endif
 
+/** Fraction of pixels whose colour changes by more than `threshold` (0..1) in any channel between a and b. */
+double changedFraction(const Image& a, const Image& b, float threshold) {
+  std::size_t changed = 0;
+  for (int y = 0; y < a.height(); ++y) {
+    for (int x = 0; x < a.width(); ++x) {
+      bool differs = false;
+      for (int c = 0; c < 3; ++c) {
+        differs = differs || std::abs(a.get(x, y, c) - b.get(x, y, c)) > threshold;
+      }
+      changed += differs ? 1 : 0;
+    }
+  }
+  return static_cast<double>(changed) / (static_cast<double>(a.width()) * a.height());
+}
+
+/**
+ * `bench grass`: the paper's field (14,926 tiles of 2 m, 64 blades each: 955,264 blades in one draw, seen
+ * whole), the demo's ground view, memory against the paper's 24 MB patch, and LOD popping: pixels that change
+ * when the LOD boundary moves past blades (camera still), with dithered cross-fades and with hard switches.
+ */
+void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
+  shader::Library library;
+  render::RenderTarget target(o.width, o.height);
+  const std::string rendererName = gl::queryContextInfo().renderer;
+  std::vector<BenchRow> rows;
+  report = header(o, "grass", context);
+
+  // 1. The paper's field: 34 x 439 tiles = 14,926, full density (constant noise), every blade drawn.
+  terrain::ProceduralSpec spec = terrain::TerrainSource::defaultProcedural();
+  spec.heightScale = 6.0f;
+  spec.frequency = 1.0f / 150.0f;
+  terrain::QuadtreeConfig quadtree = TerrainFlags::defaultQuadtree();
+  quadtree.rootSize = 128.0f;
+  quadtree.maxDepth = 4;
+  terrain::TerrainScene paperScene(library, terrain::generate(spec, 0.0, 0.0, 69, 879, 1.0f), quadtree);
+  grass::FieldSettings fs;
+  fs.patch.blades = 16384;
+  fs.bladesPerTile = 64;
+  fs.density.noiseFrequency = 0.0f;
+  fs.density.coverage = 1.0f;
+  fs.density.maxSlopeDegrees = 90.0f;
+  auto paperField =
+      std::make_shared<grass::GrassField>(paperScene.field(), grass::proceduralBladeTypes(), fs);
+  grass::CullSettings all;
+  all.maxDistance = 5000.0f;
+  all.orientationCos = 0.0f;
+  grass::GrassRenderer paperGrass(library, paperField, all);
+  const std::size_t fieldBlades = paperField->countBlades();
+  const std::size_t tiles = static_cast<std::size_t>(paperField->layout().tilesX) *
+                            static_cast<std::size_t>(paperField->layout().tilesZ);
+  render::Camera camera =
+      paperScene.frameCamera(render::ViewFrom::SouthWest, glm::radians(50.0f), target.aspect());
+  grass::GrassDrawOptions grassOptions;
+  grassOptions.wind.speed = 3.0f;
+  grassOptions.countPrimitives = true;
+  const Samples paper = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
+    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+    drawTerrainWithGrass(paperScene, &paperGrass, camera, o.width, o.height, 1.0 + i / 60.0,
+                         paperScene.drawOptions(camera), grassOptions, &timers);
+  });
+  const gpu::GrassCounters counters = paperGrass.readCounters();
+  const double drawnBlades = counters.blades.x;
+  const auto wallOf = [](const Samples& s, const std::string& pass) {
+    return s.wall.count(pass) != 0 ? render::Stats::of(s.wall.at(pass)).median : std::nan("");
+  };
+  const double cullMs = wallOf(paper, "grass cull");
+  const double drawMs = wallOf(paper, "grass");
+  const double frameMs = render::Stats::of(paper.frame).median;
+  const std::int64_t triangles = paperGrass.lastPrimitivesSubmitted();
+  std::printf("grass: the paper's field, %zu tiles, %zu blades, %dx%d, %s\n", tiles, fieldBlades, o.width,
+              o.height, rendererName.c_str());
+  const std::string paperNote = "paper: 20 ms on a Radeon R9 270";
+  rows.push_back({"paper field: tiles", static_cast<double>(tiles), "tiles", 14926.0, false, 0, ""});
+  rows.push_back({"paper field: blades drawn in one draw", drawnBlades, "blades", 955264.0, false, 0,
+                  fmt::format("{} triangles", triangles)});
+  rows.push_back({"paper field: grass cull + draw", cullMs + drawMs, "ms", 20.0, true, 0, paperNote});
+  rows.push_back({"paper field: culling passes", cullMs, "ms", std::nan(""), true, 0, "3 compute passes"});
+  rows.push_back(
+      {"paper field: whole frame (terrain + grass, wall)", frameMs, "ms", std::nan(""), true, 0, ""});
+  rows.push_back({"paper field: blades drawn per second", drawnBlades / ((cullMs + drawMs) * 1e-3) / 1e6,
+                  "M blades/s", 955264.0 / 0.020 / 1e6, false, 0, "target: the paper's rate"});
+  rows.push_back({"patch memory (16,384 blades + 3 types)",
+                  static_cast<double>(grass::patchBytes(16384, 3)) / 1e6, "MB", 24.0, true, 0,
+                  "paper: about 24 MB"});
+  rows.push_back({"storing every blade of the paper field instead",
+                  static_cast<double>(grass::perBladeFieldBytes(fieldBlades)) / 1e6, "MB", std::nan(""), true,
+                  0, "16 knots + widths per blade"});
+  rows.push_back({"grass GPU memory (paper field, all buffers)",
+                  static_cast<double>(paperGrass.gpuBytes()) / 1e6, "MB", std::nan(""), true, 0,
+                  "instance lists sized for the draw distance"});
+
+  // 2. The demo's ground view: the terrain of the command line (default: the demo landscape), --grass
+  // defaults.
+  auto demo = o.terrain.build(library);
+  GrassFlags grassFlags;
+  auto demoField = grassFlags.buildField(*demo);
+  grass::GrassRenderer demoGrass(library, demoField, grassFlags.cullSettings());
+  const render::Camera ground = grassCamera(*demo, *demoField, glm::radians(50.0f), grassFlags.windDirection);
+  grass::GrassDrawOptions demoOptions;
+  demoOptions.wind = grassFlags.wind();
+  const Samples demoSamples = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
+    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+    drawTerrainWithGrass(*demo, &demoGrass, ground, o.width, o.height, 1.0 + i / 60.0,
+                         demo->drawOptions(ground), demoOptions, &timers);
+  });
+  const gpu::GrassCounters demoCounters = demoGrass.readCounters();
+  rows.push_back({"demo ground view: blades drawn", static_cast<double>(demoCounters.blades.x), "blades",
+                  std::nan(""), false, 0,
+                  fmt::format("{} visible tiles of {} blades", demoCounters.dispatch.x,
+                              demoField->layout().bladesPerTile)});
+  rows.push_back({"demo ground view: grass cull + draw",
+                  wallOf(demoSamples, "grass cull") + wallOf(demoSamples, "grass"), "ms", std::nan(""), true,
+                  0, ""});
+  rows.push_back({"demo ground view: whole frame (wall)", render::Stats::of(demoSamples.frame).median, "ms",
+                  std::nan(""), true, 0, ""});
+
+  // 3. Popping: the camera stays; the LOD boundaries move by 0.25 m (what a 0.25 m step of the camera does
+  // to the blades near them, without the parallax). Pixels changing by more than 5 % in any channel.
+  const auto still = [&](const grass::CullSettings& settings) {
+    demoGrass.setCullSettings(settings);
+    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+    drawTerrainWithGrass(*demo, &demoGrass, ground, o.width, o.height, 1.0, demo->drawOptions(ground),
+                         demoOptions);
+    return target.readColor();
+  };
+  const grass::CullSettings base = grassFlags.cullSettings();
+  const auto shifted = [](grass::CullSettings s, float by) {
+    s.lodDistances = {s.lodDistances[0] - by, s.lodDistances[1] - by};
+    return s;
+  };
+  grass::CullSettings hard = base;
+  hard.lodFade = 0.0f;
+  const double faded = changedFraction(still(base), still(shifted(base, 0.25f)), 0.05f);
+  const double popped = changedFraction(still(hard), still(shifted(hard, 0.25f)), 0.05f);
+  // The draw distance moved by 1 m: blades dissolving into the ground tint over the far fade, or cut.
+  const auto nearer = [](grass::CullSettings s) {
+    s.maxDistance -= 1.0f;
+    return s;
+  };
+  grass::CullSettings cut = base;
+  cut.farFade = 0.0f;
+  const double farFaded = changedFraction(still(base), still(nearer(base)), 0.05f);
+  const double farCut = changedFraction(still(cut), still(nearer(cut)), 0.05f);
+  // The same 0.25 m step of the camera, across the boundaries and with one level everywhere (no boundary).
+  const auto step = [&](const grass::CullSettings& settings) {
+    demoGrass.setCullSettings(settings);
+    render::Camera moved = ground;
+    const glm::vec3 forward = glm::normalize(
+        glm::vec3(ground.target.x - ground.position.x, 0.0f, ground.target.z - ground.position.z));
+    moved.position += forward * 0.25f;
+    moved.target += forward * 0.25f;
+    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+    drawTerrainWithGrass(*demo, &demoGrass, ground, o.width, o.height, 1.0, demo->drawOptions(ground),
+                         demoOptions);
+    const Image a = target.readColor();
+    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+    drawTerrainWithGrass(*demo, &demoGrass, moved, o.width, o.height, 1.0, demo->drawOptions(moved),
+                         demoOptions);
+    return changedFraction(a, target.readColor(), 0.05f);
+  };
+  grass::CullSettings single = base;
+  single.lodDistances = {base.maxDistance - base.farFade - 2.0f * base.lodFade,
+                         base.maxDistance - base.farFade - base.lodFade};
+  const double acrossFaded = step(base);
+  const double acrossHard = step(hard);
+  const double inside = step(single);
+  demoGrass.setCullSettings(base);
+  rows.push_back({"popping: boundary moved 0.25 m, dithered cross-fade", faded * 100.0, "% pixels",
+                  std::nan(""), true, 0, "changed > 5 %, camera still"});
+  rows.push_back({"popping: boundary moved 0.25 m, hard switch", popped * 100.0, "% pixels", std::nan(""),
+                  true, 0, "the same without cross-fade"});
+  rows.push_back({"draw distance moved 1 m, far fade into the ground tint", farFaded * 100.0, "% pixels",
+                  std::nan(""), true, 0, "changed > 5 %, camera still"});
+  rows.push_back(
+      {"draw distance moved 1 m, hard cut", farCut * 100.0, "% pixels", std::nan(""), true, 0, ""});
+  rows.push_back({"camera step 0.25 m across LOD boundaries (cross-fade)", acrossFaded * 100.0, "% pixels",
+                  inside * 100.0 * 1.1, true, 0, "target: within 10 % of the same step inside one band"});
+  rows.push_back({"camera step 0.25 m across LOD boundaries (hard switch)", acrossHard * 100.0, "% pixels",
+                  std::nan(""), true, 0, ""});
+  rows.push_back({"camera step 0.25 m inside one LOD band", inside * 100.0, "% pixels", std::nan(""), true, 0,
+                  "parallax alone"});
+  report["rows"] = printBenchRows(rows);
+  report["paper_field"] = {
+      {"tiles", tiles}, {"blades", fieldBlades}, {"triangles", triangles}, {"passes", paper.passesJson()}};
+  report["demo_passes"] = demoSamples.passesJson();
+}
+
 } // namespace
 
 void registerBench(CLI::App& app) {
@@ -600,12 +788,14 @@ void registerBench(CLI::App& app) {
       "bench", "Measure CPU and GPU time per pass over N frames; prints a table and writes JSON");
   auto o = std::make_shared<BenchOptions>();
   command
-      ->add_option("area", o->area,
-                   "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or soak (long "
-                   "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure) "
-                   "or fold (folding-texture targets on a generated 1 MP case) or capture (grass capture: "
-                   "extraction latency per 640x480 frame, refining)")
-      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture"}))
+      ->add_option(
+          "area", o->area,
+          "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or soak (long "
+          "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure) "
+          "or fold (folding-texture targets on a generated 1 MP case) or capture (grass capture: "
+          "extraction latency per 640x480 frame, refining) or grass (the paper's 955,264-blade field "
+          "in one draw, patch memory, culling, LOD popping)")
+      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture", "grass"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -655,6 +845,8 @@ void registerBench(CLI::App& app) {
     auto context = platform::createHeadlessContext(o->context.options());
     if (o->area == "terrain") {
       benchTerrain(*o, *context, report);
+    } else if (o->area == "grass") {
+      benchGrass(*o, *context, report);
     } else if (o->area == "soak") {
       benchSoak(*o, *context, report);
     } else {
