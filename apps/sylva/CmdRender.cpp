@@ -80,11 +80,11 @@ void registerRender(CLI::App& app) {
       if (o->grass.enabled) {
         auto field = o->grass.buildField(*scene);
         grass = std::make_unique<grass::GrassRenderer>(library, field, o->grass.cullSettings());
-        log::info("grass: {} blade types, {} tiles of {} m, {} blades in the field, patch {:.2f} MB",
-                  field->types().size(),
-                  static_cast<long long>(field->layout().tilesX) * field->layout().tilesZ,
-                  field->layout().tileSize, field->countBlades(),
-                  static_cast<double>(grass::patchBytes(field->patch().size(), field->types().size())) / 1e6);
+        log::info(
+            "grass: {} blade types, {} tiles of {} m, about {:.3g} blades in the field, patch {:.2f} MB",
+            field->types().size(), static_cast<long long>(field->layout().tilesX) * field->layout().tilesZ,
+            field->layout().tileSize, field->estimateBlades(),
+            static_cast<double>(grass::patchBytes(field->patch().size(), field->types().size())) / 1e6);
         if (o->camera.cameraPos.empty()) {
           camera = grassCamera(*scene, *field, glm::radians(o->camera.fovDegrees), o->grass.windDirection);
         }

@@ -23,7 +23,6 @@ SYLVA_ASSERT_SIZE(GrassBlade, 32);
 #define SYLVA_GRASS_BINDING 7          // uniform block GrassUniforms
 #define SYLVA_GRASS_PATCH_BINDING 8    // storage: GrassBlade[] (the patch)
 #define SYLVA_GRASS_TYPE_BINDING 9     // storage: GrassTypeGpu[]
-#define SYLVA_GRASS_TILE_BINDING 10    // storage: vec2 tile height ranges[] (row-major tiles)
 #define SYLVA_GRASS_VISIBLE_BINDING 14 // storage: ivec2 visible tiles[]
 #define SYLVA_GRASS_INSTANCE_BINDING 11 // storage: uvec4 instances[] (three lists of `capacity`)
 #define SYLVA_GRASS_COMMAND_BINDING 12 // storage: uint[24]: the draw commands, the dispatch, the statistics
@@ -33,6 +32,7 @@ SYLVA_ASSERT_SIZE(GrassBlade, 32);
 #define SYLVA_GRASS_TILE_GROUP 8       // tile pass: 8 x 8 tiles per work group
 #define SYLVA_GRASS_BLADE_GROUP 64     // blade pass: one work group per visible tile
 #define SYLVA_GRASS_KNOT_SLOTS 28      // 16 + 8 + 4 knots per type
+#define SYLVA_GRASS_MAX_TILE_SAMPLES 256 // kMaxTileRangeSamples
 
 /** One blade type: colour, stiffness and its knot lines at the three levels (blade space, metres). */
 struct GrassTypeGpu {
@@ -76,9 +76,11 @@ struct GrassUniforms {
                     // w: capacity of the visible tile list
   uvec4 options;    // x: unused; y: debug view; z: blade types; w: unused
   vec4 ground;      // rgb: the field's average colour (linear) for the ground tint; w: unused
+  ivec4 window;     // tiles the tile pass looks at: x0, z0, count along x, count along z (tileWindow)
+  vec4 heights;     // x, y: the terrain's whole height range (tiles over too many samples use it); z, w: unused
   WindUniforms wind;
 };
-SYLVA_ASSERT_SIZE(GrassUniforms, 320);
+SYLVA_ASSERT_SIZE(GrassUniforms, 352);
 
 SYLVA_GPU_END
 

@@ -79,8 +79,8 @@ GrassRenderer::GrassRenderer(const shader::Library& library, std::shared_ptr<con
     : mField(std::move(field)), mUniforms(sizeof(gpu::GrassUniforms)),
       mPatch(std::span<const gpu::GrassBlade>(mField->patch())),
       mTypes(std::span<const gpu::GrassTypeGpu>(packBladeTypes(mField->types()))),
-      mTileRanges(std::span<const glm::vec2>(mField->tileRanges())), mCommands(sizeof(gpu::GrassCounters)),
-      mHeights(heightTexture(mField->terrain())), mValid(validTexture(mField->terrain())),
+      mCommands(sizeof(gpu::GrassCounters)), mHeights(heightTexture(mField->terrain())),
+      mValid(validTexture(mField->terrain())),
       mDensity(floatTexture(mField->density().width(), mField->density().height(),
                             mField->density().values().data(), GL_R32F)) {
   mDensity.setSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
@@ -172,6 +172,8 @@ void GrassRenderer::uploadUniforms(const render::Camera& camera, float aspect, c
   u.spacing = glm::vec4(f.terrain().spacingX(), f.terrain().spacingZ(), f.density().spacing());
   u.options = glm::uvec4(0u, static_cast<unsigned>(view), static_cast<unsigned>(f.types().size()), 0u);
   u.ground = glm::vec4(mAverageColour, 0.0f);
+  u.window = tileWindow(layout, glm::vec2(camera.position.x, camera.position.z), mSettings.maxDistance);
+  u.heights = glm::vec4(f.heightRange(), 0.0f, 0.0f);
   u.wind = wind::toUniforms(wind, static_cast<float>(time));
   mUniforms.setSubData(0, sizeof(u), &u);
 }
@@ -180,7 +182,6 @@ void GrassRenderer::bindCommon() const {
   mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_GRASS_BINDING);
   mPatch.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_PATCH_BINDING);
   mTypes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_TYPE_BINDING);
-  mTileRanges.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_TILE_BINDING);
   mVisibleTiles.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_VISIBLE_BINDING);
   mInstances.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_INSTANCE_BINDING);
   mCommands.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_COMMAND_BINDING);
@@ -203,11 +204,13 @@ void GrassRenderer::cull(const render::Camera& camera, float aspect, render::Gpu
   reset.dispatch = glm::uvec4(0u, 1u, 1u, 0u);
   mCommands.setSubData(0, sizeof(reset), &reset);
   bindCommon();
-  const FieldLayout& layout = mField->layout();
   mTiles.use();
-  glDispatchCompute(
-      static_cast<GLuint>((layout.tilesX + SYLVA_GRASS_TILE_GROUP - 1) / SYLVA_GRASS_TILE_GROUP),
-      static_cast<GLuint>((layout.tilesZ + SYLVA_GRASS_TILE_GROUP - 1) / SYLVA_GRASS_TILE_GROUP), 1);
+  const glm::ivec4& window = mLast.window;
+  if (window.z > 0 && window.w > 0) {
+    glDispatchCompute(static_cast<GLuint>((window.z + SYLVA_GRASS_TILE_GROUP - 1) / SYLVA_GRASS_TILE_GROUP),
+                      static_cast<GLuint>((window.w + SYLVA_GRASS_TILE_GROUP - 1) / SYLVA_GRASS_TILE_GROUP),
+                      1);
+  }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   mFinish.use();
   mFinish.setUniform("uStage", 0);
@@ -356,8 +359,8 @@ terrain::GroundTint GrassRenderer::groundTint(float strength) const {
 
 std::size_t GrassRenderer::gpuBytes() const {
   const GrassField& f = *mField;
-  return mPatch.size() + mTypes.size() + mTileRanges.size() + mVisibleTiles.size() + mInstances.size() +
-         mCommands.size() + f.terrain().samples().size() * 5 + f.density().values().size() * sizeof(float);
+  return mPatch.size() + mTypes.size() + mVisibleTiles.size() + mInstances.size() + mCommands.size() +
+         f.terrain().samples().size() * 5 + f.density().values().size() * sizeof(float);
 }
 
 } // namespace sylva::grass

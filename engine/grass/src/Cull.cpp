@@ -76,8 +76,10 @@ CullStats cullField(const GrassField& field, const glm::mat4& viewProj, const gl
   const Frustum frustum(viewProj);
   CullStats stats;
   std::vector<VisibleBlade> instances;
-  for (int tz = 0; tz < layout.tilesZ; ++tz) {
-    for (int tx = 0; tx < layout.tilesX; ++tx) {
+  // Only tiles that can hold blades within the draw distance are looked at (the tile pass's dispatch).
+  const glm::ivec4 window = tileWindow(layout, glm::vec2(eye.x, eye.z), settings.maxDistance);
+  for (int tz = window.y; tz < window.y + window.w; ++tz) {
+    for (int tx = window.x; tx < window.x + window.z; ++tx) {
       ++stats.tiles;
       // The tile's box: terrain samples inside it and on its border, up to the tallest blade.
       const glm::vec2 range = field.tileRange(tx, tz);

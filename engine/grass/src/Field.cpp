@@ -203,7 +203,8 @@ float rootHeight(const terrain::HeightField& terrain, float x, float z) {
   return top * (1.0f - fz) + bottom * fz;
 }
 
-glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField& terrain, int tx, int tz) {
+glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField& terrain, int tx, int tz,
+                          glm::vec2 whole) {
   const glm::vec2 lo =
       layout.origin + glm::vec2(static_cast<float>(tx), static_cast<float>(tz)) * layout.tileSize;
   const glm::vec2 hi = lo + glm::vec2(layout.tileSize);
@@ -211,6 +212,9 @@ glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField&
   const int i1 = std::clamp(static_cast<int>(std::ceil(hi.x / terrain.spacingX())), 0, terrain.width() - 1);
   const int j0 = std::clamp(static_cast<int>(std::floor(lo.y / terrain.spacingZ())), 0, terrain.height() - 1);
   const int j1 = std::clamp(static_cast<int>(std::ceil(hi.y / terrain.spacingZ())), 0, terrain.height() - 1);
+  if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMaxTileRangeSamples) {
+    return whole;
+  }
   glm::vec2 range(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
   for (int j = j0; j <= j1; ++j) {
     for (int i = i0; i <= i1; ++i) {
@@ -221,6 +225,20 @@ glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField&
     }
   }
   return range;
+}
+
+glm::ivec4 tileWindow(const FieldLayout& layout, glm::vec2 eye, float distance) {
+  // The same arithmetic as GrassRenderer::cull's dispatch window.
+  const glm::vec2 lo = (eye - glm::vec2(distance) - layout.origin) / layout.tileSize;
+  const glm::vec2 hi = (eye + glm::vec2(distance) - layout.origin) / layout.tileSize;
+  const auto clampTo = [](float v, int n) {
+    return static_cast<int>(std::clamp(std::floor(v), 0.0f, static_cast<float>(n)));
+  };
+  const int x0 = clampTo(lo.x, layout.tilesX);
+  const int z0 = clampTo(lo.y, layout.tilesZ);
+  const int x1 = clampTo(hi.x + 1.0f, layout.tilesX);
+  const int z1 = clampTo(hi.y + 1.0f, layout.tilesZ);
+  return {x0, z0, x1 - x0, z1 - z0};
 }
 
 FieldLayout layoutOver(const terrain::HeightField& terrain, float tileSize, int bladesPerTile) {
@@ -235,8 +253,8 @@ FieldLayout layoutOver(const terrain::HeightField& terrain, float tileSize, int 
   layout.bladesPerTile = bladesPerTile;
   const double tx = std::ceil(static_cast<double>(terrain.extentX()) / tileSize);
   const double tz = std::ceil(static_cast<double>(terrain.extentZ()) / tileSize);
-  if (tx * tz > static_cast<double>(1 << 26)) {
-    fail("grass: {:.0f} x {:.0f} tiles of {} m is more than 2^26 tiles", tx, tz, tileSize);
+  if (tx > static_cast<double>(1 << 20) || tz > static_cast<double>(1 << 20)) {
+    fail("grass: {:.0f} x {:.0f} tiles of {} m is more than 2^20 tiles along a side", tx, tz, tileSize);
   }
   layout.tilesX = std::max(1, static_cast<int>(tx));
   layout.tilesZ = std::max(1, static_cast<int>(tz));

@@ -1,7 +1,7 @@
 #include <sylva/grass/GrassField.hpp>
 
 #include <sylva/core/Error.hpp>
-#include <sylva/core/Parallel.hpp>
+#include <sylva/terrain/HeightSources.hpp>
 
 #include <algorithm>
 
@@ -20,18 +20,11 @@ GrassField::GrassField(terrain::HeightField terrain, std::vector<BladeType> type
   }
   mLayout = layoutOver(mTerrain, settings.patch.tileSize, settings.bladesPerTile);
   mDensity = DensityGrid(DensityMap(settings.density), mTerrain, settings.densitySpacing);
-  mTileRanges.resize(static_cast<std::size_t>(mLayout.tilesX) * static_cast<std::size_t>(mLayout.tilesZ));
-  parallelFor(
-      static_cast<std::size_t>(mLayout.tilesZ),
-      [&](std::size_t begin, std::size_t end) {
-        for (std::size_t tz = begin; tz < end; ++tz) {
-          for (int tx = 0; tx < mLayout.tilesX; ++tx) {
-            mTileRanges[tz * static_cast<std::size_t>(mLayout.tilesX) + static_cast<std::size_t>(tx)] =
-                tileHeightRange(mLayout, mTerrain, tx, static_cast<int>(tz));
-          }
-        }
-      },
-      8);
+  const terrain::HeightFieldInfo info = terrain::heightFieldInfo(mTerrain);
+  if (info.validCount == 0) {
+    fail("grass: the terrain has no valid height sample");
+  }
+  mHeightRange = {info.minHeight, info.maxHeight};
   float tallest = 0.0f;
   for (const BladeType& t : mTypes) {
     mTypeLengths.push_back(t.length());
@@ -46,6 +39,16 @@ GrassField::GrassField(terrain::HeightField terrain, std::vector<BladeType> type
 
 void GrassField::forEachTileBlade(int tx, int tz, const std::function<void(const FieldBlade&)>& visit) const {
   grass::forEachTileBlade(mLayout, mPatch, mTerrain, mDensity, tx, tz, visit);
+}
+
+double GrassField::estimateBlades() const {
+  double sum = 0.0;
+  for (const float d : mDensity.values()) {
+    sum += d;
+  }
+  const double mean = mDensity.values().empty() ? 0.0 : sum / static_cast<double>(mDensity.values().size());
+  return mean * static_cast<double>(mLayout.tilesX) * static_cast<double>(mLayout.tilesZ) *
+         std::min<double>(mLayout.bladesPerTile, static_cast<double>(mPatch.size()));
 }
 
 std::size_t GrassField::countBlades() const {

@@ -55,6 +55,7 @@ struct VisibleBlade {
 
 /** What culling did. */
 struct CullStats {
+  /** Tiles looked at: the window of tiles within the draw distance (tileWindow). */
   std::size_t tiles = 0;
   std::size_t tilesVisible = 0;
   /** Instances in each level's list (a blade in a cross-fade band is in two lists). */

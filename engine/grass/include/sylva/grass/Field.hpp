@@ -11,6 +11,7 @@
 #include <sylva/terrain/TerrainMaps.hpp>
 
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -118,7 +119,9 @@ struct FieldLayout {
   int bladesPerTile = 64;
 };
 
-/** Tiles covering the terrain's footprint. Throws sylva::Error for a tile size ≤ 0 or more than 2^26 tiles.
+/**
+ * Tiles covering the terrain's footprint (nothing is stored per tile, so a field over a 30 km DEM is fine).
+ * Throws sylva::Error for a tile size ≤ 0 or more than 2^20 tiles along a side.
  */
 FieldLayout layoutOver(const terrain::HeightField& terrain, float tileSize, int bladesPerTile);
 
@@ -154,10 +157,19 @@ void forEachTileBlade(const FieldLayout& layout, const std::vector<gpu::GrassBla
 std::size_t countFieldBlades(const FieldLayout& layout, const std::vector<gpu::GrassBlade>& patch,
                              const terrain::HeightField& terrain, const DensityGrid& density);
 
+/** Most terrain samples tileHeightRange reads; tiles over more fall back to the terrain's whole range. */
+inline constexpr int kMaxTileRangeSamples = 256;
+
 /**
  * Height range (x min, y max, metres) of the terrain samples inside tile (tx, tz) and on its border; x > y
- * when none is valid. With the tallest blade on top, the tile's bounding box for culling.
+ * when none is valid. Tiles spanning more than kMaxTileRangeSamples samples (a terrain much finer than the
+ * tiles) get `whole`, the terrain's range. With the tallest blade on top, the tile's box for culling;
+ * computed when needed (by the CPU reference and the tile pass alike), so nothing is stored per tile.
  */
-glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField& terrain, int tx, int tz);
+glm::vec2 tileHeightRange(const FieldLayout& layout, const terrain::HeightField& terrain, int tx, int tz,
+                          glm::vec2 whole);
+
+/** Tiles (x0, z0, countX, countZ) that can hold blades within `distance` metres of world (x, z) `eye`. */
+glm::ivec4 tileWindow(const FieldLayout& layout, glm::vec2 eye, float distance);
 
 } // namespace sylva::grass

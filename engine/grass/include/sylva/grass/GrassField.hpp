@@ -42,11 +42,10 @@ public:
   const FieldSettings& settings() const { return mSettings; }
   /** Height range (min, max; min > max when the tile has no terrain) of tile (tx, tz), metres. */
   glm::vec2 tileRange(int tx, int tz) const {
-    return mTileRanges[static_cast<std::size_t>(tz) * static_cast<std::size_t>(mLayout.tilesX) +
-                       static_cast<std::size_t>(tx)];
+    return tileHeightRange(mLayout, mTerrain, tx, tz, mHeightRange);
   }
-  /** Row-major tile height ranges, tilesX × tilesZ. */
-  const std::vector<glm::vec2>& tileRanges() const { return mTileRanges; }
+  /** Range of the terrain's valid heights, metres. */
+  glm::vec2 heightRange() const { return mHeightRange; }
   /** Height of the tallest blade the patch can hold (tallest type × largest scale), metres. */
   float bladeTop() const { return mBladeTop; }
   /** Length of each type's finest knot line, metres (index = type). */
@@ -54,8 +53,10 @@ public:
 
   /** The blades tile (tx, tz) draws (forEachTileBlade over this field). */
   void forEachTileBlade(int tx, int tz, const std::function<void(const FieldBlade&)>& visit) const;
-  /** Blades of the whole field. */
+  /** Blades of the whole field, exactly (visits every tile: small fields, tests). */
   std::size_t countBlades() const;
+  /** Blades of the whole field estimated from the mean density (any size, fast). */
+  double estimateBlades() const;
 
 private:
   terrain::HeightField mTerrain;
@@ -64,7 +65,7 @@ private:
   std::vector<gpu::GrassBlade> mPatch;
   FieldLayout mLayout;
   DensityGrid mDensity;
-  std::vector<glm::vec2> mTileRanges;
+  glm::vec2 mHeightRange{0.0f};
   std::vector<float> mTypeLengths;
   float mBladeTop = 0.0f;
 };

@@ -91,7 +91,7 @@ public:
   glm::vec3 averageColour() const { return mAverageColour; }
   /** Instances each level's list holds. */
   std::size_t capacity() const { return mCapacity; }
-  /** Bytes of GPU memory held (patch, types, tile ranges, maps, lists). */
+  /** Bytes of GPU memory held (patch, types, maps, lists). */
   std::size_t gpuBytes() const;
   const GrassField& field() const { return *mField; }
 
@@ -113,7 +113,6 @@ private:
   gl::Buffer mUniforms;
   gl::Buffer mPatch;
   gl::Buffer mTypes;
-  gl::Buffer mTileRanges;
   gl::Buffer mVisibleTiles{gl::NoCreate};
   gl::Buffer mInstances{gl::NoCreate};
   gl::Buffer mCommands;
