@@ -1,0 +1,85 @@
+// `sylva render --grass` as a user runs it (procedural terrain, a captured blade library, LOD view), and bad
+// grass inputs and options that fail with one line naming the file or option and leave no image behind.
+#include "CliRun.hpp"
+#include "TempDir.hpp"
+
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Image.hpp>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace sylva {
+namespace {
+
+using test::at;
+using test::lineCount;
+using test::runSylva;
+namespace fs = std::filesystem;
+
+const std::string kSmall = " --size 257 --spacing 2 --width 240 --height 135 ";
+
+/** Fraction of the image's lower half where green clearly dominates. */
+double greenFraction(const Image& image) {
+  int green = 0;
+  int total = 0;
+  for (int y = image.height() / 2; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      green +=
+          image.get(x, y, 1) > image.get(x, y, 0) + 0.05f && image.get(x, y, 1) > image.get(x, y, 2) ? 1 : 0;
+      ++total;
+    }
+  }
+  return static_cast<double>(green) / total;
+}
+
+TEST(GrassCli, RenderDrawsAFieldFromTheGround) {
+  test::TempDir dir;
+  const test::RunResult r = runSylva(dir, "render --grass" + kSmall + "-o " + at(dir, "grass.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image image = loadImage(dir / "grass.png");
+  EXPECT_GT(greenFraction(image), 0.8);
+  // Captured blades from the shipped library, and the LOD debug view.
+  const std::string library = test::quote(test::sourcePath("data/blades/slim.json").string()) + "," +
+                              test::quote(test::sourcePath("data/blades/bamboo.json").string());
+  const test::RunResult captured =
+      runSylva(dir, "render --grass --grass-types " + library + " --grass-view lod --wind-speed 8" + kSmall +
+                        "-o " + at(dir, "lod.png"));
+  ASSERT_EQ(captured.status, 0) << captured.err;
+  EXPECT_TRUE(fs::exists(dir / "lod.png"));
+}
+
+TEST(GrassCli, BadInputsFailWithOneLineAndNoImage) {
+  test::TempDir dir;
+  writeTextFile(dir / "broken.json", "{\"version\": 1, \"blades\": [");
+  writeTextFile(dir / "notes.txt", "not an image");
+  Image wide(64, 16, 1, PixelType::U8);
+  saveImage(dir / "wide.png", wide);
+  const std::pair<std::string, std::string> cases[] = {
+      {"--grass-types " + at(dir, "missing.json"), "missing.json"},
+      {"--grass-types " + at(dir, "broken.json"), "broken.json"},
+      {"--grass-paint " + at(dir, "wide.png"), "wide.png"},
+      {"--grass-paint " + at(dir, "notes.txt"), "notes.txt"},
+      {"--grass-blades 0", "--grass-blades"},
+      {"--grass-density nan", "--grass-density"},
+      {"--grass-lod 40,10", "--grass-lod"},
+      {"--grass-lod 10", "--grass-lod"},
+      {"--grass-layer moss", "moss"},
+      {"--grass-blades 100 --grass-per-tile 500", "--grass-per-tile"},
+      {"--wind-speed inf", "--wind-speed"},
+  };
+  for (const auto& [args, named] : cases) {
+    const fs::path out = dir / "out.png";
+    const test::RunResult r =
+        runSylva(dir, "render --grass " + args + kSmall + "-o " + test::quote(out.string()));
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+}
+
+} // namespace
+} // namespace sylva
