@@ -87,6 +87,11 @@ void registerRender(CLI::App& app) {
             static_cast<double>(grass::patchBytes(field->patch().size(), field->types().size())) / 1e6);
         if (o->camera.cameraPos.empty()) {
           camera = grassCamera(*scene, *field, glm::radians(o->camera.fovDegrees), o->grass.windDirection);
+          const float e = scene->exaggeration();
+          log::info("grass: camera at {:.1f},{:.1f},{:.1f} looking at {:.1f},{:.1f},{:.1f} (--camera-pos, "
+                    "--look-at)",
+                    camera.position.x, camera.position.y / e, camera.position.z, camera.target.x,
+                    camera.target.y / e, camera.target.z);
         }
       }
       target.begin(glm::vec4(environment.fogColor, 1.0f));

@@ -12,14 +12,17 @@
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 
+#include "GrassFlags.hpp"
 #include "TerrainFlags.hpp"
 
 #include <GLFW/glfw3.h>
+#include <fmt/format.h>
 #include <imgui.h>
 
 #include <cstdio>
 #include <cmath>
 #include <deque>
+#include <optional>
 
 namespace sylva::app {
 
@@ -29,6 +32,7 @@ struct ViewOptions {
   std::string scene = "terrain";
   TerrainFlags terrain;
   CameraFlags camera;
+  GrassFlags grass;
   int width = 1280;
   int height = 720;
   std::string shaderDir;
@@ -99,12 +103,188 @@ void terrainPanel(ViewerScene& v, const render::Camera& camera, float aspect) {
   }
 }
 
+/**
+ * The viewer's grass field: built from the --grass options at start (or on the panel's first enable) and
+ * rebuilt by the panel's Apply; culling distances, view and wind change live.
+ */
+struct ViewerGrass {
+  /** The options the field was built from; the wind fields are the live wind. */
+  GrassFlags flags;
+  bool enabled = false;
+  /** Where new renderers read their shaders: the viewer's library, or the last hot reload's directory. */
+  shader::Library shaders;
+  std::unique_ptr<grass::GrassRenderer> renderer;
+  /** Culling settings as the sliders show them, and the last valid set (the renderer's). */
+  grass::CullSettings cull;
+  grass::CullSettings applied;
+  std::string cullError;
+  /** Field settings being edited; the field changes only on Apply. */
+  grass::FieldSettings pending;
+  std::string buildError;
+  /** Blades of the whole field, estimated from the mean density at the last build (any terrain size). */
+  double fieldBlades = 0.0;
+  int view = 0;
+  /** Counters of this frame's cull (read after the draw while the panel shows). */
+  std::optional<gpu::GrassCounters> counters;
+
+  /** The renderer to draw with this frame, or null when grass is off. */
+  grass::GrassRenderer* active() const { return enabled ? renderer.get() : nullptr; }
+  grass::GrassDrawOptions drawOptions() const {
+    grass::GrassDrawOptions options;
+    options.view = static_cast<grass::GrassView>(view);
+    options.wind = flags.wind();
+    return options;
+  }
+};
+
+/** Builds the field of `g.flags` over `scene` and its renderer; throws, leaving `g` as it was, on errors. */
+void buildGrass(ViewerGrass& g, const terrain::TerrainScene& scene) {
+  std::shared_ptr<const grass::GrassField> field = g.flags.buildField(scene);
+  auto renderer = std::make_unique<grass::GrassRenderer>(g.shaders, field, g.applied);
+  const double blades = field->estimateBlades();
+  log::info("grass: {} blade types, {} tiles of {} m, about {:.3g} blades in the field, patch {:.2f} MB",
+            field->types().size(), static_cast<long long>(field->layout().tilesX) * field->layout().tilesZ,
+            field->layout().tileSize, blades,
+            static_cast<double>(grass::patchBytes(field->patch().size(), field->types().size())) / 1e6);
+  g.renderer = std::move(renderer);
+  g.fieldBlades = blades;
+  g.counters.reset();
+}
+
+/** Rebuilds with the pending field settings; on an error keeps the old field and shows the message. */
+void applyGrassField(ViewerGrass& g, const terrain::TerrainScene& scene) {
+  const grass::FieldSettings before = g.flags.field;
+  g.flags.field = g.pending;
+  try {
+    buildGrass(g, scene);
+    g.enabled = true;
+    g.buildError.clear();
+  } catch (const Error& e) {
+    g.flags.field = before;
+    g.buildError = e.what();
+    log::error("{}", e.what());
+  }
+}
+
+/** Applies the sliders' culling settings, or shows why not (overlapping bands, lists too large). */
+void applyGrassCull(ViewerGrass& g) {
+  try {
+    if (g.renderer) {
+      g.renderer->setCullSettings(g.cull);
+    } else {
+      grass::validate(g.cull);
+    }
+    g.applied = g.cull;
+    g.cullError.clear();
+  } catch (const Error& e) {
+    g.cullError = e.what();
+  }
+}
+
+/** Red wrapped text for an error message (nothing when empty). */
+void errorText(const std::string& message) {
+  if (message.empty()) {
+    return;
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 420.0f);
+  ImGui::TextUnformatted(message.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::PopStyleColor();
+}
+
+/**
+ * The grass section of the panel: on/off (building the field on the first enable), view, live culling and
+ * wind sliders, the field settings rebuilt on Apply, and the field's and the last cull's counts.
+ */
+void grassPanel(ViewerGrass& g, const terrain::TerrainScene& scene) {
+  if (!ImGui::CollapsingHeader("Grass", g.enabled ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+    return;
+  }
+  const ImGuiSliderFlags clamp = ImGuiSliderFlags_AlwaysClamp;
+  if (ImGui::Checkbox("grass enabled", &g.enabled) && g.enabled && !g.renderer) {
+    try {
+      buildGrass(g, scene);
+      g.buildError.clear();
+    } catch (const Error& e) {
+      g.enabled = false;
+      g.buildError = e.what();
+      log::error("{}", e.what());
+    }
+  }
+  const char* views[] = {"shaded", "LOD colours", "tiles"};
+  ImGui::Combo("grass view", &g.view, views, 3);
+  bool cullChanged = false;
+  cullChanged |= ImGui::SliderFloat("draw distance (m)", &g.cull.maxDistance, 5.0f, 500.0f, "%.0f", clamp);
+  cullChanged |=
+      ImGui::SliderFloat("LOD 16 > 8 knots (m)", &g.cull.lodDistances[0], 0.0f, 200.0f, "%.1f", clamp);
+  cullChanged |=
+      ImGui::SliderFloat("LOD 8 > 4 knots (m)", &g.cull.lodDistances[1], 0.0f, 400.0f, "%.1f", clamp);
+  cullChanged |= ImGui::SliderFloat("LOD cross-fade (m)", &g.cull.lodFade, 0.0f, 20.0f, "%.1f", clamp);
+  cullChanged |= ImGui::SliderFloat("far fade (m)", &g.cull.farFade, 0.0f, 125.0f, "%.1f", clamp);
+  if (cullChanged) {
+    applyGrassCull(g);
+  }
+  errorText(g.cullError);
+  ImGui::SliderFloat("wind speed (m/s)", &g.flags.windSpeed, 0.0f, 60.0f, "%.1f", clamp);
+  ImGui::SliderFloat("wind direction (deg)", &g.flags.windDirection, -180.0f, 180.0f, "%.0f", clamp);
+  ImGui::SliderFloat("gust strength", &g.flags.gusts, 0.0f, 10.0f, "%.2f", clamp);
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("field (rebuilt on Apply)");
+  ImGui::SliderFloat("density", &g.pending.density.base, 0.0f, 1.0f, "%.2f", clamp);
+  ImGui::SliderFloat("coverage", &g.pending.density.coverage, 0.0f, 1.0f, "%.2f", clamp);
+  const ImGuiSliderFlags logarithmic = clamp | ImGuiSliderFlags_Logarithmic;
+  ImGui::SliderInt("patch blades", &g.pending.patch.blades, 1, 1 << 22, "%d", logarithmic);
+  ImGui::SliderInt("blades per tile", &g.pending.bladesPerTile, 1, 1 << 16, "%d", logarithmic);
+  ImGui::SliderFloat("tile size (m)", &g.pending.patch.tileSize, 0.25f, 20.0f, "%.2f", logarithmic);
+  const grass::FieldSettings& built = g.flags.field;
+  const bool edited =
+      g.pending.density.base != built.density.base || g.pending.density.coverage != built.density.coverage ||
+      g.pending.patch.blades != built.patch.blades || g.pending.bladesPerTile != built.bladesPerTile ||
+      g.pending.patch.tileSize != built.patch.tileSize;
+  ImGui::BeginDisabled(!edited && g.renderer != nullptr);
+  if (ImGui::Button("Apply")) {
+    applyGrassField(g, scene);
+  }
+  ImGui::EndDisabled();
+  if (edited) {
+    ImGui::SameLine();
+    if (ImGui::Button("Revert")) {
+      g.pending = g.flags.field;
+    }
+  }
+  errorText(g.buildError);
+
+  if (g.renderer) {
+    ImGui::Separator();
+    const grass::GrassField& field = g.renderer->field();
+    const grass::FieldLayout& layout = field.layout();
+    ImGui::Text("blade types       %zu", field.types().size());
+    ImGui::Text("tiles             %d x %d of %.2f m", layout.tilesX, layout.tilesZ, layout.tileSize);
+    ImGui::Text("patch blades      %zu (%d per tile)", field.patch().size(), layout.bladesPerTile);
+    ImGui::Text("field blades      %.3g (estimate)", g.fieldBlades);
+    if (g.enabled && g.counters) {
+      const gpu::GrassCounters& c = *g.counters;
+      ImGui::Text("visible tiles     %u", c.dispatch.x);
+      ImGui::Text("drawn blades      %u", c.blades.x);
+      ImGui::Text("instances 16/8/4  %u / %u / %u", c.draws[0].y, c.draws[1].y, c.draws[2].y);
+      ImGui::Text("culled: frustum %u, distance %u, edge-on %u", c.blades.y, c.blades.z, c.blades.w);
+      if (c.overflow.x != 0 || c.overflow.y != 0) {
+        errorText(fmt::format("lists full: {} instances and {} tiles dropped", c.overflow.x, c.overflow.y));
+      }
+    }
+    ImGui::Text("GPU memory        %.1f MB", static_cast<double>(g.renderer->gpuBytes()) / 1e6);
+  }
+}
+
 void runViewer(const ViewOptions& o) {
   platform::GlfwWindow window(o.width, o.height, "Sylva viewer");
   window.setVsync(o.frames == 0);
   const gl::ContextInfo info = gl::queryContextInfo();
   shader::Library library(o.shaderDir);
   ViewerScene v;
+  ViewerGrass grass;
   render::Camera start;
   if (o.scene == "terrain") {
     v.terrain = o.terrain.build(library);
@@ -116,6 +296,19 @@ void runViewer(const ViewOptions& o) {
     const glm::ivec2 size = window.framebufferSize();
     start = o.camera.camera(*v.terrain, static_cast<float>(std::max(size.x, 1)) /
                                             static_cast<float>(std::max(size.y, 1)));
+    grass.flags = o.grass;
+    grass.flags.windDirection = std::remainder(o.grass.windDirection, 360.0f); // the slider's -180..180
+    grass.enabled = o.grass.enabled;
+    grass.shaders = library;
+    grass.cull = grass.applied = o.grass.cullSettings();
+    grass.pending = o.grass.field;
+    grass.view = static_cast<int>(o.grass.grassView());
+    if (grass.enabled) {
+      buildGrass(grass, *v.terrain);
+      if (o.camera.cameraPos.empty()) {
+        start = grassCamera(*v.terrain, grass.renderer->field(), start.fovY, o.grass.windDirection);
+      }
+    }
     v.draw = v.terrain->drawOptions(start, o.camera.fog);
     v.draw.countVertices = true;
   } else {
@@ -148,6 +341,10 @@ void runViewer(const ViewOptions& o) {
     try {
       if (v.terrain) {
         v.terrain->renderer().reloadShaders(disk);
+        if (grass.renderer) {
+          grass.renderer->reloadShaders(disk);
+        }
+        grass.shaders = disk; // fields built from now on use the edited shaders too
       } else {
         v.demo->reloadShaders(disk);
       }
@@ -230,6 +427,9 @@ void runViewer(const ViewOptions& o) {
 
     if (v.terrain) {
       render::fitClipPlanes(camera, v.terrain->bounds()); // wherever the orbit or fly camera went
+      if (grass.active() != nullptr) {
+        camera.nearPlane = std::min(camera.nearPlane, 0.05f); // blades right below the eye (as grassCamera)
+      }
     } else {
       camera.nearPlane = start.nearPlane;
       camera.farPlane = start.farPlane;
@@ -241,10 +441,11 @@ void runViewer(const ViewOptions& o) {
     glClearColor(sky.r, sky.g, sky.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     if (v.terrain) {
-      timers.begin("lod (cpu)");
-      v.terrain->update(camera, aspect);
-      timers.end();
-      v.terrain->draw(camera, size.x, size.y, sceneTime, &timers, v.draw);
+      drawTerrainWithGrass(*v.terrain, grass.active(), camera, size.x, size.y, sceneTime, v.draw,
+                           grass.drawOptions(), &timers);
+      if (showUi && grass.active() != nullptr) {
+        grass.counters = grass.active()->readCounters();
+      }
     } else {
       v.demo->render(camera, size.x, size.y, sceneTime, &timers, v.draw.wireframe);
     }
@@ -274,6 +475,7 @@ void runViewer(const ViewOptions& o) {
       }
       if (v.terrain) {
         terrainPanel(v, camera, aspect);
+        grassPanel(grass, *v.terrain);
       } else {
         ImGui::Checkbox("wireframe", &v.draw.wireframe);
       }
@@ -311,6 +513,7 @@ void registerView(CLI::App& app) {
       ->capture_default_str();
   o->terrain.add(*command);
   o->camera.add(*command);
+  o->grass.add(*command);
   command->add_option("--width", o->width, "Window width")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
@@ -325,6 +528,11 @@ void registerView(CLI::App& app) {
   command->add_flag("--no-ui", o->noUi, "Start with the ImGui panel hidden");
   command->callback([o] {
     o->camera.check();
+    // Checked even without --grass: the panel can turn the field on with these settings.
+    o->grass.check();
+    if (o->grass.enabled && o->scene != "terrain") {
+      fail("--grass: grass grows on a terrain (--scene terrain), not on the {} scene", o->scene);
+    }
     runViewer(*o);
   });
 }

@@ -15,7 +15,8 @@ namespace sylva::app {
 /** --grass and its settings. */
 struct GrassFlags {
   bool enabled = false;
-  /** "procedural", or comma-separated blade-model files (sylva capture output, e.g. data/blades/slim.json). */
+  /** "procedural", or comma-separated blade-model files (sylva capture output, e.g. data/blades/slim.json).
+   */
   std::string types = "procedural";
   grass::FieldSettings field = defaultField();
   grass::CullSettings cull;
@@ -55,7 +56,8 @@ render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::Gras
 
 /**
  * Draws one frame of terrain with grass into the bound framebuffer: the terrain with the field's ground tint
- * (its far representation), then the culled field in one draw.
+ * (its far representation), then the culled field in one draw. `grass` may be null (terrain only); with
+ * `timers`, the terrain's LOD update is timed as the pass "lod (cpu)".
  */
 void drawTerrainWithGrass(terrain::TerrainScene& scene, grass::GrassRenderer* grass,
                           const render::Camera& camera, int width, int height, double time,

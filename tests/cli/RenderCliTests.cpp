@@ -1,6 +1,7 @@
 // `sylva render` on real-world shaped terrains: framing from the real extent, camera options, exaggeration,
 // sea level and water, limits checked before work, and the one-line errors of bad camera options. They
-// render, so they need a GL context (label gl).
+// render, so they need a GL context (label gl). Also `sylva view --grass` in its scripted mode (needs a
+// display).
 #include "CliRun.hpp"
 #include "TempDir.hpp"
 
@@ -191,6 +192,48 @@ TEST(CliRender, BadCameraOptionsAndLimitsFailBeforeWork) {
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
   r = runSylva(dir, "render --dem " + quote(dir.path().string()) + " -o " + quote(out.string()));
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+}
+
+// `sylva view --grass` in its scripted mode: the viewer builds the field, starts at the ground-level grass
+// camera and draws blades (with the grass panel open) until the screenshot. Needs a window: skipped without a
+// display unless SYLVA_REQUIRE_DISPLAY=1 (CI runs it under xvfb-run).
+TEST(CliView, GrassScreenshotShowsBlades) {
+  if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr) {
+    if (const char* required = std::getenv("SYLVA_REQUIRE_DISPLAY");
+        required != nullptr && std::string(required) == "1") {
+      FAIL() << "no display and SYLVA_REQUIRE_DISPLAY=1 (run under xvfb-run)";
+    }
+    GTEST_SKIP() << "no display (set DISPLAY or run under xvfb-run); view --grass test skipped";
+  }
+  const test::TempDir dir;
+  const fs::path shot = dir / "grass.png";
+  const test::RunResult r = runSylva(
+      dir, "view --grass --size 129 --spacing 4 --width 640 --height 360 --frames 3 --fixed-step 0.1 "
+           "--screenshot " +
+               quote(shot.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find(shot.string()), std::string::npos) << r.out;
+  ASSERT_TRUE(fs::exists(shot));
+  const Image image = loadImage(shot);
+  ASSERT_GE(image.width(), 640);
+  ASSERT_GE(image.height(), 360);
+  if (const char* dump = std::getenv("SYLVA_DUMP"); dump != nullptr) {
+    fs::copy_file(shot, fs::path(dump) / "view-grass.png", fs::copy_options::overwrite_existing);
+  }
+  // The lower half of the right quarter (the panel covers the left ~450 px): the eye is 1.7 m above dense
+  // grass, so blades (green clearly above red and blue) fill most of it.
+  std::size_t green = 0;
+  std::size_t total = 0;
+  for (int y = image.height() / 2; y < image.height(); ++y) {
+    for (int x = image.width() * 3 / 4; x < image.width(); ++x) {
+      const float red = image.get(x, y, 0);
+      const float g = image.get(x, y, 1);
+      const float blue = image.get(x, y, 2);
+      green += g > red + 0.05f && g > blue + 0.05f ? 1 : 0;
+      ++total;
+    }
+  }
+  EXPECT_GT(static_cast<double>(green) / static_cast<double>(total), 0.6) << green << " of " << total;
 }
 
 } // namespace
