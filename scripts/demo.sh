@@ -4,6 +4,7 @@
 #   out/terrain-lod.png   the same view in wireframe with quadtree LOD colours
 #   out/jacksboro.png     a real DEM (Jacksboro fault, Tennessee) fetched from a Debian package
 #   out/coast.png         a real coastal DEM with bathymetry (British Columbia): sea level, water, 3x relief
+#   out/grass.png         a grass field on the demo landscape from eye height, in wind
 #   out/fold-beach.gif    folding textures: waves swash up a procedural beach and wash back
 #   out/fold-cat.gif      folding textures: a real cat photo (scikit-image's chelsea.png) squints
 set -euo pipefail
@@ -17,5 +18,6 @@ mkdir -p out
 "$sylva" render --view lod --wireframe --out out/terrain-lod.png
 "$sylva" render --dem data/external/jacksboro_fault_dem.npz --out out/jacksboro.png
 "$sylva" render --dem data/external/topobathy.npz --exaggeration 3 --out out/coast.png
+"$sylva" render --grass --wind-speed 5 --out out/grass.png
 "$sylva" fold render data/folding/beach.json --fps 12 --gif out/fold-beach.gif
 "$sylva" fold render data/folding/cat.json --fps 12 --gif out/fold-cat.gif

@@ -122,6 +122,29 @@ TEST(GrassCull, EdgeOnFarBladesAreSkipped) {
   EXPECT_THROW(validate(overlapping), Error);
 }
 
+TEST(GrassCull, TileWindowHoldsEveryTileWithinTheDistance) {
+  const GrassField s = scene();
+  const FieldLayout& layout = s.layout();
+  for (const glm::vec2 eye : {glm::vec2(40.0f, 40.0f), glm::vec2(-20.0f, 5.0f), glm::vec2(79.0f, 81.0f)}) {
+    const float distance = 17.0f;
+    const glm::ivec4 w = tileWindow(layout, eye, distance);
+    for (int tz = 0; tz < layout.tilesZ; ++tz) {
+      for (int tx = 0; tx < layout.tilesX; ++tx) {
+        const glm::vec2 lo =
+            layout.origin + glm::vec2(static_cast<float>(tx), static_cast<float>(tz)) * layout.tileSize;
+        const glm::vec2 nearest = glm::clamp(eye, lo, lo + glm::vec2(layout.tileSize));
+        const bool inside = tx >= w.x && tx < w.x + w.z && tz >= w.y && tz < w.y + w.w;
+        if (glm::length(nearest - eye) <= distance) {
+          EXPECT_TRUE(inside) << tx << "," << tz;
+        }
+      }
+    }
+  }
+  // The estimate from the mean density is close to the exact count.
+  EXPECT_NEAR(s.estimateBlades(), static_cast<double>(s.countBlades()),
+              0.05 * static_cast<double>(s.countBlades()));
+}
+
 TEST(GrassCull, CrossFadesCoverEachBladeOnce) {
   CullSettings s;
   std::vector<VisibleBlade> out;
