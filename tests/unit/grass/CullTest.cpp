@@ -134,7 +134,9 @@ TEST(GrassCull, TileWindowHoldsEveryTileWithinTheDistance) {
             layout.origin + glm::vec2(static_cast<float>(tx), static_cast<float>(tz)) * layout.tileSize;
         const glm::vec2 nearest = glm::clamp(eye, lo, lo + glm::vec2(layout.tileSize));
         const bool inside = tx >= w.x && tx < w.x + w.z && tz >= w.y && tz < w.y + w.w;
-        if (glm::length(nearest - eye) <= distance) {
+        // Roots lie in [lo, lo + tileSize): a tile whose far edge is exactly at the distance holds none
+        // within it.
+        if (glm::length(nearest - eye) < distance) {
           EXPECT_TRUE(inside) << tx << "," << tz;
         }
       }
