@@ -3,18 +3,10 @@
 #pragma once
 
 #include "../shared/Wind.h"
-
-uint windHash(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+#include "hash.glsl"
 
 float windLattice(int i, int j, int k, uint seed) {
-  uint h = windHash(uint(i) * 73856093u ^ uint(j) * 19349663u ^ uint(k) * 83492791u ^ windHash(seed));
+  uint h = lowbias32(uint(i) * 73856093u ^ uint(j) * 19349663u ^ uint(k) * 83492791u ^ lowbias32(seed));
   return float(h & 0xffffu) * (2.0 / 65535.0) - 1.0;
 }
 

@@ -21,7 +21,7 @@ void main() {
     // The same threshold for both instances of a cross-fading blade (keyed by its patch index), so the
     // outgoing and incoming levels cover each pixel exactly once.
     uvec2 p = uvec2(gl_FragCoord.xy);
-    float t = float(grassHash(p.x * 1973u ^ p.y * 9277u ^ (vInfo & SYLVA_GRASS_INDEX_MASK) * 26699u) & 0xffffu) / 65536.0;
+    float t = float(lowbias32(p.x * 1973u ^ p.y * 9277u ^ (vInfo & SYLVA_GRASS_INDEX_MASK) * 26699u) & 0xffffu) / 65536.0;
     float amount = float(vInfo >> 26) / 63.0;
     if (fade == 1u ? t < amount : t >= amount) {
       discard;
@@ -35,7 +35,7 @@ void main() {
     return;
   }
   if (view == 2u) {
-    uint h = grassHash(vTile.x * 7919u + vTile.y * 104729u);
+    uint h = lowbias32(vTile.x * 7919u + vTile.y * 104729u);
     vec3 c = vec3(float(h & 0xffu), float((h >> 8) & 0xffu), float((h >> 16) & 0xffu)) / 255.0;
     outColor = vec4(toSrgb(c * (0.4 + 0.6 * vAlong)), 1.0);
     return;

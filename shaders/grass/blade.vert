@@ -102,7 +102,7 @@ void main() {
 #endif
 
   // Per-blade colour variation: brightness and a shift towards straw, from the blade's seed.
-  uint h = grassHash(b.info.y);
+  uint h = lowbias32(b.info.y);
   float bright = 0.82 + 0.34 * float(h & 0xffu) / 255.0;
   float straw = 0.3 * float((h >> 8) & 0xffu) / 255.0;
   vColour = mix(bladeTypes[type].colour.rgb, vec3(0.42, 0.4, 0.12), straw) * bright;

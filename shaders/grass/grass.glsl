@@ -3,6 +3,7 @@
 // the same order, so the CPU reference and the GPU keep the same blades.
 #pragma once
 #include "../shared/Grass.h"
+#include "../common/hash.glsl"
 
 layout(std140, binding = SYLVA_GRASS_BINDING) uniform GrassBlock {
   GrassUniforms grass;
@@ -20,20 +21,10 @@ layout(binding = 0) uniform sampler2D grassHeights; // r32f terrain heights (met
 layout(binding = 1) uniform sampler2D grassValid;   // r8: > 0.5 where the terrain sample exists
 layout(binding = 2) uniform sampler2D grassDensityMap; // r32f baked density [0, 1]
 
-// Chris Wellons' lowbias32 (lowbias32 in Field.cpp).
-uint grassHash(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
 // First patch blade of tile (tx, tz) (tileStart).
 uint grassTileStart(ivec2 tile, uint patchSize) {
-  uint key = uint(tile.x) * 0x9e3779b1u ^ grassHash(uint(tile.y) ^ 0x85ebca6bu);
-  return grassHash(key) % patchSize;
+  uint key = uint(tile.x) * 0x9e3779b1u ^ lowbias32(uint(tile.y) ^ 0x85ebca6bu);
+  return lowbias32(key) % patchSize;
 }
 
 // Terrain height at world xz as the terrain's tessellation shader samples it, NaN-free: `ok` is false when

@@ -19,16 +19,6 @@ terrain::ProceduralSpec noiseSpec(const DensitySettings& s) {
   return spec;
 }
 
-/** Chris Wellons' lowbias32 integer hash. */
-std::uint32_t lowbias32(std::uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
 /** 0 below a, 1 above b, smooth between (a ≤ b; a == b is a step). */
 float ramp(float a, float b, float x) {
   if (b <= a) {

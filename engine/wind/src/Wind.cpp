@@ -2,6 +2,8 @@
 // the same float types, so CPU and GPU agree to float rounding (the GL test checks 1e-4 m/s).
 #include <sylva/wind/Wind.hpp>
 
+#include <sylva/core/Random.hpp>
+
 #include <sylva/core/Error.hpp>
 #include <sylva/core/JsonNode.hpp>
 
@@ -14,21 +16,11 @@
 namespace sylva::wind {
 namespace {
 
-/** Integer hash (Chris Wellons' lowbias32): uint arithmetic wraps identically in C++ and GLSL. */
-std::uint32_t hash(std::uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
 /** Lattice value in [−1, 1] at integer point (i, j, k). */
 float lattice(std::int32_t i, std::int32_t j, std::int32_t k, std::uint32_t seed) {
   const std::uint32_t h =
-      hash(static_cast<std::uint32_t>(i) * 73856093u ^ static_cast<std::uint32_t>(j) * 19349663u ^
-           static_cast<std::uint32_t>(k) * 83492791u ^ hash(seed));
+      lowbias32(static_cast<std::uint32_t>(i) * 73856093u ^ static_cast<std::uint32_t>(j) * 19349663u ^
+                static_cast<std::uint32_t>(k) * 83492791u ^ lowbias32(seed));
   return static_cast<float>(h & 0xffffu) * (2.0f / 65535.0f) - 1.0f;
 }
 

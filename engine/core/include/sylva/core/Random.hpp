@@ -29,4 +29,17 @@ private:
 /** Stateless 64-bit mix (SplitMix64 finaliser); use to derive per-item seeds from (seed, index). */
 std::uint64_t hash64(std::uint64_t x);
 
+/**
+ * Stateless 32-bit integer hash (Chris Wellons' lowbias32). Wrapping uint arithmetic is the same in C++ and
+ * GLSL: lowbias32() in shaders/common/hash.glsl is its twin, for CPU references of shaders.
+ */
+constexpr std::uint32_t lowbias32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
 } // namespace sylva
