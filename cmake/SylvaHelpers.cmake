@@ -23,6 +23,23 @@ function(sylva_add_module name)
   set_target_properties(sylva_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endfunction()
 
+# sylva_add_gpu_module(<name> DEPS <targets...>)
+# The GL side of module <name> (sources in gpu/*.cpp) as sylva::<name>_gpu, linked to sylva::<name> and DEPS:
+# decide on the CPU (sylva::<name>, unit-tested without GL), draw on the GPU. Skipped without sylva::render
+# or without sources.
+function(sylva_add_gpu_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB gpu_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/gpu/*.cpp)
+  if(NOT TARGET sylva::render OR NOT TARGET sylva_${name} OR NOT gpu_sources)
+    return()
+  endif()
+  add_library(sylva_${name}_gpu STATIC ${gpu_sources})
+  add_library(sylva::${name}_gpu ALIAS sylva_${name}_gpu)
+  target_include_directories(sylva_${name}_gpu PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(sylva_${name}_gpu PUBLIC sylva::${name} sylva::render ${ARG_DEPS})
+  target_compile_options(sylva_${name}_gpu PRIVATE ${SYLVA_WARNINGS})
+endfunction()
+
 # sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...> [LOCK <resource>])
 # One GoogleTest executable per (module, tier); every test case becomes a CTest test carrying the label.
 # LOCK: a CTest RESOURCE_LOCK shared by executables whose tests must not run at the same time.
