@@ -13,6 +13,8 @@ packages=(
   libopencv-video-dev libopencv-videoio-dev libopencv-imgproc-dev
   # grass capture: Kinect v1 through libfreenect, and its fakenect replay library and tools
   libfreenect-dev libfreenect-bin
+  # grass simulation: rigid bodies and the terrain collider (Bullet)
+  libbullet-dev
   # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests

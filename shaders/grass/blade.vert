@@ -5,6 +5,7 @@
 #include "grass.glsl"
 #include "../common/frame.glsl"
 #include "../common/wind.glsl"
+#include "../shared/GrassSim.h"
 
 layout(location = 0) in uvec4 aInstance;
 
@@ -23,17 +24,29 @@ layout(std430, binding = SYLVA_GRASS_CAPTURE_BINDING) writeonly buffer Captured 
 };
 #endif
 
-vec3 rotateAbout(vec3 v, vec3 axis, float angle) {
-  float c = cos(angle);
-  float s = sin(angle);
-  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
-}
+// The pool's knots: simulated blades are drawn from them (docs/grass-simulation.md).
+layout(std430, binding = SYLVA_GRASS_SIM_POSITION_BINDING) readonly buffer SimKnots {
+  vec4 simKnots[];
+};
 
 vec3 grassKnot(uint type, int slot) { return bladeTypes[type].knots[slot].xyz; }
 
+// The shortest rotation taking unit a to unit b, applied to v.
+vec3 turnLike(vec3 a, vec3 b, vec3 v) {
+  vec3 c = cross(a, b);
+  float d = dot(a, b);
+  if (d < -0.9999) {
+    return -v;
+  }
+  return v * d + cross(c, v) + c * (dot(c, v) / (1.0 + d));
+}
+
 void main() {
-  vec3 root = uintBitsToFloat(aInstance.xyz);
-  uint info = aInstance.w;
+  // A simulated blade: (marker, pool blade, packed bits, release ramp); its root is the pool's first knot.
+  bool simulated = aInstance.x == SYLVA_GRASS_SIMULATED;
+  uint poolBlade = aInstance.y;
+  vec3 root = simulated ? simKnots[poolBlade * uint(SYLVA_GRASS_SIM_KNOTS)].xyz : uintBitsToFloat(aInstance.xyz);
+  uint info = simulated ? aInstance.z : aInstance.w;
   uint index = info & SYLVA_GRASS_INDEX_MASK;
   int lod = int((info >> 22) & 3u);
   GrassBlade b = patchBlades[index];
@@ -72,7 +85,7 @@ void main() {
     along += length(d);
     float u = along / total;
     float angle = theta * u * u;
-    centre = centre + rotateAbout(segment, axis, angle);
+    centre = centre + grassRotate(segment, axis, angle);
     if (m == k - 1) {
       before = centre;
     }
@@ -86,11 +99,28 @@ void main() {
   if (k == 0) {
     before = root;
   }
-  vec3 face = rotateAbout(vec3(sy, 0.0, cy), axis, angleHere);
+  vec3 face = grassRotate(vec3(sy, 0.0, cy), axis, angleHere);
   vec3 tangent = normalize(after - before);
   vec3 side = cross(tangent, face);
   side = length(side) > 1e-9 ? normalize(side) : vec3(cy, 0.0, -sy);
   vec3 normal = normalize(cross(side, tangent));
+  if (simulated) {
+    // The pool's knots, blended back to the procedural pose over the release ramp; the blade's width turns with
+    // its simulated tangent.
+    float release = uintBitsToFloat(aInstance.w);
+    uint knot0 = poolBlade * uint(SYLVA_GRASS_SIM_KNOTS);
+    vec3 simBefore = simKnots[knot0 + uint(max(k - 1, 0))].xyz;
+    vec3 simHere = simKnots[knot0 + uint(k)].xyz;
+    vec3 simAfter = simKnots[knot0 + uint(min(k + 1, n - 1))].xyz;
+    simBefore = mix(simBefore, before, release);
+    simHere = mix(simHere, here, release);
+    simAfter = mix(simAfter, after, release);
+    vec3 simTangent = simAfter - simBefore;
+    simTangent = length(simTangent) > 1e-9 ? normalize(simTangent) : tangent;
+    side = turnLike(tangent, simTangent, side);
+    normal = normalize(cross(side, simTangent));
+    here = simHere;
+  }
   float halfWidth = 0.5 * bladeTypes[type].knots[first + k].w * scale;
   vec3 position = here + side * (sideSign * halfWidth);
   float v = alongHere / total;

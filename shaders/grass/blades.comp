@@ -4,6 +4,7 @@
 // extent), the draw distance and, far away, its orientation; survivors are appended to the instance list of
 // their level of detail (two lists inside a cross-fade band). The CPU reference is cullField (Cull.cpp).
 #include "grass.glsl"
+#include "../shared/GrassSim.h"
 
 layout(local_size_x = SYLVA_GRASS_BLADE_GROUP) in;
 
@@ -14,10 +15,16 @@ layout(std430, binding = SYLVA_GRASS_INSTANCE_BINDING) writeonly buffer Instance
   uvec4 instances[];
 };
 layout(std430, binding = SYLVA_GRASS_COMMAND_BINDING) buffer Commands {
-  uint commands[24];
+  uint commands[SYLVA_GRASS_COMMAND_UINTS];
+};
+
+// Simulated tiles (tile x, z, used, release ramp bits), options.x of them; none without simulation.
+layout(std430, binding = SYLVA_GRASS_SIM_SLOT_BINDING) readonly buffer SimSlots {
+  ivec4 simSlots[];
 };
 
 shared uint groupCounts[4]; // blades, culled by frustum, distance, orientation
+shared int groupSlot;       // the tile's pool slot, or -1
 
 void append(int lod, int fade, float amount, vec3 root, uint index) {
   uint slot = atomicAdd(commands[lod * 4 + 1], 1u);
@@ -28,6 +35,21 @@ void append(int lod, int fade, float amount, vec3 root, uint index) {
   } else {
     atomicAdd(commands[SYLVA_GRASS_STATS_OFFSET + 4], 1u);
   }
+}
+
+// A blade of a simulated tile: one instance drawn from the pool's knots (16 of them: level 0), faded only far.
+void appendSimulated(float distance, uint index, uint poolBlade, float release) {
+  uint slot = atomicAdd(commands[3 * 4 + 1], 1u);
+  if (slot >= grass.options.x * grass.options.w) {
+    atomicAdd(commands[SYLVA_GRASS_STATS_OFFSET + 4], 1u);
+    return;
+  }
+  float farStart = grass.eye.w - grass.lod.w;
+  bool fading = grass.lod.w > 0.0 && distance >= farStart;
+  float amount = fading ? min((distance - farStart) / grass.lod.w, 1.0) : 0.0;
+  uint base = grass.lists.x + grass.lists.y + grass.lists.z;
+  instances[base + slot] = uvec4(SYLVA_GRASS_SIMULATED, poolBlade, grassPackInfo(index, 0, fading ? 1 : 0, amount),
+                                 floatBitsToUint(release));
 }
 
 // lodInstances (Cull.cpp): one instance, or two inside a cross-fade band.
@@ -60,6 +82,17 @@ void main() {
   uint visible = min(commands[SYLVA_GRASS_STATS_OFFSET + 6], grass.lists.w);
   for (uint t = gl_WorkGroupID.x; t < visible; t += gl_NumWorkGroups.x) {
   ivec2 tile = visibleTiles[t];
+  if (gl_LocalInvocationIndex == 0u) {
+    groupSlot = -1;
+    for (uint s = 0u; s < grass.options.x; ++s) {
+      if (simSlots[s].z != 0 && simSlots[s].xy == tile) {
+        groupSlot = int(s);
+        break;
+      }
+    }
+  }
+  barrier();
+  int simSlot = groupSlot;
   uint n = uint(grass.tiles.w);
   uint start = grassTileStart(tile, n);
   vec2 corner = grass.field.xy + vec2(tile) * grass.orient.w;
@@ -104,8 +137,13 @@ void main() {
       }
     }
     atomicAdd(groupCounts[0], 1u);
-    appendInstances(distance, root, index);
+    if (simSlot >= 0) {
+      appendSimulated(distance, index, uint(simSlot) * grass.options.w + uint(j), intBitsToFloat(simSlots[simSlot].w));
+    } else {
+      appendInstances(distance, root, index);
+    }
   }
+  barrier();
   }
   barrier();
   if (gl_LocalInvocationIndex < 4u && groupCounts[gl_LocalInvocationIndex] > 0u) {

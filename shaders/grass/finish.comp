@@ -8,7 +8,7 @@
 layout(local_size_x = 1) in;
 
 layout(std430, binding = SYLVA_GRASS_COMMAND_BINDING) buffer Commands {
-  uint commands[24];
+  uint commands[SYLVA_GRASS_COMMAND_UINTS];
 };
 
 uniform int uStage;
@@ -23,5 +23,6 @@ void main() {
     for (int k = 0; k < 3; ++k) {
       commands[k * 4 + 1] = min(commands[k * 4 + 1], grass.lists[k]);
     }
+    commands[3 * 4 + 1] = min(commands[3 * 4 + 1], grass.options.x * grass.options.w);
   }
 }

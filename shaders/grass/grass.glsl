@@ -65,3 +65,36 @@ uint grassPackInfo(uint patchIndex, int lod, int fade, float amount) {
   uint q = uint(clamp(amount, 0.0, 1.0) * 63.0 + 0.5);
   return (patchIndex & SYLVA_GRASS_INDEX_MASK) | (uint(lod) << 22) | (uint(fade) << 24) | (q << 26);
 }
+
+// Rotates v about the unit axis by angle (Rodrigues; rotate in Expand.cpp).
+vec3 grassRotate(vec3 v, vec3 axis, float angle) {
+  float c = cos(angle);
+  float s = sin(angle);
+  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
+}
+
+// The blade's finest knot line, bent downwind: bladeCentreLine (Expand.cpp) at level 0, the rest pose of a
+// simulated blade.
+void grassCentreLine(uint type, GrassBlade b, vec3 root, vec2 wind, out vec3 centre[SYLVA_GRASS_LOD0_KNOTS]) {
+  float scale = b.placement.w;
+  float cy = cos(b.placement.z);
+  float sy = sin(b.placement.z);
+  float speed = length(wind);
+  float theta = min(1.3, 0.12 * abs(speed) / max(bladeTypes[type].colour.w, 0.05));
+  vec3 downwind = speed > 1e-6 ? vec3(wind.x, 0.0, wind.y) / speed : vec3(0.0);
+  vec3 axis = speed > 1e-6 ? normalize(cross(vec3(0.0, 1.0, 0.0), downwind)) : vec3(1.0, 0.0, 0.0);
+  float total = 0.0;
+  for (int m = 1; m < SYLVA_GRASS_LOD0_KNOTS; ++m) {
+    total += length(bladeTypes[type].knots[m].xyz - bladeTypes[type].knots[m - 1].xyz);
+  }
+  total = max(total, 1e-9);
+  centre[0] = root;
+  float along = 0.0;
+  for (int m = 1; m < SYLVA_GRASS_LOD0_KNOTS; ++m) {
+    vec3 d = bladeTypes[type].knots[m].xyz - bladeTypes[type].knots[m - 1].xyz;
+    vec3 segment = vec3(cy * d.x + sy * d.z, d.y, -sy * d.x + cy * d.z) * scale;
+    along += length(d);
+    float u = along / total;
+    centre[m] = centre[m - 1] + grassRotate(segment, axis, theta * u * u);
+  }
+}

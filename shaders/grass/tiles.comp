@@ -11,7 +11,7 @@ layout(std430, binding = SYLVA_GRASS_VISIBLE_BINDING) writeonly buffer VisibleTi
   ivec2 visibleTiles[];
 };
 layout(std430, binding = SYLVA_GRASS_COMMAND_BINDING) buffer Commands {
-  uint commands[24];
+  uint commands[SYLVA_GRASS_COMMAND_UINTS];
 };
 
 // tileHeightRange (Field.cpp).

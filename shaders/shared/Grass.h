@@ -25,9 +25,11 @@ SYLVA_ASSERT_SIZE(GrassBlade, 32);
 #define SYLVA_GRASS_TYPE_BINDING 9     // storage: GrassTypeGpu[]
 #define SYLVA_GRASS_VISIBLE_BINDING 14 // storage: ivec2 visible tiles[]
 #define SYLVA_GRASS_INSTANCE_BINDING 11 // storage: uvec4 instances[] (three lists of `capacity`)
-#define SYLVA_GRASS_COMMAND_BINDING 12 // storage: uint[24]: the draw commands, the dispatch, the statistics
-#define SYLVA_GRASS_DISPATCH_OFFSET 12 // uint index of the blade pass's dispatch (x = visible tiles, y, z = 1)
-#define SYLVA_GRASS_STATS_OFFSET 16    // uint index of the statistics (see GrassCounters)
+#define SYLVA_GRASS_COMMAND_BINDING 12 // storage: uint[28]: the draw commands, the dispatch, the statistics
+#define SYLVA_GRASS_DISPATCH_OFFSET 16 // uint index of the blade pass's dispatch (x = visible tiles, y, z = 1)
+#define SYLVA_GRASS_STATS_OFFSET 20    // uint index of the statistics (see GrassCounters)
+#define SYLVA_GRASS_COMMAND_UINTS 28
+#define SYLVA_GRASS_SIMULATED 0xffffffffu // instance.x of a simulated blade (drawn from the pool's knots)
 #define SYLVA_GRASS_CAPTURE_BINDING 13 // storage: captured vertices (expansion parity tests)
 #define SYLVA_GRASS_TILE_GROUP 8       // tile pass: 8 x 8 tiles per work group
 #define SYLVA_GRASS_BLADE_GROUP 64     // blade pass: one work group per visible tile
@@ -44,22 +46,24 @@ SYLVA_ASSERT_SIZE(GrassTypeGpu, 480);
 
 /**
  * One drawn instance: root (world metres, as float bits) and packed bits: patch index (bits 0..21), level
- * (22..23), fade kind (24..25: 0 full, 1 fade out, 2 fade in), fade amount × 63 (26..31).
+ * (22..23), fade kind (24..25: 0 full, 1 fade out, 2 fade in), fade amount × 63 (26..31). A simulated blade
+ * is (SYLVA_GRASS_SIMULATED, pool blade, packed bits, release ramp as float bits).
  */
 #define SYLVA_GRASS_INDEX_MASK 0x3fffffu
 
 /**
- * The command buffer as C++ reads it back: three DrawArraysIndirectCommands (count, instanceCount, first,
- * baseInstance), the blade pass's dispatch, then statistics.
+ * The command buffer as C++ reads it back: four DrawArraysIndirectCommands (count, instanceCount, first,
+ * baseInstance): levels 0, 1, 2 and the simulated blades (16 knots, from the pool), the blade pass's dispatch,
+ * then statistics.
  */
 struct GrassCounters {
-  uvec4 draws[3];
+  uvec4 draws[4];
   uvec4 dispatch;   // x: visible tiles; y, z: 1
   uvec4 blades;     // x: distinct blades drawn; y: culled by the frustum; z: by distance; w: by orientation
   uvec4 overflow;   // x: instances dropped because a list was full; y: visible tiles dropped (list full);
                     // z: tiles found visible (before clamping to the list); w: unused
 };
-SYLVA_ASSERT_SIZE(GrassCounters, 96);
+SYLVA_ASSERT_SIZE(GrassCounters, 112);
 
 /** What the culling passes are told each frame (std140). */
 struct GrassUniforms {
@@ -74,7 +78,8 @@ struct GrassUniforms {
   vec4 spacing;     // x, y: terrain spacing x, z (m); z, w: density spacing x, z (m)
   uvec4 lists;      // x, y, z: capacity of the instance list of level 0, 1, 2 (stored one after another);
                     // w: capacity of the visible tile list
-  uvec4 options;    // x: unused; y: debug view; z: blade types; w: unused
+  uvec4 options;    // x: simulation pool slots (0: no simulation); y: debug view; z: blade types;
+                    // w: blades per pool slot
   vec4 ground;      // rgb: the field's average colour (linear) for the ground tint; w: unused
   ivec4 window;     // tiles the tile pass looks at: x0, z0, count along x, count along z (tileWindow)
   vec4 heights;     // x, y: the terrain's whole height range (tiles over too many samples use it); z, w: unused

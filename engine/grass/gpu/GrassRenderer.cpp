@@ -1,7 +1,9 @@
 #include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/grass/GrassSimulator.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Geometry.hpp>
+#include <sylva/grass/Simulation.hpp>
 #include <sylva/shader/Compiler.hpp>
 
 #include <algorithm>
@@ -98,8 +100,45 @@ GrassRenderer::GrassRenderer(const shader::Library& library, std::shared_ptr<con
     mVerticesQuery = gl::Query(GL_VERTICES_SUBMITTED_ARB);
     mPrimitivesQuery = gl::Query(GL_PRIMITIVES_SUBMITTED_ARB);
   }
+  // An empty stand-in for the simulation's buffers, bound when there is none (never read then).
+  mNoSimulation = gl::Buffer(64);
+  uploadConstants();
   reloadShaders(library);
   setCullSettings(settings);
+}
+
+void GrassRenderer::uploadConstants() {
+  const GrassField& f = *mField;
+  const FieldLayout& layout = f.layout();
+  gpu::GrassUniforms& u = mLast;
+  u.field = glm::vec4(layout.origin, f.terrain().extentX(), f.terrain().extentZ());
+  u.tiles =
+      glm::ivec4(layout.tilesX, layout.tilesZ, layout.bladesPerTile, static_cast<int>(f.patch().size()));
+  u.grids = glm::ivec4(f.terrain().width(), f.terrain().height(), f.density().width(), f.density().height());
+  u.spacing = glm::vec4(f.terrain().spacingX(), f.terrain().spacingZ(), f.density().spacing());
+  u.options = glm::uvec4(mSimulation != nullptr ? static_cast<unsigned>(mSimulation->slots()) : 0u,
+                         u.options.y, static_cast<unsigned>(f.types().size()),
+                         mSimulation != nullptr ? static_cast<unsigned>(mSimulation->bladesPerTile()) : 0u);
+  u.ground = glm::vec4(mAverageColour, 0.0f);
+  u.heights = glm::vec4(f.heightRange(), 0.0f, 0.0f);
+  u.orient.z = f.bladeTop();
+  u.orient.w = layout.tileSize;
+  mUniforms.setSubData(0, sizeof(u), &u);
+}
+
+void GrassRenderer::setSimulation(const GrassSimulator* simulation) {
+  mSimulation = simulation;
+  uploadConstants();
+  setCullSettings(mSettings);
+}
+
+void GrassRenderer::bindFieldResources() const {
+  mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_GRASS_BINDING);
+  mPatch.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_PATCH_BINDING);
+  mTypes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_TYPE_BINDING);
+  mHeights.bind(0);
+  mValid.bind(1);
+  mDensity.bind(2);
 }
 
 void GrassRenderer::reloadShaders(const shader::Library& library) {
@@ -128,7 +167,11 @@ void GrassRenderer::setCullSettings(const CullSettings& settings) {
                                          tilesWithin(layout, settings.lodDistances[1] + half) * perTile,
                                          tilesWithin(layout, settings.maxDistance) * perTile,
                                          tilesWithin(layout, settings.maxDistance)};
-  const std::size_t instances = lists[0] + lists[1] + lists[2];
+  const std::size_t simulated = mSimulation != nullptr
+                                    ? static_cast<std::size_t>(mSimulation->slots()) *
+                                          static_cast<std::size_t>(mSimulation->bladesPerTile())
+                                    : 0;
+  const std::size_t instances = lists[0] + lists[1] + lists[2] + simulated;
   if (instances > (1u << 30) / sizeof(glm::uvec4)) {
     fail("grass: a draw distance of {} m with {} blades per tile needs {} instances (more than 2^26)",
          settings.maxDistance, perTile, instances);
@@ -153,8 +196,7 @@ void GrassRenderer::setCullSettings(const CullSettings& settings) {
 
 void GrassRenderer::uploadUniforms(const render::Camera& camera, float aspect, const wind::WindSettings& wind,
                                    double time, GrassView view) {
-  const GrassField& f = *mField;
-  const FieldLayout& layout = f.layout();
+  const FieldLayout& layout = mField->layout();
   gpu::GrassUniforms& u = mLast;
   const Frustum frustum(camera.viewProjection(aspect));
   for (std::size_t i = 0; i < 6; ++i) {
@@ -163,31 +205,25 @@ void GrassRenderer::uploadUniforms(const render::Camera& camera, float aspect, c
   u.eye = glm::vec4(camera.position, mSettings.maxDistance);
   u.lod =
       glm::vec4(mSettings.lodDistances[0], mSettings.lodDistances[1], mSettings.lodFade, mSettings.farFade);
-  u.orient =
-      glm::vec4(mSettings.orientationDistance, mSettings.orientationCos, f.bladeTop(), layout.tileSize);
-  u.field = glm::vec4(layout.origin, f.terrain().extentX(), f.terrain().extentZ());
-  u.tiles =
-      glm::ivec4(layout.tilesX, layout.tilesZ, layout.bladesPerTile, static_cast<int>(f.patch().size()));
-  u.grids = glm::ivec4(f.terrain().width(), f.terrain().height(), f.density().width(), f.density().height());
-  u.spacing = glm::vec4(f.terrain().spacingX(), f.terrain().spacingZ(), f.density().spacing());
-  u.options = glm::uvec4(0u, static_cast<unsigned>(view), static_cast<unsigned>(f.types().size()), 0u);
-  u.ground = glm::vec4(mAverageColour, 0.0f);
+  u.orient.x = mSettings.orientationDistance;
+  u.orient.y = mSettings.orientationCos;
+  u.options.y = static_cast<unsigned>(view);
   u.window = tileWindow(layout, glm::vec2(camera.position.x, camera.position.z), mSettings.maxDistance);
-  u.heights = glm::vec4(f.heightRange(), 0.0f, 0.0f);
   u.wind = wind::toUniforms(wind, static_cast<float>(time));
   mUniforms.setSubData(0, sizeof(u), &u);
 }
 
 void GrassRenderer::bindCommon() const {
-  mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_GRASS_BINDING);
-  mPatch.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_PATCH_BINDING);
-  mTypes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_TYPE_BINDING);
+  bindFieldResources();
+  if (mSimulation != nullptr) {
+    mSimulation->bindForDrawing();
+  } else {
+    mNoSimulation.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_SIM_SLOT_BINDING);
+    mNoSimulation.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_SIM_POSITION_BINDING);
+  }
   mVisibleTiles.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_VISIBLE_BINDING);
   mInstances.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_INSTANCE_BINDING);
   mCommands.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_GRASS_COMMAND_BINDING);
-  mHeights.bind(0);
-  mValid.bind(1);
-  mDensity.bind(2);
 }
 
 void GrassRenderer::cull(const render::Camera& camera, float aspect, render::GpuTimers* timers) {
@@ -201,6 +237,7 @@ void GrassRenderer::cull(const render::Camera& camera, float aspect, render::Gpu
     reset.draws[k] = glm::uvec4(2 * kLodKnots[k], 0u, 0u, base);
     base += mLast.lists[static_cast<int>(k)];
   }
+  reset.draws[3] = glm::uvec4(2 * kSimKnots, 0u, 0u, base);
   reset.dispatch = glm::uvec4(0u, 1u, 1u, 0u);
   mCommands.setSubData(0, sizeof(reset), &reset);
   bindCommon();
@@ -254,7 +291,7 @@ void GrassRenderer::draw(const render::Camera& camera, int width, int height, do
     mVerticesQuery.begin();
     mPrimitivesQuery.begin();
   }
-  glMultiDrawArraysIndirect(GL_TRIANGLE_STRIP, nullptr, 3, sizeof(glm::uvec4));
+  glMultiDrawArraysIndirect(GL_TRIANGLE_STRIP, nullptr, 4, sizeof(glm::uvec4));
   if (count) {
     mPrimitivesQuery.end();
     mVerticesQuery.end();

@@ -23,57 +23,86 @@ float bendAngle(float windSpeed, float stiffness) {
   return std::min(1.3f, 0.12f * std::abs(windSpeed) / std::max(stiffness, 0.05f));
 }
 
-std::vector<BladeVertex> expandBlade(const BladeType& type, int lod, const gpu::GrassBlade& blade,
-                                     const glm::vec3& root, const glm::vec2& windVelocity) {
+namespace {
+
+/** The bent knot line: centres (world) and each knot's bend angle, as expandBlade and the shaders walk it. */
+struct CentreLine {
+  std::vector<glm::vec3> centre;
+  std::vector<float> angle;
+  glm::vec3 axis{1.0f, 0.0f, 0.0f};
+  float total = 1.0f;
+};
+
+CentreLine walkBlade(const BladeType& type, int lod, const gpu::GrassBlade& blade, const glm::vec3& root,
+                     const glm::vec2& windVelocity) {
   if (lod < 0 || lod >= static_cast<int>(kLodKnots.size())) {
     fail("grass: level of detail {} outside 0..2", lod);
   }
   const BladeShapeLod& shape = type.lods[static_cast<std::size_t>(lod)];
   const std::size_t n = shape.knots.size();
   const float scale = blade.placement.w;
-  const float yaw = blade.placement.z;
-  const float cy = std::cos(yaw);
-  const float sy = std::sin(yaw);
-  // Blade space → world directions: turn about +Y by the yaw.
+  const float cy = std::cos(blade.placement.z);
+  const float sy = std::sin(blade.placement.z);
   auto turn = [&](const glm::vec3& v) { return glm::vec3(cy * v.x + sy * v.z, v.y, -sy * v.x + cy * v.z); };
   const float speed = glm::length(windVelocity);
   const float theta = bendAngle(speed, type.stiffness);
   // Downwind bend: about the horizontal axis across the wind (up × wind), so tips lean downwind.
   const glm::vec3 downwind =
       speed > 1e-6f ? glm::vec3(windVelocity.x, 0.0f, windVelocity.y) / speed : glm::vec3(0.0f);
-  const glm::vec3 axis = speed > 1e-6f ? glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), downwind))
-                                       : glm::vec3(1.0f, 0.0f, 0.0f);
+  CentreLine line;
+  line.axis = speed > 1e-6f ? glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), downwind))
+                            : glm::vec3(1.0f, 0.0f, 0.0f);
   float total = 0.0f;
   for (std::size_t k = 1; k < n; ++k) {
     total += glm::length(shape.knots[k] - shape.knots[k - 1]);
   }
-  total = std::max(total, 1e-9f);
-  std::vector<glm::vec3> centre(n);
-  std::vector<float> angle(n, 0.0f);
-  centre[0] = root;
+  line.total = std::max(total, 1e-9f);
+  line.centre.resize(n);
+  line.angle.assign(n, 0.0f);
+  line.centre[0] = root;
   float along = 0.0f;
   for (std::size_t k = 1; k < n; ++k) {
     const glm::vec3 segment = turn(shape.knots[k] - shape.knots[k - 1]) * scale;
     along += glm::length(shape.knots[k] - shape.knots[k - 1]);
-    const float u = along / total;
-    angle[k] = theta * u * u;
-    centre[k] = centre[k - 1] + rotate(segment, axis, angle[k]);
+    const float u = along / line.total;
+    line.angle[k] = theta * u * u;
+    line.centre[k] = line.centre[k - 1] + rotate(segment, line.axis, line.angle[k]);
   }
+  return line;
+}
+
+} // namespace
+
+std::vector<glm::vec3> bladeCentreLine(const BladeType& type, int lod, const gpu::GrassBlade& blade,
+                                       const glm::vec3& root, const glm::vec2& windVelocity) {
+  return walkBlade(type, lod, blade, root, windVelocity).centre;
+}
+
+std::vector<BladeVertex> expandBlade(const BladeType& type, int lod, const gpu::GrassBlade& blade,
+                                     const glm::vec3& root, const glm::vec2& windVelocity) {
+  const CentreLine line = walkBlade(type, lod, blade, root, windVelocity);
+  const BladeShapeLod& shape = type.lods[static_cast<std::size_t>(lod)];
+  const std::size_t n = shape.knots.size();
+  const float scale = blade.placement.w;
+  const float cy = std::cos(blade.placement.z);
+  const float sy = std::sin(blade.placement.z);
+  auto turn = [&](const glm::vec3& v) { return glm::vec3(cy * v.x + sy * v.z, v.y, -sy * v.x + cy * v.z); };
+  const std::vector<glm::vec3>& centre = line.centre;
   std::vector<BladeVertex> out;
   out.reserve(2 * n);
-  along = 0.0f;
+  float along = 0.0f;
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0) {
       along += glm::length(shape.knots[k] - shape.knots[k - 1]);
     }
     // The face normal (+Z in blade space) and the blade's tangent, bent like the knot line.
-    const glm::vec3 face = rotate(turn(glm::vec3(0.0f, 0.0f, 1.0f)), axis, angle[k]);
+    const glm::vec3 face = rotate(turn(glm::vec3(0.0f, 0.0f, 1.0f)), line.axis, line.angle[k]);
     const glm::vec3 tangent = glm::normalize(centre[std::min(k + 1, n - 1)] - centre[k > 0 ? k - 1 : 0]);
     glm::vec3 side = glm::cross(tangent, face);
     side = glm::length(side) > 1e-9f ? glm::normalize(side) : turn(glm::vec3(1.0f, 0.0f, 0.0f));
     const glm::vec3 normal = glm::normalize(glm::cross(side, tangent));
     const float half = 0.5f * shape.widths[k] * scale;
-    const float v = along / total;
+    const float v = along / line.total;
     out.push_back({centre[k] - side * half, normal, v, -1.0f});
     out.push_back({centre[k] + side * half, normal, v, 1.0f});
   }

@@ -35,6 +35,13 @@ struct BladeVertex {
 std::vector<BladeVertex> expandBlade(const BladeType& type, int lod, const gpu::GrassBlade& blade,
                                      const glm::vec3& root, const glm::vec2& windVelocity);
 
+/**
+ * The blade's bent knot line alone (world metres, root first): the centres of expandBlade's vertex pairs. The
+ * rest pose of a simulated blade (at level 0: kSimKnots knots).
+ */
+std::vector<glm::vec3> bladeCentreLine(const BladeType& type, int lod, const gpu::GrassBlade& blade,
+                                       const glm::vec3& root, const glm::vec2& windVelocity);
+
 /** The bend angle θ (radians) for a wind speed (m/s) and stiffness. */
 float bendAngle(float windSpeed, float stiffness);
 

@@ -28,6 +28,8 @@
 
 namespace sylva::grass {
 
+class GrassSimulator;
+
 /** What the blade fragment shader shows. */
 enum class GrassView : int {
   Shaded = 0,
@@ -58,6 +60,15 @@ public:
   void setCullSettings(const CullSettings& settings);
   const CullSettings& cullSettings() const { return mSettings; }
 
+  /**
+   * Draws the tiles `simulation` simulates from its pool (one more list in the same draw); null: none. Not
+   * owned; it must outlive its use here.
+   */
+  void setSimulation(const GrassSimulator* simulation);
+  /** Binds what the field's shaders read (uniform block, patch, blade types, terrain and density textures).
+   */
+  void bindFieldResources() const;
+
   /** Runs the culling passes for `camera` at `aspect` (width / height); wind time for the draw comes later.
    */
   void cull(const render::Camera& camera, float aspect, render::GpuTimers* timers = nullptr);
@@ -71,7 +82,7 @@ public:
   /** Vertices and primitives submitted by the last draw with countPrimitives; -1 when not counted. */
   std::int64_t lastVerticesSubmitted() const { return mLastVertices; }
   std::int64_t lastPrimitivesSubmitted() const { return mLastPrimitives; }
-  /** The instance lists of the last cull (root, patch index, level, fade), for tests. */
+  /** The instance lists of the levels (not the simulated list) of the last cull, for tests. */
   std::vector<VisibleBlade> readInstances() const;
 
   /**
@@ -99,8 +110,11 @@ private:
   void uploadUniforms(const render::Camera& camera, float aspect, const wind::WindSettings& wind, double time,
                       GrassView view);
   void bindCommon() const;
+  void uploadConstants();
 
   std::shared_ptr<const GrassField> mField;
+  const GrassSimulator* mSimulation = nullptr;
+  gl::Buffer mNoSimulation{gl::NoCreate};
   CullSettings mSettings;
   std::size_t mCapacity = 0;
   glm::vec3 mAverageColour{0.0f};

@@ -1,0 +1,138 @@
+#pragma once
+// Tile management (Fan et al. 2015, docs/grass-simulation.md): a tile gets per-blade simulation state from a
+// fixed pool only while a body is near it. On activation the state is the tile's current procedural pose (no
+// pop); a tile no body is near any more (and whose blades have stood up again) ramps back to the procedural
+// pose over releaseTime and returns its slot. When the pool is full, the tiles nearest a body win; the rest
+// stay procedural and are counted. The solver runs at its fixed rate whatever the frame rate.
+
+#include <sylva/core/Geometry.hpp>
+#include <sylva/grass/GrassField.hpp>
+#include <sylva/grass/Simulation.hpp>
+#include <sylva/wind/Wind.hpp>
+
+#include <glm/vec2.hpp>
+
+#include <map>
+#include <memory>
+#include <vector>
+
+namespace sylva::grass {
+
+/** The pool. */
+struct PoolSettings {
+  /** Tiles that can be simulated at once (slots). */
+  int tiles = 512;
+  /** Seconds over which a released tile returns to the procedural pose. */
+  float releaseTime = 1.0f;
+  /** Throws sylva::Error naming the field for a pool of 0 or absurd size, or a non-finite ramp. */
+  void validate() const;
+};
+
+/** A body as the tile manager sees it: its collision shape and bounding box (world metres). */
+struct SimBody {
+  BladeCollider shape;
+  Aabb box;
+};
+
+/** One slot of the pool. */
+struct SimSlot {
+  bool used = false;
+  glm::ivec2 tile{0};
+  /** 0 while simulated; rises to 1 over the release ramp, then the slot is freed. */
+  float release = 0.0f;
+  bool releasing = false;
+  /** Simulation time until which the tile counts as trampled (a heavy body was near): it is not released
+   * before, so bent blades stay bent and stand up again under simulation. */
+  double trampledUntil = 0.0;
+};
+
+/** What the last advance() did. */
+struct SimStats {
+  std::size_t activeTiles = 0;
+  std::size_t simulatedBlades = 0;
+  /** Tiles near a body that got no slot (pool exhausted) in the last step. */
+  std::size_t refusedTiles = 0;
+  std::size_t activations = 0;
+  std::size_t releases = 0;
+  int steps = 0;
+};
+
+class TileSimulation;
+
+/**
+ * Where the solver steps run when not on the CPU (the GPU simulator). The tile manager stays on the CPU and
+ * calls these once per fixed step, in this order: step (the slots in use before this step's activations),
+ * released, activated. With a backend the CPU blade arrays only hold each slot's state at activation.
+ */
+class SimulationBackend {
+public:
+  virtual ~SimulationBackend() = default;
+  /** One step at `seconds` of the blades of `slots`, each with `colliders[slot]`, in `wind`. */
+  virtual void step(const TileSimulation& sim, float seconds, const std::vector<int>& slots,
+                    const std::vector<std::vector<BladeCollider>>& colliders,
+                    const wind::WindSettings& wind) = 0;
+  /** `slot` was freed. */
+  virtual void released(const TileSimulation& sim, int slot) = 0;
+  /** `slot` was filled: its blades are in the CPU arrays at their procedural pose. */
+  virtual void activated(const TileSimulation& sim, int slot) = 0;
+};
+
+/** The tile manager and its blades. */
+class TileSimulation {
+public:
+  TileSimulation(std::shared_ptr<const GrassField> field, const PoolSettings& pool,
+                 const SolverSettings& solver);
+
+  /**
+   * Runs the fixed steps up to `seconds` (simulation time): each step updates which tiles are simulated from
+   * the bodies' boxes (inflated by the tallest blade), sets every simulated blade's rest pose to its
+   * procedural pose under `wind` at that moment, and runs the solver on each tile with the bodies whose boxes
+   * touch it. `bodies` are the state at `seconds` (they are not interpolated between steps).
+   */
+  void advance(double seconds, const std::vector<SimBody>& bodies, const wind::WindSettings& wind);
+  /** Runs the steps on `backend` instead of the CPU (null: the CPU reference). Not owned. */
+  void setBackend(SimulationBackend* backend) { mBackend = backend; }
+
+  const GrassField& field() const { return *mField; }
+  const PoolSettings& pool() const { return mPool; }
+  const SolverSettings& solver() const { return mSolver; }
+  const std::vector<SimSlot>& slots() const { return mSlots; }
+  /** The pool's blades, slot-major: slot s holds blades [s·bladesPerTile, (s + 1)·bladesPerTile). */
+  const SimBlades& blades() const { return mBlades; }
+  /** Whether pool blade i is a blade of its tile (the density keeps it); others are never drawn. */
+  bool bladeInUse(std::size_t i) const { return mPatchIndex[i] != kUnused; }
+  /** Patch index of pool blade i (kUnused when not in use). */
+  std::uint32_t patchIndex(std::size_t i) const { return mPatchIndex[i]; }
+  glm::vec3 root(std::size_t i) const { return mRoot[i]; }
+  /** Slot of tile (tx, tz), or −1. */
+  int slotOf(glm::ivec2 tile) const;
+  const SimStats& stats() const { return mStats; }
+  /** Simulation time reached, seconds. */
+  double time() const { return mTime; }
+  int bladesPerTile() const { return mPerTile; }
+
+  static constexpr std::uint32_t kUnused = 0xffffffffu;
+
+private:
+  void step(const std::vector<SimBody>& bodies, const wind::WindSettings& wind);
+  void stepOnCpu(const std::vector<int>& used, const std::vector<std::vector<BladeCollider>>& colliders,
+                 const wind::WindSettings& wind);
+  void finishStep(const std::map<std::pair<int, int>, float>& wanted, const wind::WindSettings& wind);
+  void activate(int slot, glm::ivec2 tile, float seconds, const wind::WindSettings& wind);
+  void restPose(std::size_t blade, const gpu::WindUniforms& wind, std::vector<glm::vec3>& out) const;
+
+  std::shared_ptr<const GrassField> mField;
+  PoolSettings mPool;
+  SolverSettings mSolver;
+  int mPerTile = 0;
+  std::vector<SimSlot> mSlots;
+  SimBlades mBlades;
+  std::vector<std::uint32_t> mPatchIndex;
+  std::vector<glm::vec3> mRoot;
+  SimStats mStats;
+  double mTime = 0.0;
+  long long mStepIndex = 0;
+  SimulationBackend* mBackend = nullptr;
+};
+
+} // namespace sylva::grass

@@ -1,0 +1,279 @@
+#include <sylva/grass/TileSimulation.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Parallel.hpp>
+#include <sylva/grass/Expand.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace sylva::grass {
+
+void PoolSettings::validate() const {
+  if (tiles < 1 || tiles > 65536) {
+    fail("grass simulation: pool tiles must be in 1..65536, got {}", tiles);
+  }
+  if (!std::isfinite(releaseTime) || releaseTime <= 0.0f || releaseTime > 600.0f) {
+    fail("grass simulation: releaseTime must be in (0, 600] seconds, got {}", releaseTime);
+  }
+}
+
+TileSimulation::TileSimulation(std::shared_ptr<const GrassField> field, const PoolSettings& pool,
+                               const SolverSettings& solver)
+    : mField(std::move(field)), mPool(pool), mSolver(solver) {
+  mPool.validate();
+  mSolver.validate();
+  mPerTile = std::min(mField->layout().bladesPerTile, static_cast<int>(mField->patch().size()));
+  const std::size_t blades = static_cast<std::size_t>(mPool.tiles) * static_cast<std::size_t>(mPerTile);
+  if (blades > (std::size_t{1} << 24)) {
+    fail("grass simulation: a pool of {} tiles of {} blades is more than 2^24 blades", mPool.tiles, mPerTile);
+  }
+  mSlots.resize(static_cast<std::size_t>(mPool.tiles));
+  mBlades.position.assign(blades * kSimKnots, glm::vec3(0.0f));
+  mBlades.previous.assign(blades * kSimKnots, glm::vec3(0.0f));
+  mBlades.rest.assign(blades * kSimKnots, glm::vec3(0.0f));
+  mBlades.trample.assign(blades, 0.0f);
+  mPatchIndex.assign(blades, kUnused);
+  mRoot.assign(blades, glm::vec3(0.0f));
+}
+
+int TileSimulation::slotOf(glm::ivec2 tile) const {
+  for (std::size_t s = 0; s < mSlots.size(); ++s) {
+    if (mSlots[s].used && mSlots[s].tile == tile) {
+      return static_cast<int>(s);
+    }
+  }
+  return -1;
+}
+
+void TileSimulation::restPose(std::size_t blade, const gpu::WindUniforms& wind,
+                              std::vector<glm::vec3>& out) const {
+  const gpu::GrassBlade& b = mField->patch()[mPatchIndex[blade]];
+  const BladeType& type = mField->types()[std::min<std::size_t>(b.info.x, mField->types().size() - 1)];
+  const glm::vec3 root = mRoot[blade];
+  out = bladeCentreLine(type, 0, b, root, wind::windVelocity(wind, glm::vec2(root.x, root.z)));
+}
+
+void TileSimulation::activate(int slot, glm::ivec2 tile, float seconds, const wind::WindSettings& wind) {
+  SimSlot& s = mSlots[static_cast<std::size_t>(slot)];
+  s = SimSlot{true, tile, 0.0f, false, 0.0};
+  const std::size_t base = static_cast<std::size_t>(slot) * static_cast<std::size_t>(mPerTile);
+  std::fill(mPatchIndex.begin() + static_cast<std::ptrdiff_t>(base),
+            mPatchIndex.begin() + static_cast<std::ptrdiff_t>(base + static_cast<std::size_t>(mPerTile)),
+            kUnused);
+  const gpu::WindUniforms u = wind::toUniforms(wind, seconds);
+  std::vector<glm::vec3> pose;
+  mField->forEachTileBlade(tile.x, tile.y, [&](const FieldBlade& fb) {
+    const std::size_t i = base + static_cast<std::size_t>(fb.rangeIndex);
+    mPatchIndex[i] = fb.patchIndex;
+    mRoot[i] = fb.root;
+    restPose(i, u, pose);
+    // The state starts as the pose drawn this frame: no pop.
+    std::copy(pose.begin(), pose.end(),
+              mBlades.position.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
+    std::copy(pose.begin(), pose.end(),
+              mBlades.previous.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
+    std::copy(pose.begin(), pose.end(), mBlades.rest.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
+    mBlades.trample[i] = 0.0f;
+  });
+  ++mStats.activations;
+}
+
+void TileSimulation::advance(double seconds, const std::vector<SimBody>& bodies,
+                             const wind::WindSettings& wind) {
+  wind::validate(wind);
+  for (const SimBody& b : bodies) {
+    const glm::vec3 values[] = {b.shape.a, b.shape.b, b.box.min, b.box.max};
+    for (const glm::vec3& v : values) {
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+        fail("grass simulation: a body's shape or box is not finite");
+      }
+    }
+    if (!std::isfinite(b.shape.radius) || b.shape.radius < 0.0f) {
+      fail("grass simulation: a body's radius must be finite and ≥ 0, got {}", b.shape.radius);
+    }
+  }
+  mStats.steps = 0;
+  mStats.activations = 0;
+  mStats.releases = 0;
+  const double dt = 1.0 / static_cast<double>(mSolver.rate);
+  // At most one second of steps per call: after a long pause the simulation skips ahead instead of stalling.
+  const long long target = static_cast<long long>(std::floor(seconds / dt + 1e-6));
+  if (target - mStepIndex > static_cast<long long>(mSolver.rate)) {
+    mStepIndex = target - static_cast<long long>(mSolver.rate);
+  }
+  while (mStepIndex < target) {
+    ++mStepIndex;
+    mTime = static_cast<double>(mStepIndex) * dt;
+    step(bodies, wind);
+    ++mStats.steps;
+  }
+}
+
+void TileSimulation::step(const std::vector<SimBody>& bodies, const wind::WindSettings& wind) {
+  const FieldLayout& layout = mField->layout();
+  const float top = mField->bladeTop();
+  const auto seconds = static_cast<float>(mTime);
+  // Tiles near a body: its box inflated by the tallest blade against each tile's box; key = distance to the
+  // nearest body (nearest tiles first when the pool is short).
+  std::map<std::pair<int, int>, float> wanted;
+  std::vector<std::vector<int>> near(mSlots.size());
+  for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
+    const Aabb& box = bodies[bi].box;
+    const glm::vec2 lo = (glm::vec2(box.min.x, box.min.z) - top - layout.origin) / layout.tileSize;
+    const glm::vec2 hi = (glm::vec2(box.max.x, box.max.z) + top - layout.origin) / layout.tileSize;
+    const int x0 = std::max(0, static_cast<int>(std::floor(lo.x)));
+    const int z0 = std::max(0, static_cast<int>(std::floor(lo.y)));
+    const int x1 = std::min(layout.tilesX - 1, static_cast<int>(std::floor(hi.x)));
+    const int z1 = std::min(layout.tilesZ - 1, static_cast<int>(std::floor(hi.y)));
+    const glm::vec2 centre(0.5f * (box.min.x + box.max.x), 0.5f * (box.min.z + box.max.z));
+    for (int tz = z0; tz <= z1; ++tz) {
+      for (int tx = x0; tx <= x1; ++tx) {
+        const glm::vec2 range = mField->tileRange(tx, tz);
+        if (!(range.x <= range.y) || box.max.y < range.x - top || box.min.y > range.y + top) {
+          continue;
+        }
+        const glm::vec2 c = layout.origin + (glm::vec2(tx, tz) + 0.5f) * layout.tileSize;
+        const float d = glm::length(c - centre);
+        auto [it, inserted] = wanted.try_emplace({tx, tz}, d);
+        if (!inserted) {
+          it->second = std::min(it->second, d);
+        }
+      }
+    }
+  }
+  // Simulate the tiles already in the pool (releasing ones too, with no bodies: they keep moving while they
+  // ramp back), each with the bodies near it.
+  std::vector<std::vector<BladeCollider>> colliders(mSlots.size());
+  std::vector<int> used;
+  for (std::size_t s = 0; s < mSlots.size(); ++s) {
+    if (!mSlots[s].used) {
+      continue;
+    }
+    used.push_back(static_cast<int>(s));
+    const glm::vec2 lo = layout.origin + glm::vec2(mSlots[s].tile) * layout.tileSize - top;
+    const glm::vec2 hi = lo + layout.tileSize + 2.0f * top;
+    for (const SimBody& b : bodies) {
+      if (b.box.max.x >= lo.x && b.box.min.x <= hi.x && b.box.max.z >= lo.y && b.box.min.z <= hi.y) {
+        colliders[s].push_back(b.shape);
+        if (b.shape.mass >= mSolver.trampleMass) {
+          mSlots[s].trampledUntil = mTime + static_cast<double>(mSolver.trampleRecovery);
+        }
+      }
+    }
+  }
+  if (mBackend != nullptr) {
+    mBackend->step(*this, seconds, used, colliders, wind);
+  } else {
+    stepOnCpu(used, colliders, wind);
+  }
+  finishStep(wanted, wind);
+}
+
+void TileSimulation::stepOnCpu(const std::vector<int>& used,
+                               const std::vector<std::vector<BladeCollider>>& colliders,
+                               const wind::WindSettings& wind) {
+  const auto seconds = static_cast<float>(mTime);
+  const gpu::WindUniforms u = wind::toUniforms(wind, seconds);
+  const terrain::HeightField& terrain = mField->terrain();
+  const GroundFunction ground = [&terrain](float x, float z) { return rootHeight(terrain, x, z); };
+  const SolverConstants constants = solverConstants(mSolver);
+  parallelFor(
+      used.size(),
+      [&](std::size_t begin, std::size_t end) {
+        std::vector<glm::vec3> pose;
+        for (std::size_t k = begin; k < end; ++k) {
+          const auto s = static_cast<std::size_t>(used[k]);
+          const std::size_t base = s * static_cast<std::size_t>(mPerTile);
+          for (std::size_t i = base; i < base + static_cast<std::size_t>(mPerTile); ++i) {
+            if (mPatchIndex[i] == kUnused) {
+              continue;
+            }
+            restPose(i, u, pose);
+            std::copy(pose.begin(), pose.end(),
+                      mBlades.rest.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
+            simulateBlade(mBlades, i, colliders[s], wind::windVelocity(u, glm::vec2(mRoot[i].x, mRoot[i].z)),
+                          ground, constants);
+          }
+        }
+      },
+      1);
+}
+
+void TileSimulation::finishStep(const std::map<std::pair<int, int>, float>& wanted,
+                                const wind::WindSettings& wind) {
+  const float dt = mSolver.step();
+  const auto seconds = static_cast<float>(mTime);
+  // Release bookkeeping: a tile no body is near starts ramping back once its blades stand (none trampled);
+  // a body coming back stops the ramp.
+  for (std::size_t s = 0; s < mSlots.size(); ++s) {
+    SimSlot& slot = mSlots[s];
+    if (!slot.used) {
+      continue;
+    }
+    if (wanted.count({slot.tile.x, slot.tile.y}) != 0) {
+      slot.releasing = false;
+      slot.release = 0.0f;
+      continue;
+    }
+    if (!slot.releasing) {
+      slot.releasing = mTime >= slot.trampledUntil;
+      continue;
+    }
+    slot.release += dt / mPool.releaseTime;
+    if (slot.release >= 1.0f) {
+      slot = SimSlot{};
+      const std::size_t base = s * static_cast<std::size_t>(mPerTile);
+      std::fill(mPatchIndex.begin() + static_cast<std::ptrdiff_t>(base),
+                mPatchIndex.begin() + static_cast<std::ptrdiff_t>(base + static_cast<std::size_t>(mPerTile)),
+                kUnused);
+      ++mStats.releases;
+      if (mBackend != nullptr) {
+        mBackend->released(*this, static_cast<int>(s));
+      }
+    }
+  }
+  // New tiles, nearest first, while slots last.
+  std::vector<std::pair<float, glm::ivec2>> fresh;
+  for (const auto& [tile, d] : wanted) {
+    if (slotOf({tile.first, tile.second}) < 0) {
+      fresh.push_back({d, glm::ivec2(tile.first, tile.second)});
+    }
+  }
+  std::sort(fresh.begin(), fresh.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first
+               ? a.first < b.first
+               : (a.second.y != b.second.y ? a.second.y < b.second.y : a.second.x < b.second.x);
+  });
+  mStats.refusedTiles = 0;
+  std::size_t free = 0;
+  for (const auto& [d, tile] : fresh) {
+    while (free < mSlots.size() && mSlots[free].used) {
+      ++free;
+    }
+    if (free == mSlots.size()) {
+      ++mStats.refusedTiles;
+      continue;
+    }
+    activate(static_cast<int>(free), tile, seconds, wind);
+    if (mBackend != nullptr) {
+      mBackend->activated(*this, static_cast<int>(free));
+    }
+  }
+  mStats.activeTiles = 0;
+  mStats.simulatedBlades = 0;
+  for (std::size_t s = 0; s < mSlots.size(); ++s) {
+    if (mSlots[s].used) {
+      ++mStats.activeTiles;
+      const std::size_t base = s * static_cast<std::size_t>(mPerTile);
+      for (std::size_t i = base; i < base + static_cast<std::size_t>(mPerTile); ++i) {
+        mStats.simulatedBlades += mPatchIndex[i] != kUnused ? 1 : 0;
+      }
+    }
+  }
+}
+
+} // namespace sylva::grass
