@@ -30,6 +30,7 @@ layout(std430, binding = SYLVA_GRASS_SIM_RANGE_BINDING) readonly buffer Ranges {
 };
 
 const int N = SYLVA_GRASS_SIM_KNOTS;
+const float CONTACT_DEPTH = 0.01; // kContactDepth in Simulation.cpp
 
 vec3 qrotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 vec4 qconj(vec4 q) { return vec4(-q.xyz, q.w); }
@@ -139,8 +140,7 @@ void main() {
       }
     }
   }
-  // 6. Collision: bodies near this tile, then the ground.
-  bool trampled = false;
+  // 6. Collision: bodies near this tile, then the ground; inelastic in proportion to the penetration.
   uvec4 range = colliderRanges[slot];
   for (uint c = range.x; c < range.x + range.y; ++c) {
     GrassCollider body = colliders[c];
@@ -154,21 +154,22 @@ void main() {
       if (dist >= body.a.w) {
         continue;
       }
+      float contact = min((body.a.w - dist) / CONTACT_DEPTH, 1.0);
       x[k] = p + (dist > 1e-9 ? outward / dist : vec3(0.0, 1.0, 0.0)) * body.a.w;
       vec3 along = aa > 1e-12 ? axis * (dot(x[k] - xp[k], axis) / aa) : vec3(0.0);
-      xp[k] = x[k] - 0.4 * along;
-      trampled = trampled || body.b.w >= sim.trample.x;
+      xp[k] = xp[k] + contact * (x[k] - 0.4 * along - xp[k]);
+      if (body.b.w >= sim.trample.x) {
+        trample = max(trample, contact);
+      }
     }
-  }
-  if (trampled) {
-    trample = 1.0;
   }
   for (int k = 2; k < N; ++k) {
     bool ok;
     float g = grassTerrainHeight(x[k].xz, ok);
     if (ok && x[k].y < g) {
+      float contact = min((g - x[k].y) / CONTACT_DEPTH, 1.0);
       x[k].y = g;
-      xp[k] = x[k];
+      xp[k] = xp[k] + contact * (x[k] - xp[k]);
     }
   }
   // 7. Velocity clamp.

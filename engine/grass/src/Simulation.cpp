@@ -12,6 +12,9 @@
 namespace sylva::grass {
 namespace {
 
+/** Penetration (metres) from which a contact is fully inelastic. */
+constexpr float kContactDepth = 0.01f;
+
 // Quaternions as vec4 (xyz, w), with the operations of shaders/grass/simulate.glsl, in the same order.
 using Quat = glm::vec4;
 
@@ -126,8 +129,11 @@ void stepBlade(glm::vec3* x, glm::vec3* xp, const glm::vec3* rest, float& trampl
       }
     }
   }
-  // 6. Collision, hard and last: bodies, then the ground. Inelastic (the previous position follows).
-  bool trampled = false;
+  // 6. Collision, hard and last: bodies, then the ground. Positions are pushed out exactly; the contact is
+  // inelastic (the previous position follows) in proportion to the penetration, fully from kContactDepth on,
+  // so a grazing contact changes the motion by a grazing amount: the step stays a continuous function of its
+  // inputs and the CPU and GPU solvers, a few ulps apart, do not drift apart through contacts that one sees
+  // and the other not.
   for (const BladeCollider& body : colliders) {
     const glm::vec3 axis = body.b - body.a;
     const float aa = glm::dot(axis, axis);
@@ -139,22 +145,23 @@ void stepBlade(glm::vec3* x, glm::vec3* xp, const glm::vec3* rest, float& trampl
       if (dist >= body.radius) {
         continue;
       }
+      const float contact = std::min((body.radius - dist) / kContactDepth, 1.0f);
       x[i] = p + (dist > 1e-9f ? out / dist : glm::vec3(0.0f, 1.0f, 0.0f)) * body.radius;
       // Keep 0.4 of the motion along a capsule's axis (sliding along it), none across.
       const glm::vec3 along = aa > 1e-12f ? axis * (glm::dot(x[i] - xp[i], axis) / aa) : glm::vec3(0.0f);
-      xp[i] = x[i] - 0.4f * along;
-      trampled = trampled || body.mass >= c.trampleMass;
+      xp[i] = xp[i] + contact * (x[i] - 0.4f * along - xp[i]);
+      if (body.mass >= c.trampleMass) {
+        trample = std::max(trample, contact);
+      }
     }
-  }
-  if (trampled) {
-    trample = 1.0f;
   }
   if (ground) {
     for (int i = 2; i < n; ++i) {
       const float g = ground(x[i].x, x[i].z);
       if (!std::isnan(g) && x[i].y < g) {
+        const float contact = std::min((g - x[i].y) / kContactDepth, 1.0f);
         x[i].y = g;
-        xp[i] = x[i];
+        xp[i] = xp[i] + contact * (x[i] - xp[i]);
       }
     }
   }

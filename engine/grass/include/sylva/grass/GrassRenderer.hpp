@@ -123,7 +123,6 @@ private:
   gl::Program mFinish{gl::NoCreate};
   gl::Program mDraw{gl::NoCreate};
   gl::Program mCapture{gl::NoCreate};
-  const shader::Library* mLibrary = nullptr;
   gl::Buffer mUniforms;
   gl::Buffer mPatch;
   gl::Buffer mTypes;
