@@ -3,10 +3,13 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
+#include <sylva/core/Progress.hpp>
+#include <sylva/folding/Export.hpp>
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/RenderTarget.hpp>
 
 #include "GrassFlags.hpp"
+#include "GrassSim.hpp"
 #include "TerrainFlags.hpp"
 
 #include <cstdio>
@@ -22,6 +25,10 @@ void registerRender(CLI::App& app) {
     TerrainFlags terrain;
     CameraFlags camera;
     GrassFlags grass;
+    SimulationFlags simulation;
+    int frames = 1;
+    double fps = 30.0;
+    std::string gif;
     std::string view = "shaded";
     std::string out = "out/terrain.png";
     int width = 1280;
@@ -39,6 +46,17 @@ void registerRender(CLI::App& app) {
   o->terrain.add(*command);
   o->camera.add(*command);
   o->grass.add(*command);
+  o->simulation.add(*command);
+  command
+      ->add_option(
+          "--frames", o->frames,
+          "Frames to render from --time on at --fps (the scene moves: wind, physics); -o gets the last")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  command->add_option("--fps", o->fps, "Frames per second of --frames")
+      ->check(finiteRange(1.0, 240.0))
+      ->capture_default_str();
+  command->add_option("--gif", o->gif, "Also write the frames as an animated GIF here");
   command->add_option("--view", o->view, "Terrain view: shaded, lod (LOD colours), normals or splat")
       ->check(CLI::IsMember({"shaded", "lod", "normals", "splat"}))
       ->capture_default_str();
@@ -64,6 +82,13 @@ void registerRender(CLI::App& app) {
     o->camera.check();
     if (o->grass.enabled) {
       o->grass.check();
+    }
+    if (o->simulation.enabled() && !o->grass.enabled) {
+      fail("--physics: needs --grass (the bodies move through the grass field)");
+    }
+    if (o->simulation.enabled()) {
+      (void)o->simulation.solverSettings();
+      (void)o->simulation.poolSettings();
     }
     auto context = platform::createHeadlessContext(o->context.options());
     shader::Library library(o->shaderDir);
@@ -94,14 +119,54 @@ void registerRender(CLI::App& app) {
                     camera.target.y / e, camera.target.z);
         }
       }
-      target.begin(glm::vec4(environment.fogColor, 1.0f));
+      std::unique_ptr<GrassSimScene> simulation;
+      if (o->simulation.enabled()) {
+        simulation =
+            std::make_unique<GrassSimScene>(library, *scene, *grass, grass->fieldPointer(), o->simulation);
+        const glm::vec2 drop = ballDropPoint(scene->field(), grass->field(), camera);
+        simulation->spawnBalls(drop, 1.5f, o->simulation.balls, o->simulation.seed, 0.5f);
+        if (o->camera.cameraPos.empty()) {
+          camera = ballCamera(*scene, drop, glm::radians(o->camera.fovDegrees));
+        }
+      }
       terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->camera.fog);
       options.view = parseTerrainView(o->view);
       options.wireframe = o->wireframe;
       grass::GrassDrawOptions grassOptions;
       grassOptions.view = o->grass.grassView();
       grassOptions.wind = o->grass.wind();
-      drawTerrainWithGrass(*scene, grass.get(), camera, o->width, o->height, o->time, options, grassOptions);
+      std::vector<Image> frames;
+      Progress progress("render", static_cast<std::size_t>(o->frames));
+      for (int f = 0; f < o->frames; ++f) {
+        const double time = o->time + f / o->fps;
+        if (simulation) {
+          simulation->advance(time - o->time, grassOptions.wind);
+        }
+        target.begin(glm::vec4(environment.fogColor, 1.0f));
+        drawTerrainWithGrass(*scene, grass.get(), camera, o->width, o->height, time, options, grassOptions);
+        if (simulation) {
+          simulation->drawBodies(camera, o->width, o->height, time, options.environment);
+        }
+        if (o->frames > 1) {
+          frames.push_back(target.readColor());
+        }
+        progress.advance(1);
+      }
+      if (simulation) {
+        const grass::SimStats& s = simulation->stats();
+        log::info(
+            "grass simulation: {} bodies, {} tiles ({} blades) simulated at the end, {} refused (pool full)",
+            simulation->bodies(), s.activeTiles, s.simulatedBlades, s.refusedTiles);
+      }
+      if (!o->gif.empty()) {
+        folding::writeGif(o->gif, frames, std::max(1, static_cast<int>(std::lround(100.0 / o->fps))));
+        std::printf("%s\n", o->gif.c_str());
+      }
+      if (!frames.empty()) {
+        saveImage(o->out, frames.back());
+        std::printf("%s\n", o->out.c_str());
+        return;
+      }
     }
     saveImage(o->out, target.readColor());
     std::printf("%s\n", o->out.c_str());

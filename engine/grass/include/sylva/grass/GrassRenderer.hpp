@@ -105,6 +105,7 @@ public:
   /** Bytes of GPU memory held (patch, types, maps, lists). */
   std::size_t gpuBytes() const;
   const GrassField& field() const { return *mField; }
+  const std::shared_ptr<const GrassField>& fieldPointer() const { return mField; }
 
 private:
   void uploadUniforms(const render::Camera& camera, float aspect, const wind::WindSettings& wind, double time,

@@ -1,0 +1,30 @@
+#pragma once
+// Draws a world's bodies (instanced spheres with a checker pattern that shows them roll; capsules and boxes
+// as their bounding spheres) with the scene's sun and fog. Needs a current GL context.
+
+#include <sylva/gl/Buffer.hpp>
+#include <sylva/gl/Program.hpp>
+#include <sylva/gl/VertexArray.hpp>
+#include <sylva/physics/World.hpp>
+#include <sylva/render/Camera.hpp>
+#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/shader/Library.hpp>
+
+namespace sylva::physics {
+
+class BodyRenderer {
+public:
+  explicit BodyRenderer(const shader::Library& library);
+  void reloadShaders(const shader::Library& library);
+  /** Draws every body of `world` into the bound framebuffer. */
+  void draw(const World& world, const render::Camera& camera, int width, int height, double time,
+            const render::Environment& environment = {});
+
+private:
+  gl::Program mProgram{gl::NoCreate};
+  gl::Buffer mInstances{gl::NoCreate};
+  gl::VertexArray mVao;
+  render::FrameUniformBuffer mFrame;
+};
+
+} // namespace sylva::physics
