@@ -1,16 +1,19 @@
 #include "BenchRows.hpp"
 #include "Commands.hpp"
 #include "GrassFlags.hpp"
+#include "GrassSim.hpp"
 #include "TerrainFlags.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
 
 #ifdef SYLVA_HAVE_FOLDING
 #include <folding/FoldingCase.hpp>
@@ -781,6 +784,134 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   report["demo_passes"] = demoSamples.passesJson();
 }
 
+/**
+ * `bench grass-sim`: the paper's Table 1 workloads (6/14/150/709 simulated tiles of 64 blades with
+ * 1/2/20/128 bodies) stepped by the CPU reference (all cores) and the compute shader, and the GPU target
+ * workload (500,000 blades, 1,024 bodies). Solver steps only (rest poses, constraints, collisions), medians.
+ */
+void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
+  shader::Library library;
+  const std::string rendererName = gl::queryContextInfo().renderer;
+  report = header(o, "grass-sim", context);
+  terrain::ProceduralSpec spec = terrain::TerrainSource::defaultProcedural();
+  spec.heightScale = 4.0f;
+  spec.frequency = 1.0f / 120.0f;
+  grass::FieldSettings fs;
+  fs.patch.blades = 16384;
+  fs.bladesPerTile = 64;
+  fs.density.noiseFrequency = 0.0f;
+  fs.density.coverage = 1.0f;
+  fs.density.maxSlopeDegrees = 90.0f;
+  // 96 x 96 tiles of 2 m: room for the 7,813 tiles of the GPU workload.
+  auto field = std::make_shared<grass::GrassField>(terrain::generate(spec, 0.0, 0.0, 193, 193, 1.0f),
+                                                   grass::proceduralBladeTypes(), fs);
+  grass::GrassRenderer renderer(library, field);
+  wind::WindSettings wind;
+  wind.speed = 4.0f;
+  const float top = field->bladeTop();
+  struct Workload {
+    int tiles;
+    int bodies;
+    double paperMs;
+  };
+  const Workload table1[] = {{6, 1, 0.176}, {14, 2, 0.183}, {150, 20, 0.952}, {709, 128, 4.67}};
+  // Tiles in a square block around the field's centre; bodies spread over them, each a 0.4 m ball resting on
+  // the grass at the centre of its share of the tiles. Each tile gets the bodies whose inflated box touches
+  // it.
+  const auto setUp = [&](grass::TileSimulation& sim, int tiles, int bodies,
+                         std::vector<std::vector<grass::BladeCollider>>& colliders) {
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles))));
+    const glm::ivec2 first(48 - side / 2, 48 - side / 2);
+    std::vector<glm::ivec2> chosen;
+    for (int i = 0; i < tiles; ++i) {
+      chosen.push_back(first + glm::ivec2(i % side, i / side));
+      sim.activateTile(chosen.back(), wind);
+    }
+    std::vector<grass::BladeCollider> balls;
+    for (int b = 0; b < bodies; ++b) {
+      const glm::ivec2 t = chosen[static_cast<std::size_t>((static_cast<double>(b) + 0.5) * tiles / bodies)];
+      const glm::vec2 xz = (glm::vec2(t) + 0.5f) * field->layout().tileSize;
+      const float y = terrain::heightAt(field->terrain(), xz.x, xz.y) + 0.3f;
+      balls.push_back({glm::vec3(xz.x, y, xz.y), glm::vec3(xz.x, y, xz.y), 0.4f, 30.0f});
+    }
+    colliders.assign(sim.slots().size(), {});
+    for (std::size_t s = 0; s < sim.slots().size(); ++s) {
+      if (!sim.slots()[s].used) {
+        continue;
+      }
+      const glm::vec2 lo = glm::vec2(sim.slots()[s].tile) * field->layout().tileSize - top;
+      const glm::vec2 hi = lo + field->layout().tileSize + 2.0f * top;
+      for (const grass::BladeCollider& c : balls) {
+        if (c.a.x + c.radius >= lo.x && c.a.x - c.radius <= hi.x && c.a.z + c.radius >= lo.y &&
+            c.a.z - c.radius <= hi.y) {
+          colliders[s].push_back(c);
+        }
+      }
+    }
+  };
+  constexpr int kRuns = 15;
+  constexpr int kWarmup = 3;
+  const auto cpuMs = [&](int tiles, int bodies, std::size_t& blades) {
+    grass::PoolSettings pool;
+    pool.tiles = tiles;
+    grass::TileSimulation sim(field, pool, grass::SolverSettings{});
+    std::vector<std::vector<grass::BladeCollider>> colliders;
+    setUp(sim, tiles, bodies, colliders);
+    blades = 0;
+    for (std::size_t i = 0; i < sim.blades().count(); ++i) {
+      blades += sim.bladeInUse(i) ? 1 : 0;
+    }
+    return render::Stats::of(timeRuns(kWarmup, kRuns, [&] { sim.stepSolver(colliders, wind); })).median * 1e3;
+  };
+  const auto gpuMs = [&](int tiles, int bodies) {
+    grass::PoolSettings pool;
+    pool.tiles = tiles;
+    grass::TileSimulation sim(field, pool, grass::SolverSettings{});
+    grass::GrassSimulator gpu(library, renderer, sim);
+    sim.setBackend(&gpu);
+    std::vector<std::vector<grass::BladeCollider>> colliders;
+    setUp(sim, tiles, bodies, colliders);
+    glFinish();
+    return render::Stats::of(timeRuns(kWarmup, kRuns,
+                                      [&] {
+                                        sim.stepSolver(colliders, wind);
+                                        glFinish();
+                                      }))
+               .median *
+           1e3;
+  };
+  const MachineInfo machine = machineInfo();
+  std::printf(
+      "grass-sim: solver steps (16 knots, 2 local and 2 length passes), CPU %s (%u threads), GPU %s\n",
+      machine.cpu.c_str(), workerCount(), rendererName.c_str());
+  std::vector<BenchRow> rows;
+  nlohmann::json table = nlohmann::json::array();
+  for (const Workload& w : table1) {
+    std::size_t blades = 0;
+    const double cpu = cpuMs(w.tiles, w.bodies, blades);
+    const double gpu = gpuMs(w.tiles, w.bodies);
+    const bool largest = w.tiles == 709;
+    const std::string what =
+        fmt::format("Table 1: {} tiles, {} bodies, {} blades", w.tiles, w.bodies, blades);
+    rows.push_back({what + ", CPU", cpu, "ms/step", largest ? 10.0 : std::nan(""), true, workerCount(),
+                    fmt::format("paper (GPU): {} ms; {:.0f} ns/blade", w.paperMs, cpu * 1e6 / blades)});
+    rows.push_back({what + ", GPU", gpu, "ms/step", std::nan(""), true, 0,
+                    fmt::format("{}; {:.0f} ns/blade", rendererName.substr(0, 24), gpu * 1e6 / blades)});
+    table.push_back({{"tiles", w.tiles},
+                     {"bodies", w.bodies},
+                     {"blades", blades},
+                     {"cpu_ms", cpu},
+                     {"gpu_ms", gpu},
+                     {"paper_ms", w.paperMs}});
+  }
+  // The GPU target: 500,000 simulated blades (7,813 tiles of 64) with 1,024 bodies in 3 ms.
+  const double big = gpuMs(7813, 1024);
+  rows.push_back({"500,000 blades, 1,024 bodies, GPU", big, "ms/step", 3.0, true, 0,
+                  fmt::format("{}; target for an NVIDIA GPU", rendererName.substr(0, 24))});
+  report["rows"] = printBenchRows(rows);
+  report["table1"] = table;
+}
+
 } // namespace
 
 void registerBench(CLI::App& app) {
@@ -794,8 +925,9 @@ void registerBench(CLI::App& app) {
           "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure) "
           "or fold (folding-texture targets on a generated 1 MP case) or capture (grass capture: "
           "extraction latency per 640x480 frame, refining) or grass (the paper's 955,264-blade field "
-          "in one draw, patch memory, culling, LOD popping)")
-      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture", "grass"}))
+          "in one draw, patch memory, culling, LOD popping) or grass-sim (the paper's Table 1 workloads "
+          "on the CPU and GPU solvers, and 500,000 blades with 1,024 bodies)")
+      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture", "grass", "grass-sim"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -847,6 +979,8 @@ void registerBench(CLI::App& app) {
       benchTerrain(*o, *context, report);
     } else if (o->area == "grass") {
       benchGrass(*o, *context, report);
+    } else if (o->area == "grass-sim") {
+      benchGrassSim(*o, *context, report);
     } else if (o->area == "soak") {
       benchSoak(*o, *context, report);
     } else {

@@ -81,5 +81,39 @@ TEST(GrassCli, BadInputsFailWithOneLineAndNoImage) {
   }
 }
 
+TEST(GrassCli, PhysicsBallsFilmAnAnimation) {
+  test::TempDir dir;
+  const test::RunResult r = runSylva(
+      dir, "render --grass --physics balls --balls 3 --frames 8 --fps 20 --size 257 --spacing 2 --width 320 "
+           "--height 180 --gif " +
+               at(dir, "balls.gif") + " -o " + at(dir, "last.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(test::readAll(dir / "balls.gif").substr(0, 6), "GIF89a");
+  const Image last = loadImage(dir / "last.png");
+  EXPECT_EQ(last.width(), 320);
+  // The balls are in view: red checker pixels.
+  int red = 0;
+  for (int y = 0; y < last.height(); ++y) {
+    for (int x = 0; x < last.width(); ++x) {
+      red += last.get(x, y, 0) > 0.5f && last.get(x, y, 1) < 0.3f && last.get(x, y, 2) < 0.3f ? 1 : 0;
+    }
+  }
+  EXPECT_GT(red, 10);
+  const std::pair<std::string, std::string> bad[] = {
+      {"render --physics balls", "--physics"},
+      {"render --grass --physics balls --balls 0", "--balls"},
+      {"render --grass --physics balls --grass-pool 0", "--grass-pool"},
+      {"render --grass --physics balls --trample-recovery nan", "--trample-recovery"},
+      {"render --grass --frames 2 --fps 0", "--fps"},
+  };
+  for (const auto& [args, named] : bad) {
+    const test::RunResult e = runSylva(dir, args + kSmall + "-o " + at(dir, "bad.png"));
+    EXPECT_NE(e.status, 0) << args;
+    EXPECT_EQ(lineCount(e.err), 1u) << args << ": " << e.err;
+    EXPECT_NE(e.err.find(named), std::string::npos) << args << ": " << e.err;
+    EXPECT_FALSE(fs::exists(dir / "bad.png")) << args;
+  }
+}
+
 } // namespace
 } // namespace sylva

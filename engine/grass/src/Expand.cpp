@@ -5,6 +5,8 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
+#include <math.h>
 #include <cmath>
 
 namespace sylva::grass {
@@ -12,8 +14,9 @@ namespace {
 
 /** Rotates v about the unit axis by angle (Rodrigues). */
 glm::vec3 rotate(const glm::vec3& v, const glm::vec3& axis, float angle) {
-  const float c = std::cos(angle);
-  const float s = std::sin(angle);
+  float s = 0.0f;
+  float c = 1.0f;
+  ::sincosf(angle, &s, &c);
   return v * c + glm::cross(axis, v) * s + axis * (glm::dot(axis, v) * (1.0f - c));
 }
 
@@ -27,8 +30,8 @@ namespace {
 
 /** The bent knot line: centres (world) and each knot's bend angle, as expandBlade and the shaders walk it. */
 struct CentreLine {
-  std::vector<glm::vec3> centre;
-  std::vector<float> angle;
+  std::array<glm::vec3, SYLVA_GRASS_LOD0_KNOTS> centre{};
+  std::array<float, SYLVA_GRASS_LOD0_KNOTS> angle{};
   glm::vec3 axis{1.0f, 0.0f, 0.0f};
   float total = 1.0f;
 };
@@ -57,8 +60,6 @@ CentreLine walkBlade(const BladeType& type, int lod, const gpu::GrassBlade& blad
     total += glm::length(shape.knots[k] - shape.knots[k - 1]);
   }
   line.total = std::max(total, 1e-9f);
-  line.centre.resize(n);
-  line.angle.assign(n, 0.0f);
   line.centre[0] = root;
   float along = 0.0f;
   for (std::size_t k = 1; k < n; ++k) {
@@ -75,7 +76,15 @@ CentreLine walkBlade(const BladeType& type, int lod, const gpu::GrassBlade& blad
 
 std::vector<glm::vec3> bladeCentreLine(const BladeType& type, int lod, const gpu::GrassBlade& blade,
                                        const glm::vec3& root, const glm::vec2& windVelocity) {
-  return walkBlade(type, lod, blade, root, windVelocity).centre;
+  const CentreLine line = walkBlade(type, lod, blade, root, windVelocity);
+  const std::size_t n = type.lods[static_cast<std::size_t>(lod)].knots.size();
+  return {line.centre.begin(), line.centre.begin() + static_cast<std::ptrdiff_t>(n)};
+}
+
+void bladeCentreLine(const BladeType& type, const gpu::GrassBlade& blade, const glm::vec3& root,
+                     const glm::vec2& windVelocity, std::span<glm::vec3, SYLVA_GRASS_LOD0_KNOTS> out) {
+  const CentreLine line = walkBlade(type, 0, blade, root, windVelocity);
+  std::copy(line.centre.begin(), line.centre.end(), out.begin());
 }
 
 std::vector<BladeVertex> expandBlade(const BladeType& type, int lod, const gpu::GrassBlade& blade,
@@ -87,7 +96,7 @@ std::vector<BladeVertex> expandBlade(const BladeType& type, int lod, const gpu::
   const float cy = std::cos(blade.placement.z);
   const float sy = std::sin(blade.placement.z);
   auto turn = [&](const glm::vec3& v) { return glm::vec3(cy * v.x + sy * v.z, v.y, -sy * v.x + cy * v.z); };
-  const std::vector<glm::vec3>& centre = line.centre;
+  const auto& centre = line.centre;
   std::vector<BladeVertex> out;
   out.reserve(2 * n);
   float along = 0.0f;

@@ -49,12 +49,14 @@ int TileSimulation::slotOf(glm::ivec2 tile) const {
   return -1;
 }
 
-void TileSimulation::restPose(std::size_t blade, const gpu::WindUniforms& wind,
-                              std::vector<glm::vec3>& out) const {
+glm::vec2 TileSimulation::restPose(std::size_t blade, const gpu::WindUniforms& wind) {
   const gpu::GrassBlade& b = mField->patch()[mPatchIndex[blade]];
   const BladeType& type = mField->types()[std::min<std::size_t>(b.info.x, mField->types().size() - 1)];
   const glm::vec3 root = mRoot[blade];
-  out = bladeCentreLine(type, 0, b, root, wind::windVelocity(wind, glm::vec2(root.x, root.z)));
+  const glm::vec2 velocity = wind::windVelocity(wind, glm::vec2(root.x, root.z));
+  bladeCentreLine(type, b, root, velocity,
+                  std::span<glm::vec3, kSimKnots>(mBlades.rest.data() + blade * kSimKnots, kSimKnots));
+  return velocity;
 }
 
 void TileSimulation::activate(int slot, glm::ivec2 tile, float seconds, const wind::WindSettings& wind) {
@@ -65,18 +67,17 @@ void TileSimulation::activate(int slot, glm::ivec2 tile, float seconds, const wi
             mPatchIndex.begin() + static_cast<std::ptrdiff_t>(base + static_cast<std::size_t>(mPerTile)),
             kUnused);
   const gpu::WindUniforms u = wind::toUniforms(wind, seconds);
-  std::vector<glm::vec3> pose;
   mField->forEachTileBlade(tile.x, tile.y, [&](const FieldBlade& fb) {
     const std::size_t i = base + static_cast<std::size_t>(fb.rangeIndex);
     mPatchIndex[i] = fb.patchIndex;
     mRoot[i] = fb.root;
-    restPose(i, u, pose);
+    restPose(i, u);
     // The state starts as the pose drawn this frame: no pop.
-    std::copy(pose.begin(), pose.end(),
+    const auto first = mBlades.rest.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots);
+    std::copy(first, first + kSimKnots,
               mBlades.position.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
-    std::copy(pose.begin(), pose.end(),
+    std::copy(first, first + kSimKnots,
               mBlades.previous.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
-    std::copy(pose.begin(), pose.end(), mBlades.rest.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
     mBlades.trample[i] = 0.0f;
   });
   ++mStats.activations;
@@ -184,7 +185,6 @@ void TileSimulation::stepOnCpu(const std::vector<int>& used,
   parallelFor(
       used.size(),
       [&](std::size_t begin, std::size_t end) {
-        std::vector<glm::vec3> pose;
         for (std::size_t k = begin; k < end; ++k) {
           const auto s = static_cast<std::size_t>(used[k]);
           const std::size_t base = s * static_cast<std::size_t>(mPerTile);
@@ -192,11 +192,8 @@ void TileSimulation::stepOnCpu(const std::vector<int>& used,
             if (mPatchIndex[i] == kUnused) {
               continue;
             }
-            restPose(i, u, pose);
-            std::copy(pose.begin(), pose.end(),
-                      mBlades.rest.begin() + static_cast<std::ptrdiff_t>(i * kSimKnots));
-            simulateBlade(mBlades, i, colliders[s], wind::windVelocity(u, glm::vec2(mRoot[i].x, mRoot[i].z)),
-                          ground, constants);
+            const glm::vec2 velocity = restPose(i, u);
+            simulateBlade(mBlades, i, colliders[s], velocity, ground, constants);
           }
         }
       },
@@ -273,6 +270,45 @@ void TileSimulation::finishStep(const std::map<std::pair<int, int>, float>& want
         mStats.simulatedBlades += mPatchIndex[i] != kUnused ? 1 : 0;
       }
     }
+  }
+}
+
+} // namespace sylva::grass
+
+namespace sylva::grass {
+
+bool TileSimulation::activateTile(glm::ivec2 tile, const wind::WindSettings& wind) {
+  const FieldLayout& layout = mField->layout();
+  if (tile.x < 0 || tile.y < 0 || tile.x >= layout.tilesX || tile.y >= layout.tilesZ || slotOf(tile) >= 0) {
+    return false;
+  }
+  for (std::size_t s = 0; s < mSlots.size(); ++s) {
+    if (!mSlots[s].used) {
+      activate(static_cast<int>(s), tile, static_cast<float>(mTime), wind);
+      if (mBackend != nullptr) {
+        mBackend->activated(*this, static_cast<int>(s));
+      }
+      return true;
+    }
+  }
+  return false;
+}
+
+void TileSimulation::stepSolver(const std::vector<std::vector<BladeCollider>>& colliders,
+                                const wind::WindSettings& wind) {
+  if (colliders.size() != mSlots.size()) {
+    fail("grass simulation: {} collider lists for {} slots", colliders.size(), mSlots.size());
+  }
+  std::vector<int> used;
+  for (std::size_t s = 0; s < mSlots.size(); ++s) {
+    if (mSlots[s].used) {
+      used.push_back(static_cast<int>(s));
+    }
+  }
+  if (mBackend != nullptr) {
+    mBackend->step(*this, static_cast<float>(mTime), used, colliders, wind);
+  } else {
+    stepOnCpu(used, colliders, wind);
   }
 }
 

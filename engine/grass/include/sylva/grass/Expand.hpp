@@ -9,6 +9,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <span>
 #include <vector>
 
 namespace sylva::grass {
@@ -41,6 +42,10 @@ std::vector<BladeVertex> expandBlade(const BladeType& type, int lod, const gpu::
  */
 std::vector<glm::vec3> bladeCentreLine(const BladeType& type, int lod, const gpu::GrassBlade& blade,
                                        const glm::vec3& root, const glm::vec2& windVelocity);
+
+/** bladeCentreLine at level 0 written into `out` (no allocation: the solver's rest poses). */
+void bladeCentreLine(const BladeType& type, const gpu::GrassBlade& blade, const glm::vec3& root,
+                     const glm::vec2& windVelocity, std::span<glm::vec3, SYLVA_GRASS_LOD0_KNOTS> out);
 
 /** The bend angle θ (radians) for a wind speed (m/s) and stiffness. */
 float bendAngle(float windSpeed, float stiffness);

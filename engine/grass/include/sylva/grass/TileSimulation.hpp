@@ -90,6 +90,17 @@ public:
    * touch it. `bodies` are the state at `seconds` (they are not interpolated between steps).
    */
   void advance(double seconds, const std::vector<SimBody>& bodies, const wind::WindSettings& wind);
+  /**
+   * Puts tile (tx, tz) in the pool now (at its procedural pose at time()), as a body coming near would: for
+   * benchmarks and tests that need a given set of simulated tiles. False when the pool is full or the tile is
+   * in already. The next advance() releases it unless a body is near.
+   */
+  bool activateTile(glm::ivec2 tile, const wind::WindSettings& wind);
+  /**
+   * One solver step of every simulated tile with `colliders[slot]` (sized like slots()), without tile
+   * management: the solver part of a step, for benchmarks. Runs on the backend when there is one.
+   */
+  void stepSolver(const std::vector<std::vector<BladeCollider>>& colliders, const wind::WindSettings& wind);
   /** Runs the steps on `backend` instead of the CPU (null: the CPU reference). Not owned. */
   void setBackend(SimulationBackend* backend) { mBackend = backend; }
 
@@ -119,7 +130,8 @@ private:
                  const wind::WindSettings& wind);
   void finishStep(const std::map<std::pair<int, int>, float>& wanted, const wind::WindSettings& wind);
   void activate(int slot, glm::ivec2 tile, float seconds, const wind::WindSettings& wind);
-  void restPose(std::size_t blade, const gpu::WindUniforms& wind, std::vector<glm::vec3>& out) const;
+  /** Sets blade `blade`'s rest pose for `wind`; returns the wind velocity at its root. */
+  glm::vec2 restPose(std::size_t blade, const gpu::WindUniforms& wind);
 
   std::shared_ptr<const GrassField> mField;
   PoolSettings mPool;
