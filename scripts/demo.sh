@@ -5,6 +5,7 @@
 #   out/jacksboro.png     a real DEM (Jacksboro fault, Tennessee) fetched from a Debian package
 #   out/coast.png         a real coastal DEM with bathymetry (British Columbia): sea level, water, 3x relief
 #   out/grass.png         a grass field on the demo landscape from eye height, in wind
+#   out/balls.gif         balls rolling down a slope through the simulated grass
 #   out/fold-beach.gif    folding textures: waves swash up a procedural beach and wash back
 #   out/fold-cat.gif      folding textures: a real cat photo (scikit-image's chelsea.png) squints
 set -euo pipefail
@@ -19,5 +20,7 @@ mkdir -p out
 "$sylva" render --dem data/external/jacksboro_fault_dem.npz --out out/jacksboro.png
 "$sylva" render --dem data/external/topobathy.npz --exaggeration 3 --out out/coast.png
 "$sylva" render --grass --wind-speed 5 --out out/grass.png
+"$sylva" render --grass --physics balls --balls 6 --frames 90 --width 400 --height 225 --gif out/balls.gif \
+  --out out/balls.png
 "$sylva" fold render data/folding/beach.json --fps 12 --gif out/fold-beach.gif
 "$sylva" fold render data/folding/cat.json --fps 12 --gif out/fold-cat.gif

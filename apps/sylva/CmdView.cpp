@@ -13,14 +13,16 @@
 #include <sylva/terrain/HeightQuery.hpp>
 
 #include "GrassFlags.hpp"
+#include "GrassSim.hpp"
 #include "TerrainFlags.hpp"
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
 #include <imgui.h>
 
-#include <cstdio>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <optional>
 
@@ -33,6 +35,7 @@ struct ViewOptions {
   TerrainFlags terrain;
   CameraFlags camera;
   GrassFlags grass;
+  SimulationFlags simulation;
   int width = 1280;
   int height = 720;
   std::string shaderDir;
@@ -126,6 +129,20 @@ struct ViewerGrass {
   int view = 0;
   /** Counters of this frame's cull (read after the draw while the panel shows). */
   std::optional<gpu::GrassCounters> counters;
+  /** --physics and the simulation's settings: for the scene at start and for any made later (B, panel). */
+  SimulationFlags simFlags;
+  /**
+   * The bodies and the simulated grass tiles (docs/grass-simulation.md), or null until --physics, a throw or
+   * the panel makes them. Registered with `renderer`: declared after it so it is destroyed first, and rebuilt
+   * (empty) whenever the renderer is.
+   */
+  std::unique_ptr<GrassSimScene> simulation;
+  /** Simulation time of `simulation`: seconds it has run since it was built (stops with the viewer's pause).
+   */
+  double simTime = 0.0;
+  /** Balls dropped from the panel so far (each drop gets its own seed). */
+  int drops = 0;
+  std::string simError;
 
   /** The renderer to draw with this frame, or null when grass is off. */
   grass::GrassRenderer* active() const { return enabled ? renderer.get() : nullptr; }
@@ -137,7 +154,36 @@ struct ViewerGrass {
   }
 };
 
-/** Builds the field of `g.flags` over `scene` and its renderer; throws, leaving `g` as it was, on errors. */
+/**
+ * (Re)builds the simulation of `g` with no bodies on its current renderer (which must exist), its clock back
+ * at 0; throws on errors, leaving no simulation.
+ */
+void buildSimulation(ViewerGrass& g, const terrain::TerrainScene& scene) {
+  g.simulation.reset(); // unregisters from the renderer before the new one registers
+  g.simTime = 0.0;
+  g.simulation =
+      std::make_unique<GrassSimScene>(g.shaders, scene, *g.renderer, g.renderer->fieldPointer(), g.simFlags);
+  log::info("grass simulation: {} solver, pool of {} tiles", g.simulation->onGpu() ? "GPU" : "CPU",
+            g.simFlags.pool);
+}
+
+/** buildSimulation for the panel and the keys: false, with the message shown in the panel, on errors. */
+bool resetSimulation(ViewerGrass& g, const terrain::TerrainScene& scene) {
+  try {
+    buildSimulation(g, scene);
+    g.simError.clear();
+    return true;
+  } catch (const Error& e) {
+    g.simError = e.what();
+    log::error("{}", e.what());
+    return false;
+  }
+}
+
+/**
+ * Builds the field of `g.flags` over `scene` and its renderer; throws, leaving `g` as it was, on errors. A
+ * simulation on the old renderer is rebuilt on the new one, empty (its tiles belong to the old field).
+ */
 void buildGrass(ViewerGrass& g, const terrain::TerrainScene& scene) {
   std::shared_ptr<const grass::GrassField> field = g.flags.buildField(scene);
   auto renderer = std::make_unique<grass::GrassRenderer>(g.shaders, field, g.applied);
@@ -146,9 +192,47 @@ void buildGrass(ViewerGrass& g, const terrain::TerrainScene& scene) {
             field->types().size(), static_cast<long long>(field->layout().tilesX) * field->layout().tilesZ,
             field->layout().tileSize, blades,
             static_cast<double>(grass::patchBytes(field->patch().size(), field->types().size())) / 1e6);
+  const bool simulated = g.simulation != nullptr;
+  g.simulation.reset(); // registered with the old renderer: goes before it
   g.renderer = std::move(renderer);
   g.fieldBlades = blades;
   g.counters.reset();
+  if (simulated) {
+    resetSimulation(g, scene);
+  }
+}
+
+/**
+ * Throws a ball from `camera`: 1 m ahead of the eye (at least resting on the ground when the camera looks
+ * steeply down) at 8 m/s forward and 1 m/s up (0.35 m, 30 kg), making the simulation first if there is none.
+ * Does nothing while grass is off; false then or on errors.
+ */
+bool throwBall(ViewerGrass& g, const terrain::TerrainScene& scene, const render::Camera& camera) {
+  if (g.active() == nullptr || (!g.simulation && !resetSimulation(g, scene))) {
+    return false;
+  }
+  constexpr float kRadius = 0.35f;
+  const glm::vec3 forward = glm::normalize(camera.target - camera.position);
+  glm::vec3 at = camera.position + forward;
+  const float ground = terrain::heightAt(scene.field(), at.x, at.z);
+  if (!std::isnan(ground)) {
+    at.y = std::max(at.y, ground + kRadius);
+  }
+  g.simulation->spawnBall(at, 8.0f * forward + glm::vec3(0.0f, 1.0f, 0.0f), kRadius, 30.0f);
+  return true;
+}
+
+/**
+ * Drops `count` balls (seeded, a new seed each time) on the steepest grassy slope near `camera`, as `sylva
+ * view --physics balls` does at start; makes the simulation first if there is none.
+ */
+bool dropBalls(ViewerGrass& g, const terrain::TerrainScene& scene, const render::Camera& camera, int count) {
+  if (g.active() == nullptr || (!g.simulation && !resetSimulation(g, scene))) {
+    return false;
+  }
+  const glm::vec2 drop = ballDropPoint(scene.field(), g.renderer->field(), camera);
+  g.simulation->spawnBalls(drop, 1.5f, count, g.simFlags.seed + static_cast<std::uint64_t>(++g.drops), 0.5f);
+  return true;
 }
 
 /** Rebuilds with the pending field settings; on an error keeps the old field and shows the message. */
@@ -248,6 +332,9 @@ void grassPanel(ViewerGrass& g, const terrain::TerrainScene& scene) {
     applyGrassField(g, scene);
   }
   ImGui::EndDisabled();
+  if (g.simulation && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("rebuilds the field: the simulation restarts empty (its bodies are removed)");
+  }
   if (edited) {
     ImGui::SameLine();
     if (ImGui::Button("Revert")) {
@@ -278,6 +365,63 @@ void grassPanel(ViewerGrass& g, const terrain::TerrainScene& scene) {
   }
 }
 
+/** Tooltip of the last item, shown even when it is disabled (`text` empty: none). */
+void disabledTooltip(const char* text) {
+  if (text != nullptr && *text != '\0' && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("%s", text);
+  }
+}
+
+/**
+ * The simulation section of the panel: bodies, simulated tiles and blades, refused tiles (pool full), this
+ * frame's steps and the solver; throw a ball, drop ten, or reset to an empty simulation. Needs grass.
+ */
+void simulationPanel(ViewerGrass& g, const terrain::TerrainScene& scene, const render::Camera& camera) {
+  if (!ImGui::CollapsingHeader("Simulation", g.simulation ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+    return;
+  }
+  const bool grassOn = g.active() != nullptr;
+  const char* why = grassOn ? "" : "needs grass: turn it on in the Grass section";
+  if (g.simulation) {
+    const grass::SimStats& s = g.simulation->stats();
+    ImGui::Text("bodies            %zu", g.simulation->bodies());
+    ImGui::Text("active tiles      %zu / %d", s.activeTiles, g.simFlags.pool);
+    ImGui::Text("simulated blades  %zu", s.simulatedBlades);
+    if (s.refusedTiles > 0) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+    }
+    ImGui::Text("refused tiles     %zu", s.refusedTiles);
+    if (s.refusedTiles > 0) {
+      ImGui::PopStyleColor();
+      disabledTooltip("tiles near a body found the pool full (--grass-pool): their blades ignore the bodies");
+    }
+    ImGui::Text("steps this frame  %d", s.steps);
+    ImGui::Text("solver            %s", g.simulation->onGpu() ? "GPU (compute shader)" : "CPU (reference)");
+    ImGui::Text("time              %.2f s", g.simTime);
+  } else {
+    ImGui::TextUnformatted("no bodies yet (B or the buttons below start the simulation)");
+    ImGui::Text("solver            %s",
+                g.simFlags.solver == "gpu" ? "GPU (compute shader)" : "CPU (reference)");
+  }
+  ImGui::BeginDisabled(!grassOn);
+  if (ImGui::Button("Throw ball (B)")) {
+    throwBall(g, scene, camera);
+  }
+  disabledTooltip(grassOn ? "a 0.35 m, 30 kg ball from the camera, 8 m/s forward" : why);
+  ImGui::SameLine();
+  if (ImGui::Button("Drop 10 balls")) {
+    dropBalls(g, scene, camera, 10);
+  }
+  disabledTooltip(grassOn ? "on the steepest grassy slope within 40 m of the camera" : why);
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) {
+    resetSimulation(g, scene);
+  }
+  disabledTooltip(grassOn ? "removes every body and restarts the simulation" : why);
+  ImGui::EndDisabled();
+  errorText(g.simError);
+}
+
 void runViewer(const ViewOptions& o) {
   platform::GlfwWindow window(o.width, o.height, "Sylva viewer");
   window.setVsync(o.frames == 0);
@@ -303,10 +447,21 @@ void runViewer(const ViewOptions& o) {
     grass.cull = grass.applied = o.grass.cullSettings();
     grass.pending = o.grass.field;
     grass.view = static_cast<int>(o.grass.grassView());
+    grass.simFlags = o.simulation;
     if (grass.enabled) {
       buildGrass(grass, *v.terrain);
       if (o.camera.cameraPos.empty()) {
         start = grassCamera(*v.terrain, grass.renderer->field(), start.fovY, o.grass.windDirection);
+      }
+      if (o.simulation.enabled()) {
+        // As `sylva render --physics balls`: balls dropped on a slope near the grass camera, watched from
+        // downhill unless --camera-pos says where to look from.
+        buildSimulation(grass, *v.terrain);
+        const glm::vec2 drop = ballDropPoint(v.terrain->field(), grass.renderer->field(), start);
+        grass.simulation->spawnBalls(drop, 1.5f, o.simulation.balls, o.simulation.seed, 0.5f);
+        if (o.camera.cameraPos.empty()) {
+          start = ballCamera(*v.terrain, drop, start.fovY);
+        }
       }
     }
     v.draw = v.terrain->drawOptions(start, o.camera.fog);
@@ -327,7 +482,10 @@ void runViewer(const ViewOptions& o) {
   fly.speed = std::max(10.0f, 0.05f * orbit.distance);
   bool flyMode = false;
   bool paused = false;
-  std::string status = "F5: reload shaders  F: fly/orbit  G: walk  Tab: hide panel";
+  std::string status = v.terrain
+                           ? "F5: reload shaders  F: fly/orbit  G: walk  B: throw a ball  Tab: hide panel"
+                           : "F5: reload shaders  F: fly/orbit  Tab: hide panel";
+  bool throwRequested = false;
   bool showUi = !o.noUi;
   render::GpuTimers timers;
   render::FrameClock clock(o.fixedStep);
@@ -343,6 +501,9 @@ void runViewer(const ViewOptions& o) {
         v.terrain->renderer().reloadShaders(disk);
         if (grass.renderer) {
           grass.renderer->reloadShaders(disk);
+        }
+        if (grass.simulation) {
+          grass.simulation->reloadShaders(disk);
         }
         grass.shaders = disk; // fields built from now on use the edited shaders too
       } else {
@@ -365,6 +526,8 @@ void runViewer(const ViewOptions& o) {
     } else if (key == GLFW_KEY_G) {
       v.walk = !v.walk;
       flyMode = flyMode || v.walk;
+    } else if (key == GLFW_KEY_B) {
+      throwRequested = v.terrain != nullptr; // thrown once the frame's camera is known
     } else if (key == GLFW_KEY_TAB) {
       showUi = !showUi;
     } else if (key == GLFW_KEY_ESCAPE) {
@@ -435,6 +598,22 @@ void runViewer(const ViewOptions& o) {
       camera.farPlane = start.farPlane;
     }
     timers.beginFrame();
+    if (v.terrain) {
+      if (throwRequested) {
+        throwBall(grass, *v.terrain, camera); // nothing while grass is off
+        throwRequested = false;
+      }
+      if (grass.simulation && grass.active() != nullptr) {
+        // Simulation time follows the frames (the fixed step when scripted, so screenshots repeat) and stops
+        // with the pause; a long real-time hitch counts as 0.1 s so Bullet does not catch up all at once.
+        if (!paused) {
+          grass.simTime += clock.fixed() ? dt : std::min(dt, 0.1);
+        }
+        timers.begin("grass sim");
+        grass.simulation->advance(grass.simTime, grass.flags.wind());
+        timers.end();
+      }
+    }
     gl::bindDefaultFramebuffer(size.x, size.y);
     glEnable(GL_DEPTH_TEST);
     const glm::vec3 sky = v.terrain ? v.draw.environment.fogColor : glm::vec3(0.62f, 0.72f, 0.85f);
@@ -443,6 +622,11 @@ void runViewer(const ViewOptions& o) {
     if (v.terrain) {
       drawTerrainWithGrass(*v.terrain, grass.active(), camera, size.x, size.y, sceneTime, v.draw,
                            grass.drawOptions(), &timers);
+      if (grass.simulation && grass.active() != nullptr) {
+        timers.begin("bodies");
+        grass.simulation->drawBodies(camera, size.x, size.y, sceneTime, v.draw.environment);
+        timers.end();
+      }
       if (showUi && grass.active() != nullptr) {
         grass.counters = grass.active()->readCounters();
       }
@@ -476,6 +660,7 @@ void runViewer(const ViewOptions& o) {
       if (v.terrain) {
         terrainPanel(v, camera, aspect);
         grassPanel(grass, *v.terrain);
+        simulationPanel(grass, *v.terrain, camera);
       } else {
         ImGui::Checkbox("wireframe", &v.draw.wireframe);
       }
@@ -506,7 +691,7 @@ void runViewer(const ViewOptions& o) {
 void registerView(CLI::App& app) {
   auto* command = app.add_subcommand("view", "Open the interactive viewer (orbit: drag/right-drag/wheel; F: "
                                              "fly with WASD/QE; G: walk on the ground; "
-                                             "F5: reload shaders)");
+                                             "B: throw a ball into the grass; F5: reload shaders)");
   auto o = std::make_shared<ViewOptions>();
   command->add_option("--scene", o->scene, "terrain, or demo (the small built-in pipeline test scene)")
       ->check(CLI::IsMember({"terrain", "demo"}))
@@ -514,6 +699,7 @@ void registerView(CLI::App& app) {
   o->terrain.add(*command);
   o->camera.add(*command);
   o->grass.add(*command);
+  o->simulation.add(*command);
   command->add_option("--width", o->width, "Window width")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
@@ -533,6 +719,12 @@ void registerView(CLI::App& app) {
     if (o->grass.enabled && o->scene != "terrain") {
       fail("--grass: grass grows on a terrain (--scene terrain), not on the {} scene", o->scene);
     }
+    if (o->simulation.enabled() && !o->grass.enabled) {
+      fail("--physics: needs --grass (the bodies move through the grass field)");
+    }
+    // Checked even without --physics: B and the panel start a simulation with these settings.
+    (void)o->simulation.solverSettings();
+    (void)o->simulation.poolSettings();
     runViewer(*o);
   });
 }

@@ -506,8 +506,8 @@ std::string expand(std::string text, const fs::path& in, const fs::path& out) {
   return text;
 }
 
-// `sylva view --grass`: bad grass options fail with one line naming the option before any window opens (so
-// these need no display; the viewer itself is tested under xvfb in RenderCliTests.cpp).
+// `sylva view --grass`: bad grass and simulation options fail with one line naming the option before any
+// window opens (so these need no display; the viewer itself is tested under xvfb in RenderCliTests.cpp).
 TEST(CliView, BadGrassOptionsFailBeforeOpeningAWindow) {
   const test::TempDir dir;
   struct Case {
@@ -518,7 +518,8 @@ TEST(CliView, BadGrassOptionsFailBeforeOpeningAWindow) {
        {Case{"--grass --scene demo", "--grass"}, Case{"--grass --grass-lod 40,10", "--grass-lod"},
         Case{"--grass-lod 1,x", "--grass-lod"},
         Case{"--grass --grass-blades 64 --grass-per-tile 128", "--grass-per-tile"},
-        Case{"--grass --grass-density 2", "--grass-density"}}) {
+        Case{"--grass --grass-density 2", "--grass-density"}, Case{"--physics balls", "--physics"},
+        Case{"--grass --physics balls --balls 0", "--balls"}}) {
     const RunResult r = runSylva(dir, "view --frames 1 " + c.args);
     EXPECT_EQ(r.status, 2) << c.args << ": " << r.err;
     EXPECT_EQ(lineCount(r.err), 1u) << c.args << ": " << r.err;

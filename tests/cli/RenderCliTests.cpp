@@ -194,13 +194,23 @@ TEST(CliRender, BadCameraOptionsAndLimitsFailBeforeWork) {
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
 }
 
+/** Whether a window can open: false (the test skips) without a display, unless SYLVA_REQUIRE_DISPLAY=1. */
+bool haveDisplay() {
+  return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr;
+}
+
+/** SYLVA_REQUIRE_DISPLAY=1: a missing display fails the view tests instead of skipping them (CI). */
+bool displayRequired() {
+  const char* required = std::getenv("SYLVA_REQUIRE_DISPLAY");
+  return required != nullptr && std::string(required) == "1";
+}
+
 // `sylva view --grass` in its scripted mode: the viewer builds the field, starts at the ground-level grass
 // camera and draws blades (with the grass panel open) until the screenshot. Needs a window: skipped without a
 // display unless SYLVA_REQUIRE_DISPLAY=1 (CI runs it under xvfb-run).
 TEST(CliView, GrassScreenshotShowsBlades) {
-  if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr) {
-    if (const char* required = std::getenv("SYLVA_REQUIRE_DISPLAY");
-        required != nullptr && std::string(required) == "1") {
+  if (!haveDisplay()) {
+    if (displayRequired()) {
       FAIL() << "no display and SYLVA_REQUIRE_DISPLAY=1 (run under xvfb-run)";
     }
     GTEST_SKIP() << "no display (set DISPLAY or run under xvfb-run); view --grass test skipped";
@@ -234,6 +244,55 @@ TEST(CliView, GrassScreenshotShowsBlades) {
     }
   }
   EXPECT_GT(static_cast<double>(green) / static_cast<double>(total), 0.6) << green << " of " << total;
+}
+
+/**
+ * Pixels of the balls' red checker squares (linear (0.75, 0.12, 0.08), strongly red in the sRGB screenshot):
+ * nothing else in the viewer (terrain, grass, sky, the ImGui panel) is this red.
+ */
+std::size_t ballPixels(const Image& image) {
+  std::size_t count = 0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      count += image.get(x, y, 0) > 0.5f && image.get(x, y, 1) < 0.3f && image.get(x, y, 2) < 0.3f ? 1 : 0;
+    }
+  }
+  return count;
+}
+
+// `sylva view --grass --physics balls` in its scripted mode: the viewer drops the balls as `sylva render`
+// does, starts at the camera watching them, steps the simulation with the fixed step and draws them; without
+// --physics no ball is drawn (the check can fail). --no-ui: at 640 px the panel covers the balls (they roll
+// past left of the centre) and its translucency greys them. Needs a display, like the test above.
+TEST(CliView, PhysicsBallsShowInTheViewer) {
+  if (!haveDisplay()) {
+    if (displayRequired()) {
+      FAIL() << "no display and SYLVA_REQUIRE_DISPLAY=1 (run under xvfb-run)";
+    }
+    GTEST_SKIP() << "no display (set DISPLAY or run under xvfb-run); view --physics test skipped";
+  }
+  const test::TempDir dir;
+  const auto shoot = [&](const std::string& extra, const std::string& name) {
+    const fs::path shot = dir / name;
+    const test::RunResult r =
+        runSylva(dir, "view --grass --no-ui " + extra +
+                          " --size 129 --spacing 4 --width 640 --height 360 --frames 40 --fixed-step 0.05 "
+                          "--screenshot " +
+                          quote(shot.string()));
+    EXPECT_EQ(r.status, 0) << extra << "\n" << r.err;
+    if (r.status != 0 || !fs::exists(shot)) {
+      ADD_FAILURE() << extra << ": no screenshot";
+      return Image(1, 1, 3, PixelType::F32);
+    }
+    if (const char* dump = std::getenv("SYLVA_DUMP"); dump != nullptr) {
+      fs::copy_file(shot, fs::path(dump) / ("view-" + name), fs::copy_options::overwrite_existing);
+    }
+    return loadImage(shot);
+  };
+  const std::size_t balls = ballPixels(shoot("--physics balls --balls 4", "balls.png"));
+  EXPECT_GT(balls, 30u) << "the balls' red checker squares";
+  const std::size_t none = ballPixels(shoot("", "none.png"));
+  EXPECT_EQ(none, 0u) << "no balls without --physics";
 }
 
 } // namespace
