@@ -18,16 +18,16 @@ constexpr float kContactDepth = 0.01f;
 // Quaternions as vec4 (xyz, w), with the operations of shaders/grass/simulate.glsl, in the same order.
 using Quat = glm::vec4;
 
-glm::vec3 qrotate(const Quat& q, const glm::vec3& v) {
+[[gnu::always_inline]] inline glm::vec3 qrotate(const Quat& q, const glm::vec3& v) {
   const glm::vec3 u(q);
   return v + 2.0f * glm::cross(u, glm::cross(u, v) + q.w * v);
 }
 
-Quat qconj(const Quat& q) {
+[[gnu::always_inline]] inline Quat qconj(const Quat& q) {
   return {-q.x, -q.y, -q.z, q.w};
 }
 
-Quat qmul(const Quat& a, const Quat& b) {
+[[gnu::always_inline]] inline Quat qmul(const Quat& a, const Quat& b) {
   const glm::vec3 av(a);
   const glm::vec3 bv(b);
   const glm::vec3 v = a.w * bv + b.w * av + glm::cross(av, bv);
@@ -35,7 +35,7 @@ Quat qmul(const Quat& a, const Quat& b) {
 }
 
 /** The shortest rotation taking +X to the unit vector `to`. */
-Quat fromX(const glm::vec3& to) {
+[[gnu::always_inline]] inline Quat fromX(const glm::vec3& to) {
   const float d = to.x;
   if (d < -0.99999f) {
     return {0.0f, 0.0f, 1.0f, 0.0f}; // half a turn about +Z
@@ -44,7 +44,7 @@ Quat fromX(const glm::vec3& to) {
   return q / glm::length(q);
 }
 
-glm::vec3 safeNormalize(const glm::vec3& v) {
+[[gnu::always_inline]] inline glm::vec3 safeNormalize(const glm::vec3& v) {
   const float l = glm::length(v);
   return l > 1e-12f ? v / l : glm::vec3(1.0f, 0.0f, 0.0f);
 }
