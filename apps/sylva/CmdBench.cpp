@@ -597,6 +597,17 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
 }
 #endif
 
+/** The paper's field: 16,384-blade patch, 64 blades per 2 m tile, full density everywhere. */
+grass::FieldSettings paperFieldSettings() {
+  grass::FieldSettings fs;
+  fs.patch.blades = 16384;
+  fs.bladesPerTile = 64;
+  fs.density.noiseFrequency = 0.0f;
+  fs.density.coverage = 1.0f;
+  fs.density.maxSlopeDegrees = 90.0f;
+  return fs;
+}
+
 /** Fraction of pixels whose colour changes by more than `threshold` (0..1) in any channel between a and b. */
 double changedFraction(const Image& a, const Image& b, float threshold) {
   std::size_t changed = 0;
@@ -632,12 +643,7 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   quadtree.rootSize = 128.0f;
   quadtree.maxDepth = 4;
   terrain::TerrainScene paperScene(library, terrain::generate(spec, 0.0, 0.0, 69, 879, 1.0f), quadtree);
-  grass::FieldSettings fs;
-  fs.patch.blades = 16384;
-  fs.bladesPerTile = 64;
-  fs.density.noiseFrequency = 0.0f;
-  fs.density.coverage = 1.0f;
-  fs.density.maxSlopeDegrees = 90.0f;
+  const grass::FieldSettings fs = paperFieldSettings();
   auto paperField =
       std::make_shared<grass::GrassField>(paperScene.field(), grass::proceduralBladeTypes(), fs);
   grass::CullSettings all;
@@ -796,12 +802,7 @@ void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nl
   terrain::ProceduralSpec spec = terrain::TerrainSource::defaultProcedural();
   spec.heightScale = 4.0f;
   spec.frequency = 1.0f / 120.0f;
-  grass::FieldSettings fs;
-  fs.patch.blades = 16384;
-  fs.bladesPerTile = 64;
-  fs.density.noiseFrequency = 0.0f;
-  fs.density.coverage = 1.0f;
-  fs.density.maxSlopeDegrees = 90.0f;
+  const grass::FieldSettings fs = paperFieldSettings();
   // 96 x 96 tiles of 2 m: room for the 7,813 tiles of the GPU workload.
   auto field = std::make_shared<grass::GrassField>(terrain::generate(spec, 0.0, 0.0, 193, 193, 1.0f),
                                                    grass::proceduralBladeTypes(), fs);

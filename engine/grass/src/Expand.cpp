@@ -29,11 +29,20 @@ float bendAngle(float windSpeed, float stiffness) {
 namespace {
 
 /** The bent knot line: centres (world) and each knot's bend angle, as expandBlade and the shaders walk it. */
+/** A blade's turn about the vertical (its rotation), blade space → world directions. */
+struct Turn {
+  float c = 1.0f;
+  float s = 0.0f;
+  explicit Turn(float angle) : c(std::cos(angle)), s(std::sin(angle)) {}
+  glm::vec3 operator()(const glm::vec3& v) const { return {c * v.x + s * v.z, v.y, -s * v.x + c * v.z}; }
+};
+
 struct CentreLine {
   std::array<glm::vec3, SYLVA_GRASS_LOD0_KNOTS> centre{};
   std::array<float, SYLVA_GRASS_LOD0_KNOTS> angle{};
   glm::vec3 axis{1.0f, 0.0f, 0.0f};
   float total = 1.0f;
+  Turn turn{0.0f};
 };
 
 CentreLine walkBlade(const BladeType& type, int lod, const gpu::GrassBlade& blade, const glm::vec3& root,
@@ -44,15 +53,14 @@ CentreLine walkBlade(const BladeType& type, int lod, const gpu::GrassBlade& blad
   const BladeShapeLod& shape = type.lods[static_cast<std::size_t>(lod)];
   const std::size_t n = shape.knots.size();
   const float scale = blade.placement.w;
-  const float cy = std::cos(blade.placement.z);
-  const float sy = std::sin(blade.placement.z);
-  auto turn = [&](const glm::vec3& v) { return glm::vec3(cy * v.x + sy * v.z, v.y, -sy * v.x + cy * v.z); };
+  CentreLine line;
+  line.turn = Turn(blade.placement.z);
+  const Turn& turn = line.turn;
   const float speed = glm::length(windVelocity);
   const float theta = bendAngle(speed, type.stiffness);
   // Downwind bend: about the horizontal axis across the wind (up × wind), so tips lean downwind.
   const glm::vec3 downwind =
       speed > 1e-6f ? glm::vec3(windVelocity.x, 0.0f, windVelocity.y) / speed : glm::vec3(0.0f);
-  CentreLine line;
   line.axis = speed > 1e-6f ? glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), downwind))
                             : glm::vec3(1.0f, 0.0f, 0.0f);
   float total = 0.0f;
@@ -93,9 +101,7 @@ std::vector<BladeVertex> expandBlade(const BladeType& type, int lod, const gpu::
   const BladeShapeLod& shape = type.lods[static_cast<std::size_t>(lod)];
   const std::size_t n = shape.knots.size();
   const float scale = blade.placement.w;
-  const float cy = std::cos(blade.placement.z);
-  const float sy = std::sin(blade.placement.z);
-  auto turn = [&](const glm::vec3& v) { return glm::vec3(cy * v.x + sy * v.z, v.y, -sy * v.x + cy * v.z); };
+  const Turn& turn = line.turn;
   const auto& centre = line.centre;
   std::vector<BladeVertex> out;
   out.reserve(2 * n);
