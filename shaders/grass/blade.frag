@@ -12,6 +12,7 @@ in float vSide;
 flat in vec3 vColour;
 flat in uint vInfo;
 flat in uvec2 vTile;
+flat in float vSimulated;
 
 layout(location = 0) out vec4 outColor;
 
@@ -37,6 +38,8 @@ void main() {
   if (view == 2u) {
     uint h = lowbias32(vTile.x * 7919u + vTile.y * 104729u);
     vec3 c = vec3(float(h & 0xffu), float((h >> 8) & 0xffu), float((h >> 16) & 0xffu)) / 255.0;
+    // Simulated tiles in white, turning back to their colour over the release ramp.
+    c = vSimulated >= 0.0 ? mix(vec3(1.0), c, vSimulated) : c * 0.6;
     outColor = vec4(toSrgb(c * (0.4 + 0.6 * vAlong)), 1.0);
     return;
   }

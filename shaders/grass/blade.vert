@@ -16,6 +16,7 @@ out float vSide;
 flat out vec3 vColour;
 flat out uint vInfo;
 flat out uvec2 vTile;
+flat out float vSimulated; // -1: procedural; else the release ramp 0..1 of a simulated blade
 
 #ifdef SYLVA_GRASS_CAPTURE
 // Parity tests: each vertex as computed (position, along; normal, side), instance-major.
@@ -142,5 +143,6 @@ void main() {
   vSide = sideSign;
   vInfo = info;
   vTile = uvec2(floor((root.xz - grass.field.xy) / grass.orient.w));
+  vSimulated = simulated ? uintBitsToFloat(aInstance.w) : -1.0;
   gl_Position = frame.viewProj * vec4(position, 1.0);
 }

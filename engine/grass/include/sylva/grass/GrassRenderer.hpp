@@ -35,7 +35,8 @@ enum class GrassView : int {
   Shaded = 0,
   /** Level of detail: red 16 knots, green 8, blue 4; cross-fading instances mixed. */
   LodColours = 1,
-  /** A colour per tile, to see the tiles and their ranges. */
+  /** A colour per tile, to see the tiles and their ranges; simulated tiles white (fading back as they are
+   * released). */
   Tiles = 2,
 };
 
