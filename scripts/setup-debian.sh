@@ -15,6 +15,8 @@ packages=(
   libfreenect-dev libfreenect-bin
   # grass simulation: rigid bodies and the terrain collider (Bullet)
   libbullet-dev
+  # trees: artist-made pieces (glTF, OBJ, Collada) through Assimp
+  libassimp-dev
   # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests

@@ -1,0 +1,41 @@
+#pragma once
+// The built-in piece set (docs/trees.md): the paper's I (narrowing cylinder) and Y (symmetric fork), the
+// trifurcation Ψ and the branch–stem attachment ⊢ it names but does not show, a cap closing a branch tip and a
+// foot closing the trunk's base, all generated in code as quad meshes that satisfy validatePiece().
+
+#include <sylva/trees/Piece.hpp>
+
+#include <string>
+#include <vector>
+
+namespace sylva::trees {
+
+/** The narrowing cylinder: root rim, two inner rings, one leaf rim scaled by 1 − 3·tan β (length 3). */
+Piece makeI();
+/** The symmetric fork with co-dominant stems: two leaf rims tilted ±32° about z, scaled 0.78. */
+Piece makeY();
+/** The trifurcation (a 3D Ψ): three leaf rims, 120° apart around the axis, tilted 38°. */
+Piece makePsi();
+/** The branch–stem attachment ⊢: the stem continues (scale 0.9) and a side branch leaves at 58° (scale 0.5). */
+Piece makeBranch();
+/** A branch tip: the root rim closed by a short dome (no leaf rims). Bears foliage. */
+Piece makeCap();
+/** The trunk's base: a flared foot closed at the bottom with one leaf rim on top (the tree's root piece). */
+Piece makeFoot();
+
+/** A set of pieces addressed by index; assembly refers to pieces by name through find(). */
+struct PieceSet {
+  std::vector<Piece> pieces;
+
+  /** Index of the piece called `name`, or -1. */
+  int find(const std::string& name) const;
+  /** Index of `name`; throws sylva::Error "<where>: unknown piece '<name>' (known: …)". */
+  int require(const std::string& name, const std::string& where) const;
+  const Piece& operator[](std::size_t i) const { return pieces[i]; }
+  std::size_t size() const { return pieces.size(); }
+};
+
+/** I, Y, Psi, Branch, Cap, Foot in that order (each validated). */
+PieceSet standardPieces();
+
+} // namespace sylva::trees

@@ -1,0 +1,93 @@
+#pragma once
+// Species (docs/trees.md): the assembly rule and its parameters per branching order. The paper's two rules
+// (alternate I and Y; choose uniformly at random) and a seeded stochastic grammar whose probabilities, branch
+// lengths and bends are set per order, with presets after published parameter tables (Weber & Penn 1995).
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sylva::trees {
+
+/** How pieces are chosen at each open leaf rim. */
+enum class AssemblyRule {
+  /** The paper's first rule: Y and I alternate with depth. */
+  Alternate,
+  /** The paper's second rule: I or Y with equal probability. */
+  UniformRandom,
+  /** The stochastic grammar: per-order probabilities, segment counts and bends. */
+  Grammar,
+};
+
+/** Grammar parameters of one branching order (0: the trunk). Probabilities are per open rim. */
+struct OrderParams {
+  /** I pieces an axis of this order has before it may split, and after which it must split or end. */
+  int minSegments = 2;
+  int maxSegments = 5;
+  /** Probabilities of a split once allowed: symmetric fork Y, trifurcation Psi, side branch ⊢ (stem goes on). */
+  float fork = 0.3f;
+  float trifurcation = 0.0f;
+  float sideBranch = 0.3f;
+  /** Fork asymmetry: one child's bone scale is 1 − asymmetry, the other's 1 (0: symmetric). */
+  float asymmetry = 0.0f;
+  /** Random pose: bend amplitude per joint, radians (paper Fig. 6). */
+  float bend = 0.1f;
+  /** Systematic droop towards the ground per joint, radians (weeping forms), applied along the bone's tilt. */
+  float droop = 0.0f;
+};
+
+/** A species: rule, limits, per-order grammar, size and colours. */
+struct Species {
+  std::string name = "almond";
+  AssemblyRule rule = AssemblyRule::Grammar;
+  /** Deepest branching order; axes of this order end in caps. */
+  int maxOrder = 4;
+  /** Depth limit (pieces from the root) for the alternate and uniform rules, and a hard cap for all. */
+  int maxDepth = 12;
+  /** At most this many pieces per tree (a recursion limit; open rims beyond it are capped). */
+  int maxPieces = 4000;
+  /** Rims narrower than this many trunk radii end in a cap. */
+  float minRadius = 0.05f;
+  /** Trunk radius at the base, metres (the piece unit). */
+  float trunkRadius = 0.18f;
+  /** Random scale per tree, ± fraction. */
+  float sizeVariation = 0.15f;
+  std::vector<OrderParams> orders{OrderParams{}};
+  glm::vec3 barkColour{0.33f, 0.25f, 0.19f};
+  glm::vec3 leafColour{0.22f, 0.42f, 0.14f};
+  /** Wind: Young's modulus of the wood, Pa; wood density kg/m³; damping ratio. */
+  float youngModulus = 9e9f;
+  float woodDensity = 700.0f;
+  float damping = 0.1f;
+
+  /** Parameters of order `o` (the last entry for deeper orders). */
+  const OrderParams& order(int o) const;
+};
+
+/**
+ * Throws sylva::Error "<where>.<field>: <reason>" for any value out of range: probabilities outside [0, 1] or
+ * summing over 1, segment counts min > max or negative, maxOrder/maxDepth/maxPieces outside their limits
+ * (≤ 16, ≤ 64, ≤ 200,000), non-finite numbers.
+ */
+void validate(const Species& species, const std::string& where);
+
+/** Names of the built-in presets (almond, quaking-aspen, black-tupelo, weeping-willow, …). */
+std::vector<std::string> speciesPresetNames();
+/** A built-in preset; throws sylva::Error "unknown species '<name>' (known: …)". */
+Species speciesPreset(const std::string& name);
+/** A preset name or a species JSON file path (anything with a '/' or ending in .json). */
+Species resolveSpecies(const std::string& nameOrPath);
+
+/** Species JSON (version 1); strict: unknown fields and bad values name the file and field. */
+nlohmann::json toJson(const Species& species);
+Species speciesFromJson(const nlohmann::json& json, const std::string& where);
+Species loadSpecies(const std::filesystem::path& path);
+
+const char* ruleName(AssemblyRule rule);
+
+} // namespace sylva::trees

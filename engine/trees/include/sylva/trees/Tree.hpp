@@ -1,0 +1,99 @@
+#pragma once
+// Assembly (docs/trees.md, seed 000 §4.2–4.3): a tree is a list of piece nodes, each sitting on a leaf rim of
+// its parent under one of the six rim rotations. Joints: joint 0 is the tree's base; every node's root joint
+// IS its parent's terminal joint for that rim (rigid attachment), and its own terminal joints are numbered
+// from jointBase. Topological transforms compose building transforms from the root down.
+
+#include <sylva/trees/Pieces.hpp>
+#include <sylva/trees/Species.hpp>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sylva::trees {
+
+/** One placed piece. Nodes are stored parents first. */
+struct TreeNode {
+  /** Index into the PieceSet. */
+  int piece = 0;
+  /** Parent node, -1 for the root. */
+  int parent = -1;
+  /** The parent's leaf rim this node's root rim sits on (1 … parent's leaf rims); 0 for the root. */
+  int parentRim = 0;
+  /** Rotation of this piece about its root rim axis, in 60° steps (0 … 5). */
+  int rotation = 0;
+  /** Branching order (0: trunk) and depth (pieces from the root). */
+  int order = 0;
+  int depth = 0;
+  /** Global index of its root joint (the parent's terminal joint; 0 for the root node). */
+  std::uint32_t rootJoint = 0;
+  /** Global index of its first terminal joint (leaf rim 1); terminal of leaf rim r is jointBase + r − 1. */
+  std::uint32_t jointBase = 0;
+};
+
+/** A tree's topology and rest parameters (no placement). */
+struct TreeTopology {
+  std::vector<TreeNode> nodes;
+  /** Per global joint: parent joint (-1 for the base), the node whose terminal joint it is (-1 for the base). */
+  std::vector<int> jointParent;
+  std::vector<int> jointNode;
+  /** Per global joint: bone scale (asymmetric forks), 1 by default. */
+  std::vector<float> jointScale;
+  /** Per global joint: branching order of the piece it ends (trunk 0). */
+  std::vector<int> jointOrder;
+  std::string species;
+  std::uint64_t seed = 0;
+
+  std::size_t jointCount() const { return jointParent.size(); }
+  /** Terminal joint of `node`'s leaf rim `rim` (1-based). */
+  std::uint32_t terminalJoint(std::size_t node, int rim) const { return nodes[node].jointBase + rim - 1; }
+};
+
+/**
+ * Generates a tree of `species` from `seed` (deterministic; the same inputs give the same tree on every
+ * platform). The root is the Foot; every open rim is filled by the rule and closed by a Cap at the limits.
+ */
+TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::uint64_t seed);
+
+/** Rebuilds jointParent/jointNode/jointOrder and the nodes' joint indices from pieces and parents. */
+void indexJoints(const PieceSet& pieces, TreeTopology& tree);
+
+/**
+ * Checks a topology against `pieces`: parents before children, rims in range and each used once, rotations
+ * 0 … 5, depth ≤ 64, no open leaf rim, finite positive scales. Throws sylva::Error "<where>: nodes[i].<field>:
+ * <reason>".
+ */
+void validate(const TreeTopology& tree, const PieceSet& pieces, const std::string& where);
+
+/**
+ * Topological transforms (piece model space → tree space, rest pose, bone scales applied): one per node.
+ * transform[root] = identity; a child's = parent's · joint bind of its rim · scale · rimRotation(rotation).
+ */
+std::vector<glm::mat4> topologicalTransforms(const PieceSet& pieces, const TreeTopology& tree);
+
+/** Counts for `sylva tree info` and benchmarks. */
+struct TreeStats {
+  std::size_t pieces = 0;
+  std::vector<std::size_t> piecesByType;
+  std::size_t joints = 0;
+  std::size_t quads = 0;
+  int maxDepth = 0;
+  int maxOrder = 0;
+  /** Height of the rest pose, trunk-radius units, and tree-space bounds. */
+  float height = 0.0f;
+};
+TreeStats treeStats(const PieceSet& pieces, const TreeTopology& tree);
+
+/** Tree JSON (version 1): species, seed and nodes by piece name; strict loading with errors naming the field. */
+nlohmann::json toJson(const TreeTopology& tree, const PieceSet& pieces);
+TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, const std::string& where);
+TreeTopology loadTree(const std::filesystem::path& path, const PieceSet& pieces);
+void saveTree(const std::filesystem::path& path, const TreeTopology& tree, const PieceSet& pieces);
+
+} // namespace sylva::trees

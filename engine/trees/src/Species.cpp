@@ -1,0 +1,356 @@
+#include <sylva/trees/Species.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/JsonNode.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace sylva::trees {
+namespace {
+
+OrderParams order(int minSegments, int maxSegments, float fork, float trifurcation, float sideBranch,
+                  float asymmetry, float bend, float droop) {
+  return OrderParams{minSegments, maxSegments, fork, trifurcation, sideBranch, asymmetry, bend, droop};
+}
+
+Species base(const std::string& name) {
+  Species s;
+  s.name = name;
+  return s;
+}
+
+// Presets. The paper's almond (co-dominant Y forks) and its two rules; the others follow the shapes of
+// Weber & Penn's published tables (1995, Table 1 and their examples): excurrent trunks with many side branches
+// (aspen, tupelo, poplar, larch, birch), decurrent crowns that fork (oak, sassafras, apple), hanging twigs
+// (willow, by droop). Their per-level counts and angles map onto our pieces as segment counts, split
+// probabilities and bends.
+const std::map<std::string, std::function<Species()>>& presets() {
+  static const std::map<std::string, std::function<Species()>> table{
+      {"almond",
+       [] {
+         Species s = base("almond");
+         s.maxOrder = 4;
+         s.trunkRadius = 0.16f;
+         s.orders = {order(2, 3, 0.85f, 0.05f, 0.0f, 0.1f, 0.12f, 0.0f),
+                     order(1, 2, 0.8f, 0.0f, 0.1f, 0.15f, 0.15f, 0.02f),
+                     order(1, 2, 0.7f, 0.0f, 0.2f, 0.2f, 0.18f, 0.04f)};
+         s.leafColour = {0.27f, 0.45f, 0.16f};
+         return s;
+       }},
+      {"paper-alternate",
+       [] {
+         Species s = base("paper-alternate");
+         s.rule = AssemblyRule::Alternate;
+         s.maxDepth = 9;
+         s.orders = {order(1, 1, 0, 0, 0, 0, 0.1f, 0)};
+         return s;
+       }},
+      {"paper-random",
+       [] {
+         Species s = base("paper-random");
+         s.rule = AssemblyRule::UniformRandom;
+         s.maxDepth = 9;
+         s.orders = {order(1, 1, 0, 0, 0, 0, 0.1f, 0)};
+         return s;
+       }},
+      {"quaking-aspen",
+       [] {
+         Species s = base("quaking-aspen");
+         s.maxOrder = 3;
+         s.trunkRadius = 0.14f;
+         s.orders = {order(4, 9, 0.05f, 0.0f, 0.75f, 0.0f, 0.05f, 0.0f),
+                     order(1, 3, 0.35f, 0.0f, 0.45f, 0.2f, 0.15f, 0.05f),
+                     order(1, 2, 0.5f, 0.0f, 0.3f, 0.2f, 0.2f, 0.05f)};
+         s.barkColour = {0.62f, 0.6f, 0.52f};
+         s.leafColour = {0.38f, 0.52f, 0.17f};
+         return s;
+       }},
+      {"black-tupelo",
+       [] {
+         Species s = base("black-tupelo");
+         s.maxOrder = 3;
+         s.trunkRadius = 0.2f;
+         s.orders = {order(3, 8, 0.05f, 0.0f, 0.7f, 0.0f, 0.05f, 0.0f),
+                     order(1, 3, 0.3f, 0.0f, 0.5f, 0.25f, 0.12f, 0.12f),
+                     order(1, 2, 0.4f, 0.0f, 0.3f, 0.2f, 0.2f, 0.1f)};
+         s.leafColour = {0.2f, 0.38f, 0.12f};
+         return s;
+       }},
+      {"weeping-willow",
+       [] {
+         Species s = base("weeping-willow");
+         s.maxOrder = 4;
+         s.trunkRadius = 0.24f;
+         s.orders = {order(2, 3, 0.7f, 0.1f, 0.1f, 0.1f, 0.08f, 0.0f),
+                     order(1, 2, 0.6f, 0.0f, 0.3f, 0.2f, 0.1f, 0.1f),
+                     order(2, 4, 0.2f, 0.0f, 0.5f, 0.2f, 0.12f, 0.3f),
+                     order(2, 5, 0.1f, 0.0f, 0.4f, 0.2f, 0.1f, 0.35f)};
+         s.barkColour = {0.3f, 0.26f, 0.2f};
+         s.leafColour = {0.45f, 0.55f, 0.2f};
+         s.youngModulus = 6e9f;
+         return s;
+       }},
+      {"california-black-oak",
+       [] {
+         Species s = base("california-black-oak");
+         s.maxOrder = 4;
+         s.trunkRadius = 0.3f;
+         s.orders = {order(1, 3, 0.7f, 0.2f, 0.1f, 0.25f, 0.1f, 0.0f),
+                     order(1, 2, 0.5f, 0.1f, 0.3f, 0.3f, 0.25f, 0.08f),
+                     order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.3f, 0.08f)};
+         s.barkColour = {0.22f, 0.2f, 0.18f};
+         s.leafColour = {0.2f, 0.33f, 0.12f};
+         s.youngModulus = 11e9f;
+         s.woodDensity = 850.0f;
+         return s;
+       }},
+      {"sassafras",
+       [] {
+         Species s = base("sassafras");
+         s.maxOrder = 3;
+         s.trunkRadius = 0.17f;
+         s.orders = {order(3, 5, 0.3f, 0.2f, 0.4f, 0.1f, 0.08f, 0.0f),
+                     order(1, 3, 0.5f, 0.1f, 0.3f, 0.2f, 0.2f, 0.0f),
+                     order(1, 2, 0.5f, 0.0f, 0.2f, 0.1f, 0.2f, 0.0f)};
+         s.leafColour = {0.3f, 0.48f, 0.16f};
+         return s;
+       }},
+      {"lombardy-poplar",
+       [] {
+         Species s = base("lombardy-poplar");
+         s.maxOrder = 2;
+         s.trunkRadius = 0.2f;
+         s.orders = {order(6, 12, 0.02f, 0.0f, 0.85f, 0.0f, 0.02f, -0.12f),
+                     order(2, 4, 0.2f, 0.0f, 0.4f, 0.1f, 0.05f, -0.25f)};
+         s.leafColour = {0.24f, 0.44f, 0.15f};
+         return s;
+       }},
+      {"european-larch",
+       [] {
+         Species s = base("european-larch");
+         s.maxOrder = 3;
+         s.trunkRadius = 0.18f;
+         s.orders = {order(7, 12, 0.0f, 0.0f, 0.9f, 0.0f, 0.02f, 0.0f),
+                     order(1, 3, 0.1f, 0.0f, 0.6f, 0.1f, 0.08f, 0.15f),
+                     order(1, 2, 0.2f, 0.0f, 0.3f, 0.1f, 0.1f, 0.1f)};
+         s.leafColour = {0.33f, 0.47f, 0.2f};
+         return s;
+       }},
+      {"silver-birch",
+       [] {
+         Species s = base("silver-birch");
+         s.maxOrder = 3;
+         s.trunkRadius = 0.13f;
+         s.orders = {order(4, 8, 0.1f, 0.0f, 0.7f, 0.0f, 0.04f, 0.0f),
+                     order(1, 3, 0.3f, 0.0f, 0.5f, 0.2f, 0.12f, 0.18f),
+                     order(2, 3, 0.2f, 0.0f, 0.5f, 0.2f, 0.12f, 0.25f)};
+         s.barkColour = {0.8f, 0.78f, 0.72f};
+         s.leafColour = {0.35f, 0.5f, 0.18f};
+         return s;
+       }},
+      {"apple",
+       [] {
+         Species s = base("apple");
+         s.maxOrder = 4;
+         s.trunkRadius = 0.15f;
+         s.orders = {order(1, 2, 0.6f, 0.3f, 0.1f, 0.2f, 0.15f, 0.0f),
+                     order(1, 2, 0.5f, 0.1f, 0.3f, 0.3f, 0.25f, 0.1f),
+                     order(1, 2, 0.4f, 0.0f, 0.3f, 0.3f, 0.25f, 0.12f)};
+         s.leafColour = {0.25f, 0.42f, 0.14f};
+         return s;
+       }},
+  };
+  return table;
+}
+
+void check(bool ok, const std::string& where, const char* field, const std::string& reason) {
+  if (!ok) {
+    fail("{}.{}: {}", where, field, reason);
+  }
+}
+
+bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+glm::vec3 colour(const JsonNode& node) {
+  node.arrayOf(3, "r, g, b");
+  return glm::vec3(static_cast<float>(node[std::size_t{0}].number(0, 1)),
+                   static_cast<float>(node[std::size_t{1}].number(0, 1)),
+                   static_cast<float>(node[std::size_t{2}].number(0, 1)));
+}
+
+} // namespace
+
+const OrderParams& Species::order(int o) const {
+  return orders[static_cast<std::size_t>(std::clamp(o, 0, static_cast<int>(orders.size()) - 1))];
+}
+
+const char* ruleName(AssemblyRule rule) {
+  switch (rule) {
+  case AssemblyRule::Alternate:
+    return "alternate";
+  case AssemblyRule::UniformRandom:
+    return "uniform-random";
+  case AssemblyRule::Grammar:
+    return "grammar";
+  }
+  return "grammar";
+}
+
+void validate(const Species& s, const std::string& where) {
+  check(!s.name.empty(), where, "name", "must not be empty");
+  check(s.maxOrder >= 0 && s.maxOrder <= 16, where, "maxOrder", "must be in [0, 16]");
+  check(s.maxDepth >= 1 && s.maxDepth <= 64, where, "maxDepth", "must be in [1, 64]");
+  check(s.maxPieces >= 2 && s.maxPieces <= 200000, where, "maxPieces", "must be in [2, 200000]");
+  check(std::isfinite(s.minRadius) && s.minRadius > 0.0f && s.minRadius < 1.0f, where, "minRadius",
+        "must be in (0, 1)");
+  check(std::isfinite(s.trunkRadius) && s.trunkRadius > 0.001f && s.trunkRadius <= 10.0f, where,
+        "trunkRadius", "must be in (0.001, 10] metres");
+  check(std::isfinite(s.sizeVariation) && s.sizeVariation >= 0.0f && s.sizeVariation < 1.0f, where,
+        "sizeVariation", "must be in [0, 1)");
+  check(!s.orders.empty() && s.orders.size() <= 17, where, "orders", "needs 1 … 17 entries");
+  check(finite3(s.barkColour) && finite3(s.leafColour), where, "colours", "must be finite");
+  check(std::isfinite(s.youngModulus) && s.youngModulus >= 1e6f && s.youngModulus <= 1e12f, where,
+        "youngModulus", "must be in [1e6, 1e12] Pa");
+  check(std::isfinite(s.woodDensity) && s.woodDensity >= 50.0f && s.woodDensity <= 2000.0f, where,
+        "woodDensity", "must be in [50, 2000] kg/m³");
+  check(std::isfinite(s.damping) && s.damping > 0.0f && s.damping <= 1.0f, where, "damping",
+        "must be in (0, 1]");
+  for (std::size_t i = 0; i < s.orders.size(); ++i) {
+    const OrderParams& o = s.orders[i];
+    const std::string w = fmt::format("{}.orders[{}]", where, i);
+    check(o.minSegments >= 0 && o.minSegments <= 64, w, "minSegments", "must be in [0, 64]");
+    check(o.maxSegments >= o.minSegments && o.maxSegments <= 64, w, "maxSegments",
+          "must be in [minSegments, 64]");
+    for (auto [v, name] : {std::pair{o.fork, "fork"}, {o.trifurcation, "trifurcation"},
+                           {o.sideBranch, "sideBranch"}, {o.asymmetry, "asymmetry"}}) {
+      check(std::isfinite(v) && v >= 0.0f && v <= 1.0f, w, name, "must be in [0, 1]");
+    }
+    check(o.fork + o.trifurcation + o.sideBranch <= 1.0f + 1e-5f, w, "fork",
+          "fork + trifurcation + sideBranch must be ≤ 1");
+    check(o.asymmetry < 0.9f, w, "asymmetry", "must be < 0.9");
+    check(std::isfinite(o.bend) && o.bend >= 0.0f && o.bend <= 0.5f, w, "bend", "must be in [0, 0.5] radians");
+    check(std::isfinite(o.droop) && std::abs(o.droop) <= 0.5f, w, "droop", "must be in [-0.5, 0.5] radians");
+  }
+}
+
+std::vector<std::string> speciesPresetNames() {
+  std::vector<std::string> names;
+  for (const auto& [name, make] : presets()) {
+    names.push_back(name);
+  }
+  return names;
+}
+
+Species speciesPreset(const std::string& name) {
+  const auto it = presets().find(name);
+  if (it == presets().end()) {
+    std::string known;
+    for (const std::string& n : speciesPresetNames()) {
+      known += (known.empty() ? "" : ", ") + n;
+    }
+    fail("unknown species '{}' (known: {})", name, known);
+  }
+  Species s = it->second();
+  validate(s, "species '" + name + "'");
+  return s;
+}
+
+Species resolveSpecies(const std::string& nameOrPath) {
+  if (nameOrPath.find('/') != std::string::npos ||
+      (nameOrPath.size() > 5 && nameOrPath.ends_with(".json"))) {
+    return loadSpecies(nameOrPath);
+  }
+  return speciesPreset(nameOrPath);
+}
+
+nlohmann::json toJson(const Species& s) {
+  nlohmann::json orders = nlohmann::json::array();
+  for (const OrderParams& o : s.orders) {
+    orders.push_back({{"minSegments", o.minSegments},
+                      {"maxSegments", o.maxSegments},
+                      {"fork", o.fork},
+                      {"trifurcation", o.trifurcation},
+                      {"sideBranch", o.sideBranch},
+                      {"asymmetry", o.asymmetry},
+                      {"bend", o.bend},
+                      {"droop", o.droop}});
+  }
+  return {{"version", 1},
+          {"name", s.name},
+          {"rule", ruleName(s.rule)},
+          {"maxOrder", s.maxOrder},
+          {"maxDepth", s.maxDepth},
+          {"maxPieces", s.maxPieces},
+          {"minRadius", s.minRadius},
+          {"trunkRadius", s.trunkRadius},
+          {"sizeVariation", s.sizeVariation},
+          {"orders", orders},
+          {"barkColour", {s.barkColour.r, s.barkColour.g, s.barkColour.b}},
+          {"leafColour", {s.leafColour.r, s.leafColour.g, s.leafColour.b}},
+          {"youngModulus", s.youngModulus},
+          {"woodDensity", s.woodDensity},
+          {"damping", s.damping}};
+}
+
+Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
+  requireJsonVersion(json, 1, where);
+  const JsonNode root(json, where, "");
+  root.object({"version", "name", "rule", "maxOrder", "maxDepth", "maxPieces", "minRadius", "trunkRadius",
+               "sizeVariation", "orders", "barkColour", "leafColour", "youngModulus", "woodDensity",
+               "damping"});
+  Species s;
+  s.name = root["name"].string();
+  if (root.has("rule")) {
+    const std::string rule = root["rule"].choice({"alternate", "uniform-random", "grammar"});
+    s.rule = rule == "alternate"        ? AssemblyRule::Alternate
+             : rule == "uniform-random" ? AssemblyRule::UniformRandom
+                                        : AssemblyRule::Grammar;
+  }
+  if (root.has("maxOrder")) s.maxOrder = root["maxOrder"].integer(0, 16);
+  if (root.has("maxDepth")) s.maxDepth = root["maxDepth"].integer(1, 64);
+  if (root.has("maxPieces")) s.maxPieces = root["maxPieces"].integer(2, 200000);
+  if (root.has("minRadius")) s.minRadius = static_cast<float>(root["minRadius"].number(1e-4, 0.99));
+  if (root.has("trunkRadius")) s.trunkRadius = static_cast<float>(root["trunkRadius"].number(0.002, 10));
+  if (root.has("sizeVariation")) s.sizeVariation = static_cast<float>(root["sizeVariation"].number(0, 0.99));
+  if (root.has("barkColour")) s.barkColour = colour(root["barkColour"]);
+  if (root.has("leafColour")) s.leafColour = colour(root["leafColour"]);
+  if (root.has("youngModulus")) s.youngModulus = static_cast<float>(root["youngModulus"].number(1e6, 1e12));
+  if (root.has("woodDensity")) s.woodDensity = static_cast<float>(root["woodDensity"].number(50, 2000));
+  if (root.has("damping")) s.damping = static_cast<float>(root["damping"].number(0.001, 1));
+  if (root.has("orders")) {
+    const JsonNode orders = root["orders"];
+    const std::size_t n = orders.array(1, 17);
+    s.orders.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      const JsonNode o = orders[i];
+      o.object({"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend", "droop"});
+      OrderParams p;
+      if (o.has("minSegments")) p.minSegments = o["minSegments"].integer(0, 64);
+      if (o.has("maxSegments")) p.maxSegments = o["maxSegments"].integer(0, 64);
+      if (p.maxSegments < p.minSegments) o["maxSegments"].error("must be ≥ minSegments");
+      if (o.has("fork")) p.fork = static_cast<float>(o["fork"].number(0, 1));
+      if (o.has("trifurcation")) p.trifurcation = static_cast<float>(o["trifurcation"].number(0, 1));
+      if (o.has("sideBranch")) p.sideBranch = static_cast<float>(o["sideBranch"].number(0, 1));
+      if (p.fork + p.trifurcation + p.sideBranch > 1.0f + 1e-5f) {
+        o.error("fork + trifurcation + sideBranch must be ≤ 1");
+      }
+      if (o.has("asymmetry")) p.asymmetry = static_cast<float>(o["asymmetry"].number(0, 0.89));
+      if (o.has("bend")) p.bend = static_cast<float>(o["bend"].number(0, 0.5));
+      if (o.has("droop")) p.droop = static_cast<float>(o["droop"].number(-0.5, 0.5));
+      s.orders.push_back(p);
+    }
+  }
+  validate(s, where);
+  return s;
+}
+
+Species loadSpecies(const std::filesystem::path& path) {
+  return speciesFromJson(loadJsonFile(path), path.filename().string());
+}
+
+} // namespace sylva::trees

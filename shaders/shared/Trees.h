@@ -1,0 +1,63 @@
+// GPU layouts of trees (docs/trees.md), shared by C++ and GLSL.
+#ifndef SYLVA_SHARED_TREES_H
+#define SYLVA_SHARED_TREES_H
+
+#include "Prelude.h"
+
+SYLVA_GPU_BEGIN
+
+#define SYLVA_TREE_BINDING 23          // uniform block TreeUniforms
+#define SYLVA_TREE_JOINT_BINDING 24    // storage: JointFrame[] (every joint of every tree)
+#define SYLVA_TREE_INSTANCE_BINDING 25 // storage: TreeInstanceGpu[] (every piece instance of every tree)
+#define SYLVA_TREE_VISIBLE_BINDING 26  // storage: uint[] visible instance indices, one list per piece type
+#define SYLVA_TREE_COMMAND_BINDING 27  // storage: the indirect draw commands (5 uints per piece type)
+#define SYLVA_TREE_PIECE_BINDING 28    // storage: TreePieceGpu[] (bounds and inverse binds per piece type)
+#define SYLVA_TREE_WIND_BINDING 29     // storage: joint wind state and constants (JointWind)
+#define SYLVA_TREE_WIND_REST_BINDING 30 // storage: joint rest data (JointWind)
+#define SYLVA_TREE_MAX_PIECE_JOINTS 4  // root + up to three terminal joints (Psi)
+#define SYLVA_TREE_MAX_PIECES 8        // piece types in one renderer
+#define SYLVA_TREE_CULL_GROUP 64
+
+/**
+ * A joint's world frame as three rows of a 3x4 matrix: world = (dot(x, p1), dot(y, p1), dot(z, p1)) with
+ * p1 = (p, 1), p in the joint's frame (rim units). A child's root joint is its parent's terminal joint.
+ */
+struct JointFrame {
+  vec4 x;
+  vec4 y;
+  vec4 z;
+};
+SYLVA_ASSERT_SIZE(JointFrame, 48);
+
+/** One piece instance: x = root joint index, y = first terminal joint index, z = rim rotation (0 … 5) |
+ * piece type << 8, w = tree index. */
+struct TreeInstanceGpu {
+  uvec4 joints;
+};
+SYLVA_ASSERT_SIZE(TreeInstanceGpu, 16);
+
+/**
+ * Per piece type: bounding sphere in model space (xyz centre, w radius, rim units), index range (x first
+ * index, y index count, z list offset, w capacity), and the inverse bind frame of each joint (rows).
+ */
+struct TreePieceGpu {
+  vec4 sphere;
+  uvec4 range;
+  JointFrame inverseBind[SYLVA_TREE_MAX_PIECE_JOINTS];
+};
+SYLVA_ASSERT_SIZE(TreePieceGpu, 224);
+
+/** Per draw: tessellation and culling settings. */
+struct TreeUniforms {
+  vec4 frustum[6];  // world-space planes (xyz normal pointing inwards, w offset)
+  vec4 tess;        // x: K (pixels-to-level factor: viewport height / (2 tan(fov/2)) / target pixels per
+                    // segment), y: maximum level, z: fixed level (> 0 overrides the distance rule), w: cull
+                    // distance in metres
+  vec4 colours[2];  // bark colour (rgb), leaf colour (rgb)
+  uvec4 info;       // x: instance count, y: piece types, z: view (TreeView), w: bend slack (float bits)
+};
+SYLVA_ASSERT_SIZE(TreeUniforms, 160);
+
+SYLVA_GPU_END
+
+#endif

@@ -1,0 +1,190 @@
+// The built-in pieces obey every interlocking rule, and assembled trees close every rim bit for bit.
+#include <sylva/core/Error.hpp>
+#include <sylva/trees/Pieces.hpp>
+#include <sylva/trees/Skeleton.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <map>
+
+namespace sylva::trees {
+namespace {
+
+TEST(Pieces, StandardSetValidatesAndHasTheNamedPieces) {
+  const PieceSet set = standardPieces();
+  ASSERT_EQ(set.size(), 6u);
+  const std::map<std::string, std::size_t> leafRims{{"I", 1}, {"Y", 2}, {"Psi", 3},
+                                                    {"Branch", 2}, {"Cap", 0}, {"Foot", 1}};
+  for (const Piece& p : set.pieces) {
+    SCOPED_TRACE(p.name);
+    EXPECT_NO_THROW(validatePiece(p, "test"));
+    EXPECT_EQ(p.leafRims(), leafRims.at(p.name));
+    EXPECT_EQ(p.tileClass.size(), p.quads.size());
+  }
+}
+
+TEST(Pieces, QuadsFaceOutwardsAndCornersAreTheCanonicalConstants) {
+  const Piece i = makeI();
+  for (const auto& q : i.quads) {
+    glm::vec3 c(0.0f);
+    for (auto v : q) {
+      c += i.vertices[v].position * 0.25f;
+    }
+    const glm::vec3 n = glm::cross(i.vertices[q[2]].position - i.vertices[q[0]].position,
+                                   i.vertices[q[3]].position - i.vertices[q[1]].position);
+    EXPECT_GT(glm::dot(n, glm::vec3(c.x, 0.0f, c.z)), 0.0f);
+  }
+  for (int k = 0; k < kRimCorners; ++k) {
+    const glm::vec3 corner = rimCorner(k);
+    EXPECT_EQ(std::memcmp(&i.vertices[i.rims[0].vertices[static_cast<std::size_t>(k)]].position, &corner, 12), 0);
+    EXPECT_NEAR(glm::length(rimNormal(k)), 1.0f, 1e-6f);
+  }
+  EXPECT_EQ(rimCorner(0), glm::vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_EQ(rimCorner(3), glm::vec3(-1.0f, 0.0f, 0.0f));
+}
+
+TEST(Pieces, RimRotationMapsCornersOntoCorners) {
+  for (int s = 0; s < 6; ++s) {
+    for (int k = 0; k < 6; ++k) {
+      const glm::vec3 p = glm::vec3(rimRotation(s) * glm::vec4(rimCorner(k), 1.0f));
+      EXPECT_NEAR(glm::length(p - rimCorner(k + s)), 0.0f, 1e-6f) << s << " " << k;
+    }
+  }
+}
+
+TEST(Pieces, ValidationNamesTheBrokenRim) {
+  Piece y = makeY();
+  y.vertices[y.rims[2].vertices[3]].position += glm::vec3(0.0f, 0.01f, 0.0f);
+  try {
+    validatePiece(y, "broken.gltf");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.gltf: piece 'Y': leaf rim 2 is not a regular hexagon"),
+              std::string::npos)
+        << e.what();
+  }
+  Piece wrongNormal = makeI();
+  wrongNormal.vertices[wrongNormal.rims[1].vertices[0]].normal = glm::vec3(1.0f, 0.0f, 0.0f);
+  EXPECT_THROW(validatePiece(wrongNormal, "x"), Error);
+  Piece noRoot = makeI();
+  noRoot.rims.clear();
+  noRoot.joints.clear();
+  EXPECT_THROW(validatePiece(noRoot, "x"), Error);
+}
+
+/** World positions of every rim corner of every node of a tree, computed as the shader does: frame · corner. */
+TEST(Assembly, ChildRootRimsMeetParentLeafRimsBitForBit) {
+  const PieceSet pieces = standardPieces();
+  for (const std::string& name : speciesPresetNames()) {
+    SCOPED_TRACE(name);
+    const Species species = speciesPreset(name);
+    const TreeTopology tree = generateTree(pieces, species, 7);
+    EXPECT_NO_THROW(validate(tree, pieces, "generated"));
+    std::vector<glm::mat4> frames;
+    const std::vector<glm::vec2> pose = randomPose(tree, species, 3);
+    jointFrames(pieces, tree, baseFrame({1.0f, 2.0f, 3.0f}, 0.7f, 0.2f), pose, frames);
+    for (std::size_t n = 1; n < tree.nodes.size(); ++n) {
+      const TreeNode& node = tree.nodes[n];
+      // The child's root rim corner k sits at canonical corner (k + rotation) of the shared joint frame; the
+      // parent's leaf rim corner m at canonical corner m of the same frame: the same float operations.
+      const glm::mat4& shared = frames[node.rootJoint];
+      for (int k = 0; k < 6; ++k) {
+        const glm::vec4 child = shared * glm::vec4(rimCorner((k + node.rotation) % 6), 1.0f);
+        const glm::vec4 parent = shared * glm::vec4(rimCorner((k + node.rotation) % 6), 1.0f);
+        EXPECT_EQ(std::memcmp(&child, &parent, sizeof child), 0);
+      }
+      // And the child's rotated model agrees with the canonical corners to float precision.
+      const glm::mat4 placed = shared * rimRotation(node.rotation);
+      for (int k = 0; k < 6; ++k) {
+        const glm::vec3 a(placed * glm::vec4(rimCorner(k), 1.0f));
+        const glm::vec3 b(shared * glm::vec4(rimCorner(k + node.rotation), 1.0f));
+        EXPECT_LT(glm::length(a - b), 1e-5f);
+      }
+    }
+  }
+}
+
+TEST(Assembly, GenerationIsDeterministicAndSeedsDiffer) {
+  const PieceSet pieces = standardPieces();
+  const Species s = speciesPreset("almond");
+  const TreeTopology a = generateTree(pieces, s, 42);
+  const TreeTopology b = generateTree(pieces, s, 42);
+  const TreeTopology c = generateTree(pieces, s, 43);
+  EXPECT_EQ(toJson(a, pieces), toJson(b, pieces));
+  EXPECT_NE(toJson(a, pieces), toJson(c, pieces));
+  EXPECT_EQ(a.nodes[0].piece, pieces.find("Foot"));
+}
+
+TEST(Assembly, PaperRulesAlternateAndChooseUniformly) {
+  const PieceSet pieces = standardPieces();
+  const TreeTopology alt = generateTree(pieces, speciesPreset("paper-alternate"), 1);
+  for (const TreeNode& n : alt.nodes) {
+    const std::string& name = pieces[static_cast<std::size_t>(n.piece)].name;
+    if (n.depth > 0 && name != "Cap") {
+      EXPECT_EQ(name, n.depth % 2 == 0 ? "Y" : "I") << n.depth;
+    }
+  }
+  const TreeTopology uni = generateTree(pieces, speciesPreset("paper-random"), 1);
+  const TreeStats stats = treeStats(pieces, uni);
+  EXPECT_GT(stats.piecesByType[static_cast<std::size_t>(pieces.find("I"))], 0u);
+  EXPECT_GT(stats.piecesByType[static_cast<std::size_t>(pieces.find("Y"))], 0u);
+}
+
+TEST(Assembly, TreeJsonRoundTripsAndRejectsBadFiles) {
+  const PieceSet pieces = standardPieces();
+  const TreeTopology a = generateTree(pieces, speciesPreset("california-black-oak"), 5);
+  const TreeTopology b = treeFromJson(toJson(a, pieces), pieces, "t.json");
+  EXPECT_EQ(toJson(a, pieces), toJson(b, pieces));
+  EXPECT_EQ(a.jointScale, b.jointScale);
+  auto expectError = [&](nlohmann::json j, const std::string& part) {
+    try {
+      treeFromJson(j, pieces, "t.json");
+      ADD_FAILURE() << "no error for " << part;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  nlohmann::json j = toJson(a, pieces);
+  j["nodes"][1]["piece"] = "Q";
+  expectError(j, "unknown piece 'Q'");
+  j = toJson(a, pieces);
+  j["nodes"][1]["rotation"] = 6;
+  expectError(j, "nodes[1].rotation");
+  j = toJson(a, pieces);
+  j["nodes"].erase(j["nodes"].size() - 1);
+  expectError(j, "is open");
+  j = toJson(a, pieces);
+  j["nodes"][2]["scale"] = std::nan("");
+  expectError(j, "nodes[2].scale");
+  j = toJson(a, pieces);
+  j["extra"] = 1;
+  expectError(j, "unknown field 'extra'");
+  // A chain deeper than the recursion limit.
+  nlohmann::json deep{{"version", 1}, {"nodes", nlohmann::json::array({{{"piece", "Foot"}}})}};
+  for (int i = 1; i < 70; ++i) {
+    deep["nodes"].push_back({{"piece", "I"}, {"parent", i - 1}, {"rim", 1}});
+  }
+  expectError(deep, "recursion limit");
+}
+
+TEST(Species, PresetsValidateAndJsonRoundTrips) {
+  const std::vector<std::string> names = speciesPresetNames();
+  EXPECT_GE(names.size(), 10u);
+  for (const std::string& n : names) {
+    const Species s = speciesPreset(n);
+    const Species back = speciesFromJson(toJson(s), n + ".json");
+    EXPECT_EQ(toJson(s), toJson(back));
+  }
+  nlohmann::json bad = toJson(speciesPreset("almond"));
+  bad["orders"][0]["fork"] = 0.9;
+  bad["orders"][0]["sideBranch"] = 0.9;
+  EXPECT_THROW(speciesFromJson(bad, "bad.json"), Error);
+  EXPECT_THROW(speciesPreset("baobab"), Error);
+}
+
+} // namespace
+} // namespace sylva::trees
