@@ -35,4 +35,11 @@ nlohmann::json printBenchRows(const std::vector<BenchRow>& rows);
 /** `bench capture`: grass capture targets (docs/capture.md): extraction latency, refining. */
 void benchCapture(nlohmann::json& report);
 
+/**
+ * `bench trees`: the paper's Fig. 16 workloads (1 … 1,000 trees) instanced and per piece, tessellation levels
+ * 1 and 10, generation of 1,000 trees, wind on 100,000 joints; needs a current GL context. `frames` is
+ * divided by 10 (at least 3) per configuration: a forest frame on llvmpipe is slow.
+ */
+void benchTrees(int frames, int width, int height, nlohmann::json& report);
+
 } // namespace sylva::app

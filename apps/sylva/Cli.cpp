@@ -79,6 +79,9 @@ std::unique_ptr<Cli> makeCli() {
 #ifdef SYLVA_HAVE_TERRAIN
   registerTerrain(app);
 #endif
+#ifdef SYLVA_HAVE_TREES
+  registerTree(app);
+#endif
 #ifdef SYLVA_HAVE_FOLDING
   registerFold(app);
 #endif

@@ -927,8 +927,9 @@ void registerBench(CLI::App& app) {
           "or fold (folding-texture targets on a generated 1 MP case) or capture (grass capture: "
           "extraction latency per 640x480 frame, refining) or grass (the paper's 955,264-blade field "
           "in one draw, patch memory, culling, LOD popping) or grass-sim (the paper's Table 1 workloads "
-          "on the CPU and GPU solvers, and 500,000 blades with 1,024 bodies)")
-      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture", "grass", "grass-sim"}))
+          "on the CPU and GPU solvers, and 500,000 blades with 1,024 bodies) or trees (the paper's Fig. 16 "
+          "workloads instanced and per piece, tessellation cost, generation, wind on joints)")
+      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture", "grass", "grass-sim", "trees"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -982,6 +983,9 @@ void registerBench(CLI::App& app) {
       benchGrass(*o, *context, report);
     } else if (o->area == "grass-sim") {
       benchGrassSim(*o, *context, report);
+    } else if (o->area == "trees") {
+      report = header(*o, "trees", *context);
+      benchTrees(o->frames, o->width, o->height, report);
     } else if (o->area == "soak") {
       benchSoak(*o, *context, report);
     } else {

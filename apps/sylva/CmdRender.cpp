@@ -11,6 +11,7 @@
 #include "GrassFlags.hpp"
 #include "GrassSim.hpp"
 #include "TerrainFlags.hpp"
+#include "TreeFlags.hpp"
 
 #include <cstdio>
 
@@ -26,6 +27,7 @@ void registerRender(CLI::App& app) {
     CameraFlags camera;
     GrassFlags grass;
     SimulationFlags simulation;
+    TreeFlags trees;
     int frames = 1;
     double fps = 30.0;
     std::string gif;
@@ -47,6 +49,7 @@ void registerRender(CLI::App& app) {
   o->camera.add(*command);
   o->grass.add(*command);
   o->simulation.add(*command);
+  o->trees.add(*command);
   command
       ->add_option(
           "--frames", o->frames,
@@ -86,6 +89,9 @@ void registerRender(CLI::App& app) {
     if (o->simulation.enabled() && !o->grass.enabled) {
       fail("--physics: needs --grass (the bodies move through the grass field)");
     }
+    if (o->trees.enabled) {
+      o->trees.check();
+    }
     if (o->simulation.enabled()) {
       (void)o->simulation.solverSettings();
       (void)o->simulation.poolSettings();
@@ -119,6 +125,16 @@ void registerRender(CLI::App& app) {
                     camera.target.y / e, camera.target.z);
         }
       }
+      std::unique_ptr<trees::TreeRenderer> forest;
+      if (o->trees.enabled) {
+        std::shared_ptr<trees::Forest> placed = o->trees.buildForest(*scene);
+        forest = std::make_unique<trees::TreeRenderer>(library, placed);
+        log::info("trees: {} trees, {} pieces, {} joints", placed->trees.size(),
+                  forest->instances().instances.size(), placed->jointCount);
+        if (o->camera.cameraPos.empty() && !o->grass.enabled) {
+          camera = forestCamera(*scene, *placed, glm::radians(o->camera.fovDegrees));
+        }
+      }
       std::unique_ptr<GrassSimScene> simulation;
       if (o->simulation.enabled()) {
         simulation =
@@ -144,6 +160,13 @@ void registerRender(CLI::App& app) {
         }
         target.begin(glm::vec4(environment.fogColor, 1.0f));
         drawTerrainWithGrass(*scene, grass.get(), camera, o->width, o->height, time, options, grassOptions);
+        if (forest) {
+          forest->cull(camera, target.aspect(), o->trees.lod);
+          trees::TreeDrawOptions treeOptions;
+          treeOptions.view = o->trees.treeView();
+          treeOptions.environment = options.environment;
+          forest->draw(camera, o->width, o->height, time, o->trees.lod, nullptr, treeOptions);
+        }
         if (simulation) {
           simulation->drawBodies(camera, o->width, o->height, time, options.environment);
         }

@@ -31,6 +31,8 @@ void registerView(CLI::App& app);
 void registerBench(CLI::App& app);
 void registerImgdiff(CLI::App& app);
 void registerTerrain(CLI::App& app);
+/** `sylva tree generate|info|species|pieces|import-piece` (trees from interlocking pieces, docs/trees.md). */
+void registerTree(CLI::App& app);
 /** `sylva fold synth|render|view|export-shader|info` (folding textures, docs/folding.md). */
 void registerFold(CLI::App& app);
 /** `sylva capture [synth]` (grass blade capture, docs/capture.md). */

@@ -6,16 +6,16 @@
 
 SYLVA_GPU_BEGIN
 
-#define SYLVA_TREE_BINDING 23          // uniform block TreeUniforms
-#define SYLVA_TREE_JOINT_BINDING 24    // storage: JointFrame[] (every joint of every tree)
-#define SYLVA_TREE_INSTANCE_BINDING 25 // storage: TreeInstanceGpu[] (every piece instance of every tree)
-#define SYLVA_TREE_VISIBLE_BINDING 26  // storage: uint[] visible instance indices, one list per piece type
-#define SYLVA_TREE_COMMAND_BINDING 27  // storage: the indirect draw commands (5 uints per piece type)
-#define SYLVA_TREE_PIECE_BINDING 28    // storage: TreePieceGpu[] (bounds and inverse binds per piece type)
-#define SYLVA_TREE_WIND_BINDING 29     // storage: joint wind state and constants (JointWind)
+#define SYLVA_TREE_BINDING 23           // uniform block TreeUniforms
+#define SYLVA_TREE_JOINT_BINDING 24     // storage: JointFrame[] (every joint of every tree)
+#define SYLVA_TREE_INSTANCE_BINDING 25  // storage: TreeInstanceGpu[] (every piece instance of every tree)
+#define SYLVA_TREE_VISIBLE_BINDING 26   // storage: uint[] visible instance indices, one list per piece type
+#define SYLVA_TREE_COMMAND_BINDING 27   // storage: the indirect draw commands (5 uints per piece type)
+#define SYLVA_TREE_PIECE_BINDING 28     // storage: TreePieceGpu[] (bounds and inverse binds per piece type)
+#define SYLVA_TREE_WIND_BINDING 29      // storage: joint wind state and constants (JointWind)
 #define SYLVA_TREE_WIND_REST_BINDING 30 // storage: joint rest data (JointWind)
-#define SYLVA_TREE_MAX_PIECE_JOINTS 4  // root + up to three terminal joints (Psi)
-#define SYLVA_TREE_MAX_PIECES 8        // piece types in one renderer
+#define SYLVA_TREE_MAX_PIECE_JOINTS 4   // root + up to three terminal joints (Psi)
+#define SYLVA_TREE_MAX_PIECES 8         // piece types in one renderer
 #define SYLVA_TREE_CULL_GROUP 64
 
 /**
@@ -49,14 +49,52 @@ SYLVA_ASSERT_SIZE(TreePieceGpu, 224);
 
 /** Per draw: tessellation and culling settings. */
 struct TreeUniforms {
-  vec4 frustum[6];  // world-space planes (xyz normal pointing inwards, w offset)
-  vec4 tess;        // x: K (pixels-to-level factor: viewport height / (2 tan(fov/2)) / target pixels per
-                    // segment), y: maximum level, z: fixed level (> 0 overrides the distance rule), w: cull
-                    // distance in metres
-  vec4 colours[2];  // bark colour (rgb), leaf colour (rgb)
-  uvec4 info;       // x: instance count, y: piece types, z: view (TreeView), w: bend slack (float bits)
+  vec4 frustum[6];    // world-space planes (xyz normal pointing inwards, w offset)
+  vec4 tess;          // x: K (pixels-to-level factor: viewport height / (2 tan(fov/2)) / target pixels per
+                      // segment), y: maximum level, z: fixed level (> 0 overrides the distance rule), w: cull
+                      // distance in metres
+  vec4 colours[2];    // bark colour (rgb), leaf colour (rgb)
+  uvec4 info;         // x: instance count, y: piece types, z: view (TreeView), w: debug flags (1: break rims)
+  vec4 cull;          // x: bounding-sphere slack factor for bends; yzw: unused
+  vec4 corners[6];    // rimCorner(k) exactly as the CPU computes it (xyz)
+  vec4 rimNormals[6]; // rimNormal(k) (xyz)
 };
-SYLVA_ASSERT_SIZE(TreeUniforms, 160);
+SYLVA_ASSERT_SIZE(TreeUniforms, 368);
+
+// ---- Wind on the joints (sylva/trees/JointWind.hpp; shaders/trees/wind.comp and frames.comp)
+// --------------- Binding 29 (SYLVA_TREE_WIND_BINDING) holds vec4 motion[] per global joint: xy bend θ
+// (radians, about the joint's local x and z axes), zw angular velocity ω (rad/s). Binding 30
+// (SYLVA_TREE_WIND_REST_BINDING) holds TreeJointRest[] per global joint. The step's uniform block is
+// WindUniforms followed by JointWindStepGpu.
+#define SYLVA_TREE_WIND_STEP_BINDING 31 // uniform block: WindUniforms, then JointWindStepGpu
+#define SYLVA_TREE_WIND_GROUP 64        // invocations per work group of wind.comp and frames.comp
+#define SYLVA_TREE_WIND_FIXED 1u        // TreeJointRest.info.w flag: a tree's base joint (never bends)
+#define SYLVA_TREE_NO_PARENT 0xffffffffu
+#define SYLVA_TREE_MAX_JOINT_CHAIN                                                                           \
+  66 // joints from a base to the deepest joint (depth ≤ 64, plus base and self)
+
+/**
+ * Rest data of one joint. The joint's frame is parent frame · local · R(pose + θ) · bone scale, with R the
+ * bend rotation (bendRotation in C++); a base joint's frame is `local` (the tree's base frame) alone.
+ */
+struct TreeJointRest {
+  JointFrame local; // rimRotation(node rotation) · joint bind (rim units of the piece), or the base frame
+  vec4 spring;      // x: k/I (1/s²), y: c/I (1/s), z: bone scale, w: the tree's wind time offset (s)
+  vec4 torque;      // angular acceleration per |u|·u (rad/s² per m²/s², u = wind (x, z) in m/s):
+               // θ̈.x = x·u.x + y·u.y, θ̈.y = z·u.x + w·u.y (drag, lever, areas and 1/I folded in)
+  vec4 probe; // xy: world (x, z) of the subtree's area centroid where the wind is sampled (m);
+              // zw: rest bend of the pose (radians)
+  uvec4 info; // x: parent joint (global index) or SYLVA_TREE_NO_PARENT; y: tree index; z: chain
+              // length from the base (base: 0); w: flags (SYLVA_TREE_WIND_FIXED)
+};
+SYLVA_ASSERT_SIZE(TreeJointRest, 112);
+
+/** The step's constants after the WindUniforms in the uniform block at SYLVA_TREE_WIND_STEP_BINDING. */
+struct JointWindStepGpu {
+  vec4 step;    // x: time step (s), y: largest bend |θ| (radians), zw: unused
+  uvec4 counts; // x: joints; yzw: unused
+};
+SYLVA_ASSERT_SIZE(JointWindStepGpu, 32);
 
 SYLVA_GPU_END
 

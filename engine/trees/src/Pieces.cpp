@@ -1,5 +1,7 @@
 #include <sylva/trees/Pieces.hpp>
 
+#include "internal/Skinning.hpp"
+
 #include <sylva/core/Error.hpp>
 
 #include <glm/geometric.hpp>
@@ -45,7 +47,8 @@ public:
   Ring ring(const glm::mat4& frame, float y, float radius) {
     Ring out{};
     for (int k = 0; k < kRimCorners; ++k) {
-      out[static_cast<std::size_t>(k)] = point(glm::vec3(frame * glm::vec4(rimCorner(k) * radius + glm::vec3(0, y, 0), 1.0f)));
+      out[static_cast<std::size_t>(k)] =
+          point(glm::vec3(frame * glm::vec4(rimCorner(k) * radius + glm::vec3(0, y, 0), 1.0f)));
     }
     return out;
   }
@@ -54,6 +57,16 @@ public:
     PieceVertex v;
     v.position = p;
     return add(v);
+  }
+
+  /**
+   * A vertex whose normal is given rather than averaged from its quads: crotch and pit vertices, where the
+   * surface turns too sharply for averaging (Phong tessellation would fold there).
+   */
+  std::uint32_t point(const glm::vec3& p, const glm::vec3& normal) {
+    const std::uint32_t i = point(p);
+    mFixedNormals.emplace_back(i, glm::normalize(normal));
+    return i;
   }
 
   /** Quads between two rings with corners aligned (corner k to corner k). */
@@ -76,6 +89,9 @@ public:
     snapRims(mPiece);
     orient();
     computeNormals(mPiece);
+    for (const auto& [i, n] : mFixedNormals) {
+      mPiece.vertices[i].normal = n;
+    }
     weights();
     validatePiece(mPiece, "built-in pieces");
     return std::move(mPiece);
@@ -94,10 +110,13 @@ private:
   void orient() {
     auto& quads = mPiece.quads;
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> byEdge;
-    auto key = [](std::uint32_t a, std::uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+    auto key = [](std::uint32_t a, std::uint32_t b) {
+      return std::make_pair(std::min(a, b), std::max(a, b));
+    };
     for (std::size_t q = 0; q < quads.size(); ++q) {
       for (int e = 0; e < 4; ++e) {
-        byEdge[key(quads[q][static_cast<std::size_t>(e)], quads[q][static_cast<std::size_t>((e + 1) % 4)])].push_back(q);
+        byEdge[key(quads[q][static_cast<std::size_t>(e)], quads[q][static_cast<std::size_t>((e + 1) % 4)])]
+            .push_back(q);
       }
     }
     std::vector<bool> done(quads.size(), false);
@@ -106,7 +125,8 @@ private:
     done[0] = true;
     auto hasDirected = [&](std::size_t q, std::uint32_t a, std::uint32_t b) {
       for (int e = 0; e < 4; ++e) {
-        if (quads[q][static_cast<std::size_t>(e)] == a && quads[q][static_cast<std::size_t>((e + 1) % 4)] == b) {
+        if (quads[q][static_cast<std::size_t>(e)] == a &&
+            quads[q][static_cast<std::size_t>((e + 1) % 4)] == b) {
           return true;
         }
       }
@@ -155,40 +175,10 @@ private:
    * Skinning weights of free vertices: blend between the root joint and the nearest terminal joint by where
    * the vertex lies between the root rim and that leaf rim (smoothstep), so bends spread along the piece.
    */
-  void weights() {
-    const auto& rims = mPiece.rims;
-    for (PieceVertex& v : mPiece.vertices) {
-      if (v.rim >= 0) {
-        continue;
-      }
-      if (rims.size() == 1) {
-        v.joints = {0, 0, 0, 0};
-        v.weights = glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
-        continue;
-      }
-      // Parameter along root → leaf r: projection onto the segment between the rim centres.
-      float best = 1e30f;
-      std::size_t bestRim = 1;
-      float bestT = 0.0f;
-      for (std::size_t r = 1; r < rims.size(); ++r) {
-        const glm::vec3 a(0.0f);
-        const glm::vec3 b(rims[r].frame[3]);
-        const glm::vec3 ab = b - a;
-        const float t = std::clamp(glm::dot(v.position - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
-        const float d = glm::length(v.position - (a + ab * t));
-        if (d < best) {
-          best = d;
-          bestRim = r;
-          bestT = t;
-        }
-      }
-      const float w = bestT * bestT * (3.0f - 2.0f * bestT);
-      v.joints = {0, static_cast<std::uint8_t>(bestRim), 0, 0};
-      v.weights = glm::vec4(1.0f - w, w, 0.0f, 0.0f);
-    }
-  }
+  void weights() { internal::blendInteriorWeights(mPiece); }
 
   Piece mPiece;
+  std::vector<std::pair<std::uint32_t, glm::vec3>> mFixedNormals;
 };
 
 glm::mat4 frameAt(const glm::vec3& origin, const glm::mat4& rotation, float scale) {
@@ -215,9 +205,11 @@ Ring innerRing(Builder& b, const glm::mat4& leafFrame, float depth) {
  * (towards +x) and c− (towards −x) join them. Quads per child: outer, two sides, two crotch, one inner.
  */
 void fork(Builder& b, const Ring& base, const Ring& p, const Ring& q, const glm::vec3& cPlus,
-          const glm::vec3& cMinus) {
-  const std::uint32_t cp = b.point(cPlus);
-  const std::uint32_t cm = b.point(cMinus);
+          const glm::vec3& cMinus, float crotchLean) {
+  // The crotch vertices sit where the valley between the children meets the sides: outwards and up, leaning
+  // towards the side branch when the children differ.
+  const std::uint32_t cp = b.point(cPlus, glm::vec3(1.0f, 1.0f, crotchLean));
+  const std::uint32_t cm = b.point(cMinus, glm::vec3(-1.0f, 1.0f, crotchLean));
   // P (towards +z): base corners 1, 2 face it; its corners 4, 5 face the crotch.
   b.quad(base[1], base[2], p[2], p[1], 1);
   b.quad(base[0], base[1], p[1], p[0], 1);
@@ -236,7 +228,7 @@ void fork(Builder& b, const Ring& base, const Ring& p, const Ring& q, const glm:
 
 /** A two-child fork piece: root rim, a cone band, the fork, and a cone band under each leaf rim. */
 Piece twoWay(const std::string& name, const glm::mat4& pFrame, const glm::mat4& qFrame, float crotchHeight,
-             float crotchX) {
+             float crotchX, float crotchZ, float crotchLean) {
   Builder b(name);
   const Ring root = b.rim(glm::mat4(1.0f));
   const Ring p = b.rim(pFrame);
@@ -249,9 +241,8 @@ Piece twoWay(const std::string& name, const glm::mat4& pFrame, const glm::mat4& 
   const Ring qIn = innerRing(b, qFrame, depth);
   b.band(pIn, p);
   b.band(qIn, q);
-  // Crotch between the children's inner corners, in the plane between them.
-  const glm::vec3 between = 0.5f * (glm::vec3(pFrame[3]) + glm::vec3(qFrame[3]));
-  fork(b, lower, pIn, qIn, glm::vec3(crotchX, crotchHeight, between.z), glm::vec3(-crotchX, crotchHeight, between.z));
+  fork(b, lower, pIn, qIn, glm::vec3(crotchX, crotchHeight, crotchZ),
+       glm::vec3(-crotchX, crotchHeight, crotchZ), crotchLean);
   return b.finish(false);
 }
 
@@ -272,34 +263,38 @@ Piece makeI() {
 }
 
 Piece makeY() {
-  const float tilt = 0.56f; // 32°
-  const float scale = 0.78f;
-  const glm::mat4 p = frameAt(glm::vec3(0.0f, 2.2f, 0.62f), tiltTowards(std::numbers::pi_v<float> / 2, tilt), scale);
-  const glm::mat4 q = frameAt(glm::vec3(0.0f, 2.2f, -0.62f), tiltTowards(-std::numbers::pi_v<float> / 2, tilt), scale);
-  return twoWay("Y", p, q, 1.35f, 0.55f);
+  const float tilt = 0.52f; // 30°
+  const float scale = 0.72f;
+  const glm::mat4 p =
+      frameAt(glm::vec3(0.0f, 2.4f, 0.95f), tiltTowards(std::numbers::pi_v<float> / 2, tilt), scale);
+  const glm::mat4 q =
+      frameAt(glm::vec3(0.0f, 2.4f, -0.95f), tiltTowards(-std::numbers::pi_v<float> / 2, tilt), scale);
+  return twoWay("Y", p, q, 1.7f, 0.5f, 0.0f, 0.0f);
 }
 
 Piece makeBranch() {
   // The stem continues almost straight (P, leaning slightly away from the side branch); the side branch Q
   // leaves low and steep.
-  const glm::mat4 p = frameAt(glm::vec3(0.0f, 2.4f, 0.22f), tiltTowards(std::numbers::pi_v<float> / 2, 0.06f), 0.9f);
-  const glm::mat4 q = frameAt(glm::vec3(0.0f, 1.55f, -0.95f), tiltTowards(-std::numbers::pi_v<float> / 2, 1.01f), 0.5f);
-  return twoWay("Branch", p, q, 1.3f, 0.5f);
+  const glm::mat4 p =
+      frameAt(glm::vec3(0.0f, 2.4f, 0.35f), tiltTowards(std::numbers::pi_v<float> / 2, 0.06f), 0.85f);
+  const glm::mat4 q =
+      frameAt(glm::vec3(0.0f, 1.45f, -1.05f), tiltTowards(-std::numbers::pi_v<float> / 2, 1.01f), 0.5f);
+  return twoWay("Branch", p, q, 1.4f, 0.5f, -0.45f, -0.22f);
 }
 
 Piece makePsi() {
   Builder b("Psi");
   const Ring root = b.rim(glm::mat4(1.0f));
-  const float tilt = 0.66f; // 38°
-  const float scale = 0.68f;
+  const float tilt = 0.61f; // 35°
+  const float scale = 0.62f;
   std::array<glm::mat4, 3> frames{};
   std::array<Ring, 3> leaves{};
   for (int c = 0; c < 3; ++c) {
     // Child c leans towards corner 2c + 1 (azimuth 60° + 120°c); its own corner 0 points outwards.
     const float azimuth = std::numbers::pi_v<float> / 3.0f * static_cast<float>(2 * c + 1);
     const glm::vec3 out(std::cos(azimuth), 0.0f, std::sin(azimuth));
-    frames[static_cast<std::size_t>(c)] =
-        frameAt(glm::vec3(0.0f, 2.2f, 0.0f) + out * 0.62f, tiltTowards(azimuth, tilt) * rimRotation(2 * c + 1), scale);
+    frames[static_cast<std::size_t>(c)] = frameAt(glm::vec3(0.0f, 2.2f, 0.0f) + out * 0.95f,
+                                                  tiltTowards(azimuth, tilt) * rimRotation(2 * c + 1), scale);
     leaves[static_cast<std::size_t>(c)] = b.rim(frames[static_cast<std::size_t>(c)]);
   }
   const float h1 = 0.4f;
@@ -314,9 +309,12 @@ Piece makePsi() {
   std::array<std::uint32_t, 3> crotch{};
   for (int c = 0; c < 3; ++c) {
     const float azimuth = std::numbers::pi_v<float> / 3.0f * static_cast<float>(2 * c);
-    crotch[static_cast<std::size_t>(c)] = b.point(glm::vec3(std::cos(azimuth) * 0.5f, 1.45f, std::sin(azimuth) * 0.5f));
+    const glm::vec3 out(std::cos(azimuth), 0.0f, std::sin(azimuth));
+    crotch[static_cast<std::size_t>(c)] =
+        b.point(out * 0.6f + glm::vec3(0.0f, 1.5f, 0.0f), out + glm::vec3(0.0f, 1.0f, 0.0f));
   }
-  const std::uint32_t centre = b.point(glm::vec3(0.0f, 1.7f, 0.0f));
+  // The centre of the three valleys: a saddle-like top facing up.
+  const std::uint32_t centre = b.point(glm::vec3(0.0f, 1.85f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
   for (int c = 0; c < 3; ++c) {
     // Child c faces base corner m = 2c + 1 with its corner 0; base corners m − 1 and m + 1 hold the crotch
     // vertices before and after it.
@@ -361,10 +359,14 @@ Piece makeFoot() {
   b.band(r1, r2, 4);
   b.band(r2, r3, 4);
   b.band(r3, leaf, 4);
-  // Closed underneath: three quads around a centre a little below the rim.
-  const std::uint32_t bottom = b.point(glm::vec3(0.0f, -0.15f, 0.0f));
+  // Closed underneath: a bevelled ring, then three quads around a centre facing down.
+  const Ring below = b.ring(glm::mat4(1.0f), -0.12f, 1.0f + 0.12f * kTanCone);
+  const Ring bevel = b.ring(glm::mat4(1.0f), -0.3f, 0.8f);
+  b.band(below, root, 4);
+  b.band(bevel, below, 4);
+  const std::uint32_t bottom = b.point(glm::vec3(0.0f, -0.36f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f));
   for (std::size_t k = 0; k < 6; k += 2) {
-    b.quad(bottom, root[(k + 2) % 6], root[k + 1], root[k], 4);
+    b.quad(bottom, bevel[(k + 2) % 6], bevel[k + 1], bevel[k], 4);
   }
   return b.finish(false);
 }

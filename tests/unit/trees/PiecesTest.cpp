@@ -17,7 +17,7 @@ namespace {
 TEST(Pieces, StandardSetValidatesAndHasTheNamedPieces) {
   const PieceSet set = standardPieces();
   ASSERT_EQ(set.size(), 6u);
-  const std::map<std::string, std::size_t> leafRims{{"I", 1}, {"Y", 2}, {"Psi", 3},
+  const std::map<std::string, std::size_t> leafRims{{"I", 1},      {"Y", 2},   {"Psi", 3},
                                                     {"Branch", 2}, {"Cap", 0}, {"Foot", 1}};
   for (const Piece& p : set.pieces) {
     SCOPED_TRACE(p.name);
@@ -40,7 +40,8 @@ TEST(Pieces, QuadsFaceOutwardsAndCornersAreTheCanonicalConstants) {
   }
   for (int k = 0; k < kRimCorners; ++k) {
     const glm::vec3 corner = rimCorner(k);
-    EXPECT_EQ(std::memcmp(&i.vertices[i.rims[0].vertices[static_cast<std::size_t>(k)]].position, &corner, 12), 0);
+    EXPECT_EQ(std::memcmp(&i.vertices[i.rims[0].vertices[static_cast<std::size_t>(k)]].position, &corner, 12),
+              0);
     EXPECT_NEAR(glm::length(rimNormal(k)), 1.0f, 1e-6f);
   }
   EXPECT_EQ(rimCorner(0), glm::vec3(1.0f, 0.0f, 0.0f));
@@ -76,7 +77,8 @@ TEST(Pieces, ValidationNamesTheBrokenRim) {
   EXPECT_THROW(validatePiece(noRoot, "x"), Error);
 }
 
-/** World positions of every rim corner of every node of a tree, computed as the shader does: frame · corner. */
+/** World positions of every rim corner of every node of a tree, computed as the shader does: frame · corner.
+ */
 TEST(Assembly, ChildRootRimsMeetParentLeafRimsBitForBit) {
   const PieceSet pieces = standardPieces();
   for (const std::string& name : speciesPresetNames()) {
@@ -184,6 +186,40 @@ TEST(Species, PresetsValidateAndJsonRoundTrips) {
   bad["orders"][0]["sideBranch"] = 0.9;
   EXPECT_THROW(speciesFromJson(bad, "bad.json"), Error);
   EXPECT_THROW(speciesPreset("baobab"), Error);
+}
+
+} // namespace
+} // namespace sylva::trees
+
+#include <sylva/trees/Tessellation.hpp>
+
+namespace sylva::trees {
+namespace {
+
+TEST(Tessellation, NoPieceFoldsAtAnyLevel) {
+  // A fold (a tessellated triangle facing against the surface normal) would show the inside through the
+  // surface at high levels, whatever the rims do.
+  for (const Piece& p : standardPieces().pieces) {
+    for (int level : {1, 2, 4, 8, 16, 32, 64}) {
+      EXPECT_EQ(countFolds(p, level), 0) << p.name << " at level " << level;
+    }
+  }
+}
+
+TEST(Tessellation, EdgesDependOnlyOnTheirTwoCorners) {
+  const std::array<glm::vec3, 4> p{glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 1, 0.3f),
+                                   glm::vec3(0, 1, 0)};
+  const std::array<glm::vec3, 4> n{glm::normalize(glm::vec3(0, -0.2f, 1)),
+                                   glm::normalize(glm::vec3(0.3f, 0, 1)), glm::vec3(0, 0, 1),
+                                   glm::normalize(glm::vec3(-0.4f, 0.1f, 1))};
+  std::array<glm::vec3, 4> other = p;
+  other[2] = glm::vec3(5, 7, -3);
+  other[3] = glm::vec3(-2, 4, 9);
+  for (float u : {0.0f, 0.25f, 0.5f, 0.875f, 1.0f}) {
+    EXPECT_EQ(phongQuad(p, n, u, 0.0f), phongQuad(other, n, u, 0.0f));
+  }
+  // Phong bulges a curved edge outwards: the midpoint leaves the chord.
+  EXPECT_GT(glm::length(phongQuad(p, n, 0.5f, 0.0f) - 0.5f * (p[0] + p[1])), 1e-3f);
 }
 
 } // namespace

@@ -1,0 +1,151 @@
+// `sylva bench trees` (docs/trees.md): the paper's Fig. 16 workloads (1 … 1,000 trees) drawn by piece-type
+// instancing (one cull pass, one multi-draw) beside the per-piece-draw baseline in the same run, the cost of
+// tessellation levels 1 and 10, generation of 1,000 trees on one thread, and GPU memory.
+#include "BenchRows.hpp"
+
+#include <sylva/core/Log.hpp>
+#include <sylva/gl/ContextInfo.hpp>
+#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/RenderTarget.hpp>
+#include <sylva/trees/TreeRenderer.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+namespace sylva::app {
+namespace {
+
+/** A camera that sees the whole grid forest from the south-west, above the crowns. */
+render::Camera overview(const trees::Forest& forest, float aspect) {
+  glm::vec3 lo(1e30f);
+  glm::vec3 hi(-1e30f);
+  for (const trees::ForestTree& t : forest.trees) {
+    const glm::vec3 p(t.base[3]);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p + glm::vec3(0.0f, 12.0f, 0.0f));
+  }
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const float radius = std::max(8.0f, 0.5f * glm::length(hi - lo));
+  render::Camera camera;
+  camera.fovY = glm::radians(50.0f);
+  const float distance = radius / std::sin(camera.fovY * 0.5f) * (aspect < 1.0f ? 1.0f / aspect : 1.0f);
+  camera.target = centre;
+  camera.position = centre + glm::normalize(glm::vec3(-1.0f, 0.55f, 1.0f)) * distance;
+  camera.nearPlane = 0.5f;
+  camera.farPlane = distance * 3.0f;
+  return camera;
+}
+
+/** Median wall milliseconds per frame of `frame` (GPU finished each frame), after one warm-up frame. */
+double medianMs(int frames, const std::function<void()>& frame) {
+  const std::vector<double> runs = timeRuns(1, frames, [&] {
+    frame();
+    glFinish();
+  });
+  std::vector<double> ms;
+  for (double s : runs) {
+    ms.push_back(s * 1e3);
+  }
+  return render::Stats::of(ms).median;
+}
+
+} // namespace
+
+void benchTrees(int frames, int width, int height, nlohmann::json& report) {
+  shader::Library library;
+  render::RenderTarget target(width, height);
+  const std::string rendererName = gl::queryContextInfo().renderer;
+  std::vector<BenchRow> rows;
+  const int runs = std::max(3, frames / 10);
+  trees::TreeLod lod;
+
+  // 1. Fig. 16: forests of 1 … 1,000 almond trees (the paper's species), rest pose, all in view.
+  const double paperMs[] = {0.5319, 0.9523, 3.5714, 6.25, 17.5439, 28.5714, 58.8235};
+  const int counts[] = {1, 10, 50, 100, 250, 500, 1000};
+  nlohmann::json fig16 = nlohmann::json::array();
+  std::printf("trees: Fig. 16 workloads at %dx%d on %s (%d frames each)\n", width, height,
+              rendererName.c_str(), runs);
+  for (std::size_t w = 0; w < std::size(counts); ++w) {
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(counts[w]))));
+    trees::Forest grid = trees::gridForest({"almond"}, side, 9.0f, 16);
+    grid.trees.resize(static_cast<std::size_t>(counts[w]));
+    grid.index();
+    auto forest = std::make_shared<const trees::Forest>(std::move(grid));
+    trees::TreeRenderer renderer(library, forest);
+    const render::Camera camera = overview(*forest, target.aspect());
+    const double instanced = medianMs(runs, [&] {
+      target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+      renderer.cull(camera, target.aspect(), lod);
+      renderer.draw(camera, width, height, 0.0, lod);
+    });
+    const double perPiece = medianMs(runs, [&] {
+      target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+      renderer.drawPerPiece(camera, width, height, 0.0, lod);
+    });
+    const std::size_t pieces = renderer.instances().instances.size();
+    fig16.push_back({{"trees", counts[w]},
+                     {"pieces", pieces},
+                     {"instanced_ms", instanced},
+                     {"per_piece_ms", perPiece},
+                     {"paper_gtx980ti_ms", paperMs[w]}});
+    rows.push_back({fmt::format("{} trees ({} pieces): instanced, 1 multi-draw", counts[w], pieces),
+                    instanced, "ms", paperMs[w], true, 0,
+                    fmt::format("per-piece draws: {:.2f} ms; paper GTX 980 Ti", perPiece)});
+  }
+
+  // 2. Tessellation cost: 100 trees at fixed levels 1 and 10 (paper: 2.0 vs 2.8–3.0 ms on a GTX 950M).
+  {
+    trees::Forest grid = trees::gridForest({"almond"}, 10, 9.0f, 16);
+    auto forest = std::make_shared<const trees::Forest>(std::move(grid));
+    trees::TreeRenderer renderer(library, forest);
+    const render::Camera camera = overview(*forest, target.aspect());
+    auto at = [&](float level) {
+      trees::TreeLod fixed;
+      fixed.fixedLevel = level;
+      return medianMs(runs, [&] {
+        target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+        renderer.cull(camera, target.aspect(), fixed);
+        renderer.draw(camera, width, height, 0.0, fixed);
+      });
+    };
+    const double l1 = at(1.0f);
+    const double l10 = at(10.0f);
+    rows.push_back({"100 trees, tessellation level 1", l1, "ms", 2.0, true, 0, "paper: 2.0 ms (GTX 950M)"});
+    rows.push_back({"100 trees, tessellation level 10", l10, "ms", 3.0, true, 0,
+                    fmt::format("{:.1f}x level 1; paper: 2.8-3.0 ms, 1.45x", l10 / l1)});
+    rows.push_back({"GPU memory of 100 trees (meshes, instances, joints)",
+                    static_cast<double>(renderer.gpuBytes()) / 1e6, "MB", std::nan(""), true, 0, ""});
+  }
+
+  // 3. Generation: 1,000 trees (topology, transforms, bone buffers) on one thread.
+  {
+    const trees::PieceSet pieces = trees::standardPieces();
+    const trees::Species almond = trees::speciesPreset("almond");
+    std::size_t joints = 0;
+    std::vector<glm::mat4> frames;
+    const std::vector<double> seconds = timeRuns(1, 5, [&] {
+      joints = 0;
+      for (int t = 0; t < 1000; ++t) {
+        const trees::TreeTopology tree = trees::generateTree(pieces, almond, static_cast<std::uint64_t>(t));
+        const std::vector<glm::vec2> pose = trees::randomPose(tree, almond, 1);
+        trees::jointFrames(pieces, tree, trees::baseFrame(glm::vec3(t, 0, 0), 0.0f, 0.2f), pose, frames);
+        joints += frames.size();
+      }
+    });
+    std::vector<double> ms;
+    for (double s : seconds) {
+      ms.push_back(s * 1e3);
+    }
+    rows.push_back({"generate 1,000 almond trees (topology, pose, joint frames)",
+                    render::Stats::of(ms).median, "ms", 50.0, true, 1, fmt::format("{} joints", joints)});
+  }
+  report["rows"] = printBenchRows(rows);
+  report["fig16"] = fig16;
+}
+
+} // namespace sylva::app

@@ -1,0 +1,287 @@
+#include <sylva/trees/TreeRenderer.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/gl/Debug.hpp>
+#include <sylva/shader/Compiler.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace sylva::trees {
+namespace {
+
+constexpr std::size_t kCommandUints = 5;
+
+/** Culling slack for bends: a bent piece stays within its sphere grown by this factor. */
+constexpr float kBendSlack = 1.25f;
+
+} // namespace
+
+TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const Forest> forest)
+    : mForest(std::move(forest)), mUniforms(sizeof(gpu::TreeUniforms)) {
+  const Forest& f = *mForest;
+  if (f.pieces.size() > SYLVA_TREE_MAX_PIECES) {
+    fail("trees: {} piece types (at most {})", f.pieces.size(), SYLVA_TREE_MAX_PIECES);
+  }
+  mPacked = packInstances(f);
+  // One vertex and index buffer for all piece types; quads as 4-index patches.
+  std::vector<PieceVertexGpu> vertices;
+  std::vector<std::uint32_t> indices;
+  mCommandsReset.assign(kCommandUints * f.pieces.size(), 0u);
+  for (std::size_t t = 0; t < f.pieces.size(); ++t) {
+    const Piece& piece = f.pieces[t];
+    if (piece.joints.size() > SYLVA_TREE_MAX_PIECE_JOINTS) {
+      fail("trees: piece '{}' has {} joints (at most {})", piece.name, piece.joints.size(),
+           SYLVA_TREE_MAX_PIECE_JOINTS);
+    }
+    gpu::TreePieceGpu entry = pieceTableEntry(piece);
+    const auto baseVertex = static_cast<std::uint32_t>(vertices.size());
+    const auto firstIndex = static_cast<std::uint32_t>(indices.size());
+    for (const PieceVertex& v : piece.vertices) {
+      PieceVertexGpu g{};
+      std::memcpy(g.position, &v.position, sizeof g.position);
+      std::memcpy(g.normal, &v.normal, sizeof g.normal);
+      std::memcpy(g.weights, &v.weights, sizeof g.weights);
+      g.uv[0] = v.u;
+      g.uv[1] = v.v;
+      std::memcpy(g.joints, v.joints.data(), 4);
+      g.rim = v.rim >= 0 ? (v.rim << 8) | v.corner : -1;
+      vertices.push_back(g);
+    }
+    for (const auto& q : piece.quads) {
+      indices.insert(indices.end(), q.begin(), q.end());
+    }
+    const auto count = static_cast<std::uint32_t>(indices.size()) - firstIndex;
+    entry.range = glm::uvec4(firstIndex, count, mPacked.first[t], mPacked.count[t]);
+    mPieceTable.push_back(entry);
+    std::uint32_t* c = &mCommandsReset[t * kCommandUints];
+    c[0] = count;
+    c[1] = 0;
+    c[2] = firstIndex;
+    c[3] = baseVertex;
+    c[4] = mPacked.first[t];
+  }
+  mVertexBytes = vertices.size() * sizeof(PieceVertexGpu);
+  mIndexBytes = indices.size() * sizeof(std::uint32_t);
+  mVertices = gl::Buffer{std::span<const PieceVertexGpu>(vertices)};
+  mIndices = gl::Buffer{std::span<const std::uint32_t>(indices)};
+  const std::size_t n = std::max<std::size_t>(mPacked.instances.size(), 1);
+  mInstances = gl::Buffer(n * sizeof(gpu::TreeInstanceGpu), mPacked.instances.data());
+  mPieces = gl::Buffer{std::span<const gpu::TreePieceGpu>(mPieceTable)};
+  mVisible = gl::Buffer(n * sizeof(std::uint32_t));
+  std::vector<std::uint32_t> all(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    all[i] = static_cast<std::uint32_t>(i);
+  }
+  mAll = gl::Buffer{std::span<const std::uint32_t>(all)};
+  mCommands = gl::Buffer{std::span<const std::uint32_t>(mCommandsReset)};
+  mFrames = gl::Buffer(std::max<std::size_t>(f.jointCount, 1) * sizeof(gpu::JointFrame));
+  gl::setLabel(GL_BUFFER, mVertices.id(), "tree piece vertices");
+  gl::setLabel(GL_BUFFER, mFrames.id(), "tree joint frames");
+
+  // Vertex layout (PieceVertexGpu) and the instanced list attribute, for the culled lists and for all.
+  for (gl::VertexArray* vao : {&mVao, &mAllVao}) {
+    const GLuint id = vao->id();
+    glVertexArrayVertexBuffer(id, 0, mVertices.id(), 0, sizeof(PieceVertexGpu));
+    glVertexArrayElementBuffer(id, mIndices.id());
+    glVertexArrayAttribFormat(id, 0, 3, GL_FLOAT, GL_FALSE, offsetof(PieceVertexGpu, position));
+    glVertexArrayAttribFormat(id, 1, 3, GL_FLOAT, GL_FALSE, offsetof(PieceVertexGpu, normal));
+    glVertexArrayAttribIFormat(id, 2, 4, GL_UNSIGNED_BYTE, offsetof(PieceVertexGpu, joints));
+    glVertexArrayAttribFormat(id, 3, 4, GL_FLOAT, GL_FALSE, offsetof(PieceVertexGpu, weights));
+    glVertexArrayAttribFormat(id, 4, 2, GL_FLOAT, GL_FALSE, offsetof(PieceVertexGpu, uv));
+    glVertexArrayAttribIFormat(id, 5, 1, GL_INT, offsetof(PieceVertexGpu, rim));
+    for (GLuint a = 0; a < 6; ++a) {
+      glVertexArrayAttribBinding(id, a, 0);
+      glEnableVertexArrayAttrib(id, a);
+    }
+    glVertexArrayVertexBuffer(id, 1, vao == &mVao ? mVisible.id() : mAll.id(), 0, sizeof(std::uint32_t));
+    glVertexArrayBindingDivisor(id, 1, 1);
+    glVertexArrayAttribIFormat(id, 6, 1, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribBinding(id, 6, 1);
+    glEnableVertexArrayAttrib(id, 6);
+  }
+  // Rest frames until someone sets others.
+  std::vector<gpu::JointFrame> frames;
+  forestFrames(f, {}, frames);
+  setFrames(frames);
+  reloadShaders(library);
+}
+
+void TreeRenderer::reloadShaders(const shader::Library& library) {
+  gl::Program cull = shader::compileProgram(library, {"trees cull", {"trees/cull.comp"}, {}});
+  gl::Program draw = shader::compileProgram(
+      library,
+      {"trees draw", {"trees/piece.vert", "trees/piece.tesc", "trees/piece.tese", "trees/piece.frag"}, {}});
+  mCull = std::move(cull);
+  mDraw = std::move(draw);
+}
+
+void TreeRenderer::setFrames(std::span<const gpu::JointFrame> frames) {
+  if (frames.size() != mForest->jointCount) {
+    fail("trees: {} joint frames for {} joints", frames.size(), mForest->jointCount);
+  }
+  if (!frames.empty()) {
+    mFrames.setSubData(frames);
+  }
+}
+
+void TreeRenderer::useFrames(const gl::Buffer* external) {
+  mExternalFrames = external;
+}
+
+void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod,
+                                  TreeView view, bool breakRims) {
+  gpu::TreeUniforms& u = mLast;
+  const Frustum frustum = camera.frustum(aspect);
+  for (std::size_t p = 0; p < 6; ++p) {
+    u.frustum[p] = frustum.planes()[p];
+  }
+  u.tess.y = std::clamp(lod.maxLevel, 1.0f, 64.0f);
+  u.tess.z = lod.fixedLevel > 0.0f ? std::clamp(lod.fixedLevel, 1.0f, 64.0f) : 0.0f;
+  u.tess.w = lod.drawDistance;
+  const Species& s = mForest->species.empty() ? Species{} : mForest->species.front();
+  u.colours[0] = glm::vec4(s.barkColour, 1.0f);
+  u.colours[1] = glm::vec4(s.leafColour, 1.0f);
+  u.info =
+      glm::uvec4(static_cast<unsigned>(mPacked.instances.size()), static_cast<unsigned>(mPieceTable.size()),
+                 static_cast<unsigned>(view), breakRims ? 1u : 0u);
+  u.cull = glm::vec4(kBendSlack, 0.0f, 0.0f, 0.0f);
+  for (int k = 0; k < kRimCorners; ++k) {
+    u.corners[k] = glm::vec4(rimCorner(k), 0.0f);
+    u.rimNormals[k] = glm::vec4(rimNormal(k), 0.0f);
+  }
+  mUniforms.setSubData(0, sizeof(u), &u);
+}
+
+void TreeRenderer::bindAll() const {
+  mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TREE_BINDING);
+  (mExternalFrames != nullptr ? *mExternalFrames : mFrames)
+      .bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_JOINT_BINDING);
+  mInstances.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_INSTANCE_BINDING);
+  mVisible.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_VISIBLE_BINDING);
+  mCommands.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_COMMAND_BINDING);
+  mPieces.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_PIECE_BINDING);
+}
+
+void TreeRenderer::cull(const render::Camera& camera, float aspect, const TreeLod& lod,
+                        render::GpuTimers* timers) {
+  if (timers != nullptr) {
+    timers->begin("trees cull");
+  }
+  uploadUniforms(camera, aspect, lod, TreeView::Shaded, false);
+  mFrame.update(camera, 1, 1, 0.0, {});
+  mFrame.bind();
+  mCommands.setSubData(std::span<const std::uint32_t>(mCommandsReset));
+  bindAll();
+  mCull.use();
+  const auto n = static_cast<GLuint>(mPacked.instances.size());
+  if (n > 0) {
+    glDispatchCompute((n + SYLVA_TREE_CULL_GROUP - 1) / SYLVA_TREE_CULL_GROUP, 1, 1);
+  }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
+                  GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+  if (timers != nullptr) {
+    timers->end();
+  }
+}
+
+void TreeRenderer::submit(const TreeDrawOptions& options, bool perPiece) {
+  const GLboolean culling = glIsEnabled(GL_CULL_FACE);
+  GLint cullMode = GL_BACK;
+  glGetIntegerv(GL_CULL_FACE_MODE, &cullMode);
+  if (options.faces == TreeFaces::Both) {
+    glDisable(GL_CULL_FACE);
+  } else {
+    glEnable(GL_CULL_FACE);
+    glCullFace(options.faces == TreeFaces::Front ? GL_BACK : GL_FRONT);
+  }
+  glPatchParameteri(GL_PATCH_VERTICES, 4);
+  mDraw.use();
+  if (perPiece) {
+    mAllVao.bind();
+    for (std::size_t t = 0; t < mPieceTable.size(); ++t) {
+      const std::uint32_t* c = &mCommandsReset[t * kCommandUints];
+      for (std::uint32_t i = 0; i < mPacked.count[t]; ++i) {
+        glDrawElementsInstancedBaseVertexBaseInstance(
+            GL_PATCHES, static_cast<GLsizei>(c[0]), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(c[2]) * sizeof(std::uint32_t)), 1,
+            static_cast<GLint>(c[3]), mPacked.first[t] + i);
+      }
+    }
+  } else {
+    mVao.bind();
+    mCommands.bind(GL_DRAW_INDIRECT_BUFFER);
+    glMultiDrawElementsIndirect(GL_PATCHES, GL_UNSIGNED_INT, nullptr,
+                                static_cast<GLsizei>(mPieceTable.size()),
+                                kCommandUints * sizeof(std::uint32_t));
+  }
+  if (culling == GL_TRUE) {
+    glEnable(GL_CULL_FACE);
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
+  glCullFace(static_cast<GLenum>(cullMode));
+}
+
+void TreeRenderer::draw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
+                        render::GpuTimers* timers, const TreeDrawOptions& options) {
+  if (timers != nullptr) {
+    timers->begin("trees");
+  }
+  uploadUniforms(camera, static_cast<float>(width) / static_cast<float>(std::max(height, 1)), lod,
+                 options.view, options.breakRims);
+  // Level = K · edge length / distance: K turns metres at a distance into pixels, per target segment length.
+  mLast.tess.x = static_cast<float>(height) / (2.0f * std::tan(camera.fovY * 0.5f)) /
+                 std::max(lod.pixelsPerSegment, 0.5f);
+  mUniforms.setSubData(0, sizeof(mLast), &mLast);
+  mFrame.update(camera, width, height, time, options.environment);
+  mFrame.bind();
+  bindAll();
+  submit(options, false);
+  if (timers != nullptr) {
+    timers->end();
+  }
+}
+
+void TreeRenderer::drawPerPiece(const render::Camera& camera, int width, int height, double time,
+                                const TreeLod& lod, const TreeDrawOptions& options) {
+  uploadUniforms(camera, static_cast<float>(width) / static_cast<float>(std::max(height, 1)), lod,
+                 options.view, options.breakRims);
+  mLast.tess.x = static_cast<float>(height) / (2.0f * std::tan(camera.fovY * 0.5f)) /
+                 std::max(lod.pixelsPerSegment, 0.5f);
+  mUniforms.setSubData(0, sizeof(mLast), &mLast);
+  mFrame.update(camera, width, height, time, options.environment);
+  mFrame.bind();
+  bindAll();
+  submit(options, true);
+}
+
+std::vector<std::uint32_t> TreeRenderer::readVisibleCounts() const {
+  std::vector<std::uint32_t> commands(mCommandsReset.size());
+  glGetNamedBufferSubData(mCommands.id(), 0, static_cast<GLsizeiptr>(commands.size() * sizeof(std::uint32_t)),
+                          commands.data());
+  std::vector<std::uint32_t> counts(mPieceTable.size());
+  for (std::size_t t = 0; t < counts.size(); ++t) {
+    counts[t] = commands[t * kCommandUints + 1];
+  }
+  return counts;
+}
+
+std::vector<std::uint32_t> TreeRenderer::readVisible(std::size_t type) const {
+  const std::uint32_t count = readVisibleCounts()[type];
+  std::vector<std::uint32_t> out(count);
+  if (count > 0) {
+    glGetNamedBufferSubData(mVisible.id(), static_cast<GLintptr>(mPacked.first[type] * sizeof(std::uint32_t)),
+                            static_cast<GLsizeiptr>(count * sizeof(std::uint32_t)), out.data());
+  }
+  return out;
+}
+
+std::size_t TreeRenderer::gpuBytes() const {
+  return mVertexBytes + mIndexBytes + mPacked.instances.size() * (sizeof(gpu::TreeInstanceGpu) + 8) +
+         mPieceTable.size() * sizeof(gpu::TreePieceGpu) + mForest->jointCount * sizeof(gpu::JointFrame) +
+         sizeof(gpu::TreeUniforms);
+}
+
+} // namespace sylva::trees

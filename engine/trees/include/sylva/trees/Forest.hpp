@@ -1,0 +1,114 @@
+#pragma once
+// Forests (docs/trees.md): many trees, each its own topology and pose, concatenated so every piece instance
+// of every tree can be drawn by piece type and every joint lives in one buffer. Placement on terrain by
+// seeded density, slope and height rules.
+
+#include <sylva/terrain/HeightField.hpp>
+#include <sylva/trees/Skeleton.hpp>
+
+#include <shared/Trees.h>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace sylva::trees {
+
+/** One tree of a forest. */
+struct ForestTree {
+  TreeTopology topology;
+  /** Index into Forest::species. */
+  int species = 0;
+  /** Base frame: world placement, metres per rim unit (see baseFrame). */
+  glm::mat4 base{1.0f};
+  /** Rest pose bends per joint (randomPose), radians. */
+  std::vector<glm::vec2> pose;
+  /** Wind phase offset, seconds (no two trees move in unison). */
+  float phase = 0.0f;
+};
+
+/** Trees with their pieces and species; jointOffset[t] is tree t's joint 0 in the global joint numbering. */
+struct Forest {
+  PieceSet pieces;
+  std::vector<Species> species;
+  std::vector<ForestTree> trees;
+  std::vector<std::uint32_t> jointOffset;
+  std::size_t jointCount = 0;
+
+  /** Recomputes jointOffset and jointCount (call after changing trees). */
+  void index();
+};
+
+/** Where trees may grow and how many (scene files, `sylva render --trees`). */
+struct ForestSettings {
+  /** Species mix (preset names or species files), chosen uniformly per tree. */
+  std::vector<std::string> species{"almond"};
+  int count = 100;
+  std::uint64_t seed = 1;
+  /** Minimum distance between trunks, metres. */
+  float spacing = 4.0f;
+  /** Steepest ground a tree grows on, degrees. */
+  float maxSlope = 30.0f;
+  /** Height band, metres (NaN: no limit). */
+  float minHeight = std::numeric_limits<float>::quiet_NaN();
+  float maxHeight = std::numeric_limits<float>::quiet_NaN();
+  /** Density noise: feature size in metres and the fraction of ground it leaves bare (0: uniform). */
+  float clusterSize = 60.0f;
+  float bare = 0.35f;
+  /** Heights of the terrain field are multiplied by this to get drawn heights (terrain exaggeration). */
+  float verticalScale = 1.0f;
+};
+
+/** Throws sylva::Error "<where>.<field>: …" for bad settings (counts ≤ 1,000,000, finite positive sizes). */
+void validate(const ForestSettings& settings, const std::string& where);
+
+/**
+ * Places up to settings.count trees on `terrain` (dart throwing with the spacing, rules, density noise; fewer
+ * when the ground runs out after 40 tries per tree). Deterministic in the seed.
+ */
+Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& settings);
+
+/**
+ * A square grid of `side` × `side` trees `spacing` metres apart on flat ground at y = 0 around the origin
+ * (benchmarks, tests); tree i is of species[i % species.size()] (preset names or files).
+ */
+Forest gridForest(const std::vector<std::string>& species, int side, float spacing, std::uint64_t seed);
+
+/** Instances grouped by piece type: instances[first[t] … first[t] + count[t]) are of piece type t. */
+struct PackedInstances {
+  std::vector<gpu::TreeInstanceGpu> instances;
+  std::vector<std::uint32_t> first;
+  std::vector<std::uint32_t> count;
+};
+PackedInstances packInstances(const Forest& forest);
+
+/** A similarity as the GPU's three rows. */
+gpu::JointFrame packFrame(const glm::mat4& frame);
+
+/**
+ * Every joint frame of every tree (world space), rest pose plus `extraBends` (per global joint, radians;
+ * empty: none).
+ */
+void forestFrames(const Forest& forest, std::span<const glm::vec2> extraBends,
+                  std::vector<gpu::JointFrame>& out);
+
+/** Per piece type: bounding sphere and inverse binds, as the renderer uploads them (ranges left zero). */
+gpu::TreePieceGpu pieceTableEntry(const Piece& piece);
+
+/**
+ * CPU reference of the culling pass: the visible instance indices of each piece type (sorted), given the
+ * frames, the camera's frustum planes (as in TreeUniforms) and position, the draw distance and the slack.
+ */
+std::vector<std::vector<std::uint32_t>> cullInstances(const PackedInstances& packed,
+                                                      std::span<const gpu::TreePieceGpu> pieces,
+                                                      std::span<const gpu::JointFrame> frames,
+                                                      const std::array<glm::vec4, 6>& planes,
+                                                      glm::vec3 camera, float drawDistance, float slack);
+
+} // namespace sylva::trees

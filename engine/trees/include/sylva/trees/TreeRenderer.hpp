@@ -1,0 +1,140 @@
+#pragma once
+// Trees on the GPU (docs/trees.md, seed 000 §4): the piece meshes of a forest in one vertex and index buffer,
+// every piece instance of every tree in one instance buffer, every joint of every tree in one frame buffer.
+// Per frame a culling compute pass writes one indirect command per piece type (all instances of one type in
+// one command) and one glMultiDrawElementsIndirect draws them all as quad patches: skinned in the vertex
+// shader, Phong-tessellated by distance in the tessellation shaders, lit in the fragment shader. Needs a
+// current GL context.
+
+#include <sylva/gl/Buffer.hpp>
+#include <sylva/gl/Program.hpp>
+#include <sylva/gl/VertexArray.hpp>
+#include <sylva/render/Camera.hpp>
+#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/GpuTimers.hpp>
+#include <sylva/shader/Library.hpp>
+#include <sylva/trees/Forest.hpp>
+
+#include <shared/Trees.h>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace sylva::trees {
+
+/** What the fragment shader shows. */
+enum class TreeView : int {
+  Shaded = 0,
+  /** A colour per piece type (I red, Y green, Psi blue, Branch yellow, Cap magenta, Foot cyan). */
+  PieceTypes = 1,
+  /** The root joint's skinning weight: white on the root rim, black on leaf rims (paper Fig. 5). */
+  Bones = 2,
+  /** Tessellation level: blue (1) to red (64). */
+  LodLevels = 3,
+};
+
+/** Which faces to draw (trees are closed surfaces, so back faces are hidden and culled by default). */
+enum class TreeFaces { Front, Back, Both };
+
+/** Level of detail: the distance rule of the tessellation (docs/trees.md). */
+struct TreeLod {
+  /** Target length of a tessellated segment on screen, pixels. */
+  float pixelsPerSegment = 6.0f;
+  /** Largest tessellation level (1 … 64). */
+  float maxLevel = 16.0f;
+  /** > 0: every edge and the inside get this level (tests, benchmarks); 0: the distance rule. */
+  float fixedLevel = 0.0f;
+  /** Pieces whose bounding sphere lies farther than this are not drawn, metres (0: no limit). */
+  float drawDistance = 0.0f;
+};
+
+/** Per-draw options. */
+struct TreeDrawOptions {
+  TreeView view = TreeView::Shaded;
+  TreeFaces faces = TreeFaces::Front;
+  render::Environment environment{};
+  /** Debug: shrink every root rim by 3 % so seams open (the watertightness test's control). */
+  bool breakRims = false;
+};
+
+/** A forest's GPU state. */
+class TreeRenderer {
+public:
+  TreeRenderer(const shader::Library& library, std::shared_ptr<const Forest> forest);
+
+  /** Recompiles the programs (viewer hot reload); keeps the old ones and throws on error. */
+  void reloadShaders(const shader::Library& library);
+
+  /** Uploads all joint frames (Forest joint numbering, world space); see forestFrames(). */
+  void setFrames(std::span<const gpu::JointFrame> frames);
+  /** Reads frames from `external` instead (e.g. the wind pass's output; not owned); null: the own buffer. */
+  void useFrames(const gl::Buffer* external);
+
+  /** Culls every piece instance for `camera` at `aspect`, writing the indirect commands. */
+  void cull(const render::Camera& camera, float aspect, const TreeLod& lod,
+            render::GpuTimers* timers = nullptr);
+  /** Draws the last cull into the bound framebuffer: one glMultiDrawElementsIndirect for all piece types. */
+  void draw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
+            render::GpuTimers* timers = nullptr, const TreeDrawOptions& options = {});
+  /**
+   * The baseline the paper's instancing is measured against: one draw call per piece instance (no culling),
+   * same shaders and levels.
+   */
+  void drawPerPiece(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
+                    const TreeDrawOptions& options = {});
+
+  /** Visible instances per piece type after the last cull (synchronous readback). */
+  std::vector<std::uint32_t> readVisibleCounts() const;
+  /** The visible instance indices of piece type `type` (unordered), for tests. */
+  std::vector<std::uint32_t> readVisible(std::size_t type) const;
+
+  const Forest& forest() const { return *mForest; }
+  const PackedInstances& instances() const { return mPacked; }
+  /** Model-space bounding sphere (xyz centre, w radius; rim units) of piece type `type`. */
+  glm::vec4 pieceSphere(std::size_t type) const { return mPieceTable[type].sphere; }
+  /** Bytes of GPU memory held. */
+  std::size_t gpuBytes() const;
+
+private:
+  void uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod, TreeView view,
+                      bool breakRims);
+  void bindAll() const;
+  void submit(const TreeDrawOptions& options, bool perPiece);
+
+  std::shared_ptr<const Forest> mForest;
+  PackedInstances mPacked;
+  std::vector<gpu::TreePieceGpu> mPieceTable;
+  std::vector<std::uint32_t> mCommandsReset;
+  std::size_t mVertexBytes = 0;
+  std::size_t mIndexBytes = 0;
+  gl::Program mCull{gl::NoCreate};
+  gl::Program mDraw{gl::NoCreate};
+  gl::Buffer mVertices{gl::NoCreate};
+  gl::Buffer mIndices{gl::NoCreate};
+  gl::Buffer mInstances{gl::NoCreate};
+  gl::Buffer mPieces{gl::NoCreate};
+  gl::Buffer mVisible{gl::NoCreate};
+  gl::Buffer mAll{gl::NoCreate};
+  gl::Buffer mCommands{gl::NoCreate};
+  gl::Buffer mFrames{gl::NoCreate};
+  gl::Buffer mUniforms;
+  const gl::Buffer* mExternalFrames = nullptr;
+  gl::VertexArray mVao;
+  gl::VertexArray mAllVao;
+  render::FrameUniformBuffer mFrame;
+  gpu::TreeUniforms mLast{};
+};
+
+/** The GPU vertex of a piece (56 bytes): position, normal, weights, uv, joints, rim << 8 | corner (or -1). */
+struct PieceVertexGpu {
+  float position[3];
+  float normal[3];
+  float weights[4];
+  float uv[2];
+  std::uint8_t joints[4];
+  std::int32_t rim;
+};
+static_assert(sizeof(PieceVertexGpu) == 56);
+
+} // namespace sylva::trees

@@ -1,0 +1,279 @@
+#include <sylva/trees/Forest.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Random.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/wind/Wind.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+namespace sylva::trees {
+namespace {
+
+ForestTree makeTree(const Forest& forest, int species, std::uint64_t seed, glm::vec3 position, float yaw) {
+  const Species& s = forest.species[static_cast<std::size_t>(species)];
+  ForestTree t;
+  t.species = species;
+  t.topology = generateTree(forest.pieces, s, seed);
+  Rng rng(hash64(seed ^ 0x5ca1eULL));
+  const float radius = s.trunkRadius * (1.0f + s.sizeVariation * rng.uniform(-1.0f, 1.0f));
+  // Sink the foot a little so it meets sloping ground.
+  t.base = baseFrame(position - glm::vec3(0.0f, 0.15f * radius, 0.0f), yaw, radius);
+  t.pose = randomPose(t.topology, s, seed);
+  t.phase = rng.uniform(0.0f, 60.0f);
+  return t;
+}
+
+} // namespace
+
+void Forest::index() {
+  jointOffset.resize(trees.size());
+  std::size_t next = 0;
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    jointOffset[t] = static_cast<std::uint32_t>(next);
+    next += trees[t].topology.jointCount();
+  }
+  jointCount = next;
+}
+
+void validate(const ForestSettings& s, const std::string& where) {
+  if (s.species.empty()) {
+    fail("{}.species: needs at least one species", where);
+  }
+  if (s.count < 0 || s.count > 1000000) {
+    fail("{}.count: {} is out of range [0, 1000000]", where, s.count);
+  }
+  if (!(std::isfinite(s.spacing) && s.spacing >= 0.0f && s.spacing <= 1000.0f)) {
+    fail("{}.spacing: must be a finite number in [0, 1000] metres", where);
+  }
+  if (!(std::isfinite(s.maxSlope) && s.maxSlope >= 0.0f && s.maxSlope <= 90.0f)) {
+    fail("{}.maxSlope: must be in [0, 90] degrees", where);
+  }
+  if (std::isinf(s.minHeight) || std::isinf(s.maxHeight)) {
+    fail("{}.minHeight/maxHeight: must be finite", where);
+  }
+  if (!(std::isfinite(s.verticalScale) && s.verticalScale > 0.0f)) {
+    fail("{}.verticalScale: must be a finite number > 0", where);
+  }
+  if (!(std::isfinite(s.clusterSize) && s.clusterSize > 0.0f) ||
+      !(std::isfinite(s.bare) && s.bare >= 0.0f && s.bare < 1.0f)) {
+    fail("{}.clusterSize/bare: cluster size must be > 0 metres and bare in [0, 1)", where);
+  }
+}
+
+Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& settings) {
+  validate(settings, "forest");
+  Forest forest;
+  forest.pieces = standardPieces();
+  for (const std::string& name : settings.species) {
+    forest.species.push_back(resolveSpecies(name));
+  }
+  Rng rng(hash64(settings.seed ^ 0xf0e57ULL));
+  const float cell = std::max(settings.spacing, 0.5f);
+  std::unordered_map<std::int64_t, std::vector<glm::vec2>> grid;
+  auto key = [&](int i, int j) {
+    return (static_cast<std::int64_t>(i) << 32) ^ static_cast<std::uint32_t>(j);
+  };
+  const float cosMax = std::cos(settings.maxSlope * std::numbers::pi_v<float> / 180.0f);
+  const int attempts = settings.count * 40;
+  for (int a = 0; a < attempts && static_cast<int>(forest.trees.size()) < settings.count; ++a) {
+    const glm::vec2 p(rng.uniform(0.0f, terrain.extentX()), rng.uniform(0.0f, terrain.extentZ()));
+    const float yaw = rng.uniform(0.0f, 2.0f * std::numbers::pi_v<float>);
+    const std::uint32_t pick = rng.below(static_cast<std::uint32_t>(forest.species.size()));
+    const float h = terrain::heightAt(terrain, p.x, p.y) * settings.verticalScale;
+    if (std::isnan(h) || (!std::isnan(settings.minHeight) && h < settings.minHeight) ||
+        (!std::isnan(settings.maxHeight) && h > settings.maxHeight)) {
+      continue;
+    }
+    const glm::vec3 flat = terrain::normalAt(terrain, p.x, p.y);
+    const glm::vec3 n =
+        glm::normalize(glm::vec3(flat.x * settings.verticalScale, flat.y, flat.z * settings.verticalScale));
+    if (!(n.y >= cosMax)) {
+      continue;
+    }
+    if (settings.bare > 0.0f) {
+      const float d = 0.5f + 0.5f * wind::valueNoise(glm::vec3(p / settings.clusterSize, 0.5f),
+                                                     static_cast<std::uint32_t>(settings.seed));
+      if (d < settings.bare) {
+        continue;
+      }
+    }
+    const int ci = static_cast<int>(std::floor(p.x / cell));
+    const int cj = static_cast<int>(std::floor(p.y / cell));
+    bool free = true;
+    for (int dj = -1; dj <= 1 && free; ++dj) {
+      for (int di = -1; di <= 1 && free; ++di) {
+        const auto it = grid.find(key(ci + di, cj + dj));
+        if (it == grid.end()) {
+          continue;
+        }
+        for (const glm::vec2& q : it->second) {
+          if (glm::length(q - p) < settings.spacing) {
+            free = false;
+            break;
+          }
+        }
+      }
+    }
+    if (!free) {
+      continue;
+    }
+    grid[key(ci, cj)].push_back(p);
+    const std::uint64_t seed = hash64(settings.seed * 1000003ULL + forest.trees.size());
+    forest.trees.push_back(makeTree(forest, static_cast<int>(pick), seed, glm::vec3(p.x, h, p.y), yaw));
+  }
+  forest.index();
+  return forest;
+}
+
+Forest gridForest(const std::vector<std::string>& species, int side, float spacing, std::uint64_t seed) {
+  Forest forest;
+  forest.pieces = standardPieces();
+  for (const std::string& name : species) {
+    forest.species.push_back(resolveSpecies(name));
+  }
+  if (forest.species.empty()) {
+    fail("forest: needs at least one species");
+  }
+  const float offset = 0.5f * spacing * static_cast<float>(side - 1);
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const std::uint64_t s = hash64(seed * 7919ULL + static_cast<std::uint64_t>(j * side + i));
+      const glm::vec3 p(static_cast<float>(i) * spacing - offset, 0.0f,
+                        static_cast<float>(j) * spacing - offset);
+      const int kind = (j * side + i) % static_cast<int>(forest.species.size());
+      forest.trees.push_back(makeTree(forest, kind, s, p, static_cast<float>(s % 6283) * 0.001f));
+    }
+  }
+  forest.index();
+  return forest;
+}
+
+PackedInstances packInstances(const Forest& forest) {
+  PackedInstances out;
+  const std::size_t types = forest.pieces.size();
+  out.first.assign(types, 0);
+  out.count.assign(types, 0);
+  for (const ForestTree& t : forest.trees) {
+    for (const TreeNode& n : t.topology.nodes) {
+      out.count[static_cast<std::size_t>(n.piece)] += 1;
+    }
+  }
+  std::uint32_t total = 0;
+  for (std::size_t p = 0; p < types; ++p) {
+    out.first[p] = total;
+    total += out.count[p];
+  }
+  out.instances.resize(total);
+  std::vector<std::uint32_t> cursor = out.first;
+  for (std::size_t ti = 0; ti < forest.trees.size(); ++ti) {
+    const ForestTree& t = forest.trees[ti];
+    const std::uint32_t offset = forest.jointOffset[ti];
+    for (const TreeNode& n : t.topology.nodes) {
+      const auto type = static_cast<std::size_t>(n.piece);
+      out.instances[cursor[type]++].joints =
+          glm::uvec4(offset + n.rootJoint, offset + n.jointBase,
+                     static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8),
+                     static_cast<std::uint32_t>(ti));
+    }
+  }
+  return out;
+}
+
+gpu::JointFrame packFrame(const glm::mat4& m) {
+  return gpu::JointFrame{glm::vec4(m[0][0], m[1][0], m[2][0], m[3][0]),
+                         glm::vec4(m[0][1], m[1][1], m[2][1], m[3][1]),
+                         glm::vec4(m[0][2], m[1][2], m[2][2], m[3][2])};
+}
+
+void forestFrames(const Forest& forest, std::span<const glm::vec2> extraBends,
+                  std::vector<gpu::JointFrame>& out) {
+  out.resize(forest.jointCount);
+  std::vector<glm::mat4> frames;
+  std::vector<glm::vec2> bends;
+  for (std::size_t ti = 0; ti < forest.trees.size(); ++ti) {
+    const ForestTree& t = forest.trees[ti];
+    const std::uint32_t offset = forest.jointOffset[ti];
+    bends = t.pose;
+    bends.resize(t.topology.jointCount(), glm::vec2(0.0f));
+    if (!extraBends.empty()) {
+      for (std::size_t j = 0; j < bends.size(); ++j) {
+        bends[j] += extraBends[offset + j];
+      }
+    }
+    jointFrames(forest.pieces, t.topology, t.base, bends, frames);
+    for (std::size_t j = 0; j < frames.size(); ++j) {
+      out[offset + j] = packFrame(frames[j]);
+    }
+  }
+}
+
+} // namespace sylva::trees
+
+namespace sylva::trees {
+namespace {
+
+glm::mat4 inverseSimilarity(const glm::mat4& m) {
+  return glm::inverse(m);
+}
+
+glm::vec3 framePoint(const gpu::JointFrame& f, glm::vec3 p) {
+  const glm::vec4 p1(p, 1.0f);
+  return glm::vec3(glm::dot(f.x, p1), glm::dot(f.y, p1), glm::dot(f.z, p1));
+}
+
+} // namespace
+
+gpu::TreePieceGpu pieceTableEntry(const Piece& piece) {
+  gpu::TreePieceGpu entry{};
+  const Bounds b = pieceBounds(piece);
+  const glm::vec3 centre = 0.5f * (b.min + b.max);
+  float radius = 0.0f;
+  for (const PieceVertex& v : piece.vertices) {
+    radius = std::max(radius, glm::length(v.position - centre));
+  }
+  // Phong tessellation bulges out by at most a fraction of the edge length: a 10 % margin.
+  entry.sphere = glm::vec4(centre, radius * 1.1f);
+  for (std::size_t j = 0; j < piece.joints.size() && j < SYLVA_TREE_MAX_PIECE_JOINTS; ++j) {
+    entry.inverseBind[j] = packFrame(inverseSimilarity(piece.joints[j].bind));
+  }
+  return entry;
+}
+
+std::vector<std::vector<std::uint32_t>> cullInstances(const PackedInstances& packed,
+                                                      std::span<const gpu::TreePieceGpu> pieces,
+                                                      std::span<const gpu::JointFrame> frames,
+                                                      const std::array<glm::vec4, 6>& planes,
+                                                      glm::vec3 camera, float drawDistance, float slack) {
+  std::vector<std::vector<std::uint32_t>> out(pieces.size());
+  for (std::size_t i = 0; i < packed.instances.size(); ++i) {
+    const glm::uvec4 inst = packed.instances[i].joints;
+    const std::uint32_t type = inst.z >> 8;
+    const gpu::TreePieceGpu& piece = pieces[type];
+    const gpu::JointFrame& root = frames[inst.x];
+    const glm::vec3 c(piece.sphere);
+    const float scale = glm::length(glm::vec3(root.x.x, root.y.x, root.z.x));
+    const glm::vec3 centre = framePoint(root, glm::vec3(0.0f, c.y, 0.0f));
+    const float radius = (piece.sphere.w + glm::length(glm::vec2(c.x, c.z))) * scale * slack;
+    bool inside = true;
+    for (const glm::vec4& p : planes) {
+      if (glm::dot(glm::vec3(p), centre) + p.w < -radius) {
+        inside = false;
+        break;
+      }
+    }
+    if (inside && drawDistance > 0.0f && glm::length(centre - camera) - radius > drawDistance) {
+      inside = false;
+    }
+    if (inside) {
+      out[type].push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  return out;
+}
+
+} // namespace sylva::trees

@@ -1,0 +1,42 @@
+#version 450
+// Culls every piece instance of every tree against the frustum and the draw distance, appending the visible
+// ones to their piece type's list and counting them into that type's indirect draw command (cullInstances in
+// C++ is the reference).
+#include "trees.glsl"
+#include "../common/frame.glsl"
+
+layout(local_size_x = SYLVA_TREE_CULL_GROUP) in;
+
+layout(std430, binding = SYLVA_TREE_VISIBLE_BINDING) writeonly buffer Visible {
+  uint visible[];
+};
+// Five uints per piece type: count, instanceCount, firstIndex, baseVertex, baseInstance.
+layout(std430, binding = SYLVA_TREE_COMMAND_BINDING) buffer Commands {
+  uint commands[];
+};
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= trees.info.x) {
+    return;
+  }
+  uvec4 inst = instances[i].joints;
+  uint type = inst.z >> 8;
+  TreePieceGpu piece = pieceTable[type];
+  JointFrame root = joints[inst.x];
+  // Rotation about the rim axis moves the sphere's centre around it: take the axis point and widen the radius.
+  vec3 c = piece.sphere.xyz;
+  float scale = length(vec3(root.x.x, root.y.x, root.z.x));
+  vec3 centre = framePoint(root, vec3(0.0, c.y, 0.0));
+  float radius = (piece.sphere.w + length(c.xz)) * scale * trees.cull.x;
+  for (int p = 0; p < 6; ++p) {
+    if (dot(trees.frustum[p].xyz, centre) + trees.frustum[p].w < -radius) {
+      return;
+    }
+  }
+  if (trees.tess.w > 0.0 && distance(centre, frame.cameraPos.xyz) - radius > trees.tess.w) {
+    return;
+  }
+  uint slot = atomicAdd(commands[type * 5u + 1u], 1u);
+  visible[piece.range.z + slot] = i;
+}

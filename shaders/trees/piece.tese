@@ -1,0 +1,51 @@
+#version 450
+// Phong tessellation adapted to quads (Boubekeur & Alexa 2008 with bilinear weights; the CPU twin is
+// phongQuad in engine/trees/src/Tessellation.cpp). On an edge only that edge's two corners have non-zero
+// weights, so the two quads sharing it (and two pieces sharing a rim) compute the same points. `precise`
+// keeps the compiler from fusing or reordering those operations differently in the two patches.
+#include "trees.glsl"
+#include "../common/frame.glsl"
+
+layout(quads, fractional_odd_spacing, ccw) in;
+
+in vec3 teWorld[];
+in vec3 teNormal[];
+in vec2 teUv[];
+in float teRootWeight[];
+flat in uint teInstance[];
+
+out vec3 fWorld;
+out vec3 fNormal;
+out vec2 fUv;
+out float fRootWeight;
+flat out uint fInstance;
+flat out uint fPatch;
+flat out float fLevel;
+
+const float kAlpha = 0.75;
+
+vec3 project(vec3 q, vec3 p, vec3 n) {
+  precise vec3 r = q - dot(q - p, n) * n;
+  return r;
+}
+
+void main() {
+  float u = gl_TessCoord.x;
+  float v = gl_TessCoord.y;
+  precise float w0 = (1.0 - u) * (1.0 - v);
+  precise float w1 = u * (1.0 - v);
+  precise float w2 = u * v;
+  precise float w3 = (1.0 - u) * v;
+  precise vec3 p = w0 * teWorld[0] + w1 * teWorld[1] + w2 * teWorld[2] + w3 * teWorld[3];
+  precise vec3 phong = w0 * project(p, teWorld[0], teNormal[0]) + w1 * project(p, teWorld[1], teNormal[1]) +
+                       w2 * project(p, teWorld[2], teNormal[2]) + w3 * project(p, teWorld[3], teNormal[3]);
+  precise vec3 world = (1.0 - kAlpha) * p + kAlpha * phong;
+  fWorld = world;
+  fNormal = normalize(w0 * teNormal[0] + w1 * teNormal[1] + w2 * teNormal[2] + w3 * teNormal[3]);
+  fUv = w0 * teUv[0] + w1 * teUv[1] + w2 * teUv[2] + w3 * teUv[3];
+  fRootWeight = w0 * teRootWeight[0] + w1 * teRootWeight[1] + w2 * teRootWeight[2] + w3 * teRootWeight[3];
+  fInstance = teInstance[0];
+  fPatch = uint(gl_PrimitiveID);
+  fLevel = gl_TessLevelInner[0];
+  gl_Position = frame.viewProj * vec4(world, 1.0);
+}

@@ -1,0 +1,36 @@
+// Shared declarations of the tree passes (docs/trees.md): uniforms, joint frames, instances, piece table.
+#pragma once
+#include "../shared/Trees.h"
+
+layout(std140, binding = SYLVA_TREE_BINDING) uniform TreeBlock {
+  TreeUniforms trees;
+};
+
+layout(std430, binding = SYLVA_TREE_JOINT_BINDING) readonly buffer Joints {
+  JointFrame joints[];
+};
+
+layout(std430, binding = SYLVA_TREE_INSTANCE_BINDING) readonly buffer Instances {
+  TreeInstanceGpu instances[];
+};
+
+layout(std430, binding = SYLVA_TREE_PIECE_BINDING) readonly buffer PieceTable {
+  TreePieceGpu pieceTable[];
+};
+
+/** A point through a frame (three rows of a 3x4 matrix). */
+vec3 framePoint(JointFrame f, vec3 p) {
+  vec4 p1 = vec4(p, 1.0);
+  return vec3(dot(f.x, p1), dot(f.y, p1), dot(f.z, p1));
+}
+
+/** A direction through a frame's linear part. */
+vec3 frameVector(JointFrame f, vec3 v) {
+  return vec3(dot(f.x.xyz, v), dot(f.y.xyz, v), dot(f.z.xyz, v));
+}
+
+/** Rotation of a rim frame by `steps` × 60° about +y (rimRotation in C++), applied to p. */
+vec3 rimTurn(vec3 p, uint steps) {
+  vec3 c = trees.corners[steps % 6u].xyz; // (cos, 0, sin) of 60°·steps
+  return vec3(c.x * p.x - c.z * p.z, p.y, c.z * p.x + c.x * p.z);
+}
