@@ -13,6 +13,7 @@
 #include "TerrainFlags.hpp"
 #include "TreeFlags.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 namespace sylva::app {
@@ -125,12 +126,13 @@ void registerRender(CLI::App& app) {
                     camera.target.y / e, camera.target.z);
         }
       }
-      std::unique_ptr<trees::TreeRenderer> forest;
+      std::unique_ptr<TreeScene> forest;
       if (o->trees.enabled) {
         std::shared_ptr<trees::Forest> placed = o->trees.buildForest(*scene);
-        forest = std::make_unique<trees::TreeRenderer>(library, placed);
-        log::info("trees: {} trees, {} pieces, {} joints", placed->trees.size(),
-                  forest->instances().instances.size(), placed->jointCount);
+        forest = std::make_unique<TreeScene>(library, placed, o->trees.wind);
+        log::info("trees: {} trees, {} pieces, {} joints, {}", placed->trees.size(),
+                  forest->renderer().instances().instances.size(), placed->jointCount,
+                  o->trees.wind ? "in the wind (--no-trees-wind: rest pose)" : "rest pose");
         if (o->camera.cameraPos.empty() && !o->grass.enabled) {
           camera = forestCamera(*scene, *placed, glm::radians(o->camera.fovDegrees));
         }
@@ -161,11 +163,14 @@ void registerRender(CLI::App& app) {
         target.begin(glm::vec4(environment.fogColor, 1.0f));
         drawTerrainWithGrass(*scene, grass.get(), camera, o->width, o->height, time, options, grassOptions);
         if (forest) {
-          forest->cull(camera, target.aspect(), o->trees.lod);
+          // Fixed steps from --time on (the first frame after the same warm-up): the same image for the same
+          // --time, and enough steps per frame for any --fps.
+          forest->advance(time, grassOptions.wind,
+                          static_cast<int>(std::ceil(1.0 / (o->fps * kTreeWindStep))) + 1);
           trees::TreeDrawOptions treeOptions;
           treeOptions.view = o->trees.treeView();
           treeOptions.environment = options.environment;
-          forest->draw(camera, o->width, o->height, time, o->trees.lod, nullptr, treeOptions);
+          forest->draw(camera, o->width, o->height, time, o->trees.lod, treeOptions);
         }
         if (simulation) {
           simulation->drawBodies(camera, o->width, o->height, time, options.environment);

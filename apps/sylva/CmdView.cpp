@@ -11,10 +11,12 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/trees/Species.hpp>
 
 #include "GrassFlags.hpp"
 #include "GrassSim.hpp"
 #include "TerrainFlags.hpp"
+#include "TreeFlags.hpp"
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
@@ -36,6 +38,7 @@ struct ViewOptions {
   CameraFlags camera;
   GrassFlags grass;
   SimulationFlags simulation;
+  TreeFlags trees;
   int width = 1280;
   int height = 720;
   std::string shaderDir;
@@ -422,6 +425,229 @@ void simulationPanel(ViewerGrass& g, const terrain::TerrainScene& scene, const r
   errorText(g.simError);
 }
 
+/** A species mix the Trees panel offers: its label and the species (presets or files). */
+struct SpeciesMix {
+  std::string label;
+  std::vector<std::string> species;
+};
+
+/** "a, b, c". */
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) {
+    out += (out.empty() ? "" : ", ") + n;
+  }
+  return out;
+}
+
+/**
+ * The mixes of the Trees panel: the one of --trees-species (the default mix unless given), all presets, then
+ * each preset alone.
+ */
+std::vector<SpeciesMix> speciesMixes(const std::vector<std::string>& given) {
+  std::vector<SpeciesMix> mixes;
+  const bool isDefault = given == TreeFlags::defaultForest().species;
+  mixes.push_back({(isDefault ? "default mix: " : "--trees-species: ") + joinNames(given), given});
+  const std::vector<std::string> presets = trees::speciesPresetNames();
+  if (presets != given) {
+    mixes.push_back({"all presets", presets});
+  }
+  for (const std::string& name : presets) {
+    if (given != std::vector<std::string>{name}) {
+      mixes.push_back({name, {name}});
+    }
+  }
+  return mixes;
+}
+
+/**
+ * The viewer's forest: built from the --trees options at start (or on the panel's first enable) and rebuilt
+ * by the panel (species mix, count, seed, spacing); tessellation, draw distance, view and wind change live.
+ */
+struct ViewerTrees {
+  /** The options the forest was built from; lod is the live level of detail. */
+  TreeFlags flags;
+  bool enabled = false;
+  /** Where new scenes read their shaders: the viewer's library, or the last hot reload's directory. */
+  shader::Library shaders;
+  std::unique_ptr<TreeScene> scene;
+  /** Mixes of the species combo and the one built. */
+  std::vector<SpeciesMix> mixes;
+  int mix = 0;
+  /** Forest settings being edited; the forest changes only on Rebuild. */
+  int pendingCount = 0;
+  int pendingSeed = 0;
+  float pendingSpacing = 0.0f;
+  std::string buildError;
+  bool wind = true;
+  /** Multiplies the shared wind's mean speed for the trees (gusts are a fraction of it). */
+  float windStrength = 1.0f;
+  int view = 0;
+  /** Whether the panel's Trees section showed last frame (the visible counts are read only then). */
+  bool panelOpen = false;
+  /** Visible instances per piece type of this frame's cull (read after the draw while the section shows). */
+  std::vector<std::uint32_t> visible;
+
+  /** The scene to draw this frame, or null when the trees are off. */
+  TreeScene* active() const { return enabled ? scene.get() : nullptr; }
+  /** The wind the trees feel: the shared wind (Grass section sliders) × windStrength. */
+  wind::WindSettings windFor(const GrassFlags& grassFlags) const {
+    wind::WindSettings w = grassFlags.wind();
+    w.speed *= windStrength;
+    return w;
+  }
+};
+
+/** Builds the forest of `t.flags` on `scene` and its GPU state; throws, leaving `t` as it was, on errors. */
+void buildTrees(ViewerTrees& t, const terrain::TerrainScene& scene) {
+  std::shared_ptr<trees::Forest> forest = t.flags.buildForest(scene);
+  auto built = std::make_unique<TreeScene>(t.shaders, forest, t.wind);
+  log::info("trees: {} trees, {} pieces, {} joints", forest->trees.size(),
+            built->renderer().instances().instances.size(), forest->jointCount);
+  t.scene = std::move(built);
+  t.visible.clear();
+}
+
+/** Rebuilds with `settings`; on an error keeps the old forest and settings and shows the message. */
+void rebuildTrees(ViewerTrees& t, const terrain::TerrainScene& scene, const trees::ForestSettings& settings) {
+  const trees::ForestSettings before = t.flags.forest;
+  t.flags.forest = settings;
+  try {
+    buildTrees(t, scene);
+    t.enabled = true;
+    t.buildError.clear();
+  } catch (const Error& e) {
+    t.flags.forest = before;
+    t.buildError = e.what();
+    log::error("{}", e.what());
+  }
+}
+
+/** Sum of the GPU times of this frame's tree passes ("trees cull", "trees", "trees wind"), ms. */
+double treesGpuMs(const render::GpuTimers& timers) {
+  double ms = 0.0;
+  for (const render::PassTiming& p : timers.lastFrame()) {
+    ms += p.name.rfind("trees", 0) == 0 ? p.gpuMs : 0.0;
+  }
+  return ms;
+}
+
+/**
+ * The trees section of the panel: on/off (building the forest on the first enable), species mix (rebuilds at
+ * once), count, seed and spacing (rebuilt by Rebuild), live tessellation, draw distance, wind and view, and
+ * the forest's and the last cull's counts and GPU time.
+ */
+void treesPanel(ViewerTrees& t, const terrain::TerrainScene& scene, const render::GpuTimers& timers) {
+  t.panelOpen = ImGui::CollapsingHeader("Trees", t.enabled ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+  if (!t.panelOpen) {
+    return;
+  }
+  const ImGuiSliderFlags clamp = ImGuiSliderFlags_AlwaysClamp;
+  const ImGuiSliderFlags logarithmic = clamp | ImGuiSliderFlags_Logarithmic;
+  if (ImGui::Checkbox("trees enabled", &t.enabled) && t.enabled && !t.scene) {
+    try {
+      buildTrees(t, scene);
+      t.buildError.clear();
+    } catch (const Error& e) {
+      t.enabled = false;
+      t.buildError = e.what();
+      log::error("{}", e.what());
+    }
+  }
+  const int mixBefore = t.mix;
+  if (ImGui::BeginCombo("species", t.mixes[static_cast<std::size_t>(t.mix)].label.c_str())) {
+    for (std::size_t i = 0; i < t.mixes.size(); ++i) {
+      if (ImGui::Selectable(t.mixes[i].label.c_str(), static_cast<int>(i) == t.mix)) {
+        t.mix = static_cast<int>(i);
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (t.mix != mixBefore) {
+    trees::ForestSettings settings = t.flags.forest;
+    settings.species = t.mixes[static_cast<std::size_t>(t.mix)].species;
+    rebuildTrees(t, scene, settings);
+    if (t.flags.forest.species != settings.species) {
+      t.mix = mixBefore; // the rebuild failed: the combo shows what is drawn
+    }
+  }
+  ImGui::SliderInt("count", &t.pendingCount, 0, 20000, "%d", logarithmic);
+  ImGui::InputInt("seed", &t.pendingSeed);
+  t.pendingSeed = std::max(t.pendingSeed, 0);
+  ImGui::SliderFloat("spacing (m)", &t.pendingSpacing, 0.0f, 100.0f, "%.1f", clamp);
+  const trees::ForestSettings& built = t.flags.forest;
+  const bool edited = t.pendingCount != built.count ||
+                      static_cast<std::uint64_t>(t.pendingSeed) != built.seed ||
+                      t.pendingSpacing != built.spacing;
+  ImGui::BeginDisabled(!edited && t.scene != nullptr);
+  if (ImGui::Button("Rebuild")) {
+    trees::ForestSettings settings = t.flags.forest;
+    settings.count = t.pendingCount;
+    settings.seed = static_cast<std::uint64_t>(t.pendingSeed);
+    settings.spacing = t.pendingSpacing;
+    rebuildTrees(t, scene, settings);
+  }
+  ImGui::EndDisabled();
+  if (edited) {
+    ImGui::SameLine();
+    if (ImGui::Button("Revert##trees")) {
+      t.pendingCount = built.count;
+      t.pendingSeed = static_cast<int>(built.seed);
+      t.pendingSpacing = built.spacing;
+    }
+  }
+  errorText(t.buildError);
+
+  ImGui::Separator();
+  trees::TreeLod& lod = t.flags.lod;
+  ImGui::SliderFloat("pixels per segment", &lod.pixelsPerSegment, 0.5f, 100.0f, "%.1f", logarithmic);
+  ImGui::SliderFloat("max level", &lod.maxLevel, 1.0f, 64.0f, "%.0f", clamp);
+  ImGui::SliderFloat("fixed level (0: by distance)", &lod.fixedLevel, 0.0f, 64.0f, "%.0f", clamp);
+  ImGui::SliderFloat("tree distance (m, 0: all)", &lod.drawDistance, 0.0f, 5000.0f, "%.0f", logarithmic);
+  if (ImGui::Checkbox("wind on trees", &t.wind) && t.scene) {
+    try {
+      t.scene->setWind(t.wind);
+    } catch (const Error& e) {
+      t.wind = false;
+      t.buildError = e.what();
+      log::error("{}", e.what());
+    }
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!t.wind);
+  ImGui::SetNextItemWidth(120.0f);
+  ImGui::SliderFloat("strength", &t.windStrength, 0.0f, 4.0f, "%.2f", clamp);
+  ImGui::EndDisabled();
+  disabledTooltip("times the wind speed of the Grass section (direction and gusts from there too)");
+  const char* views[] = {"shaded", "piece types", "bones (root weights)", "LOD levels"};
+  ImGui::Combo("trees view", &t.view, views, 4);
+
+  if (t.scene) {
+    ImGui::Separator();
+    const trees::Forest& forest = t.scene->forest();
+    const trees::TreeRenderer& renderer = t.scene->renderer();
+    ImGui::Text("trees             %zu", forest.trees.size());
+    ImGui::Text("pieces            %zu", renderer.instances().instances.size());
+    ImGui::Text("joints            %zu", forest.jointCount);
+    if (t.enabled && !t.visible.empty()) {
+      std::size_t total = 0;
+      for (std::size_t type = 0; type < t.visible.size(); ++type) {
+        total += t.visible[type];
+        const std::string& name = type < forest.pieces.size() ? forest.pieces[type].name
+                                                              : std::string("type ") + std::to_string(type);
+        ImGui::Text("  visible %-8s %u / %u", name.c_str(), t.visible[type],
+                    type < renderer.instances().count.size() ? renderer.instances().count[type] : 0u);
+      }
+      ImGui::Text("visible pieces    %zu", total);
+    }
+    if (t.scene->windOn()) {
+      ImGui::Text("wind steps        %d this frame (%.0f Hz)", t.scene->lastSteps(), 1.0 / kTreeWindStep);
+    }
+    ImGui::Text("GPU time          %.3f ms (cull, wind, draw)", treesGpuMs(timers));
+    ImGui::Text("GPU memory        %.1f MB", static_cast<double>(t.scene->gpuBytes()) / 1e6);
+  }
+}
+
 void runViewer(const ViewOptions& o) {
   platform::GlfwWindow window(o.width, o.height, "Sylva viewer");
   window.setVsync(o.frames == 0);
@@ -429,6 +655,7 @@ void runViewer(const ViewOptions& o) {
   shader::Library library(o.shaderDir);
   ViewerScene v;
   ViewerGrass grass;
+  ViewerTrees woods; // the forest (not `trees`: that would hide the namespace)
   render::Camera start;
   if (o.scene == "terrain") {
     v.terrain = o.terrain.build(library);
@@ -462,6 +689,22 @@ void runViewer(const ViewOptions& o) {
         if (o.camera.cameraPos.empty()) {
           start = ballCamera(*v.terrain, drop, start.fovY);
         }
+      }
+    }
+    woods.flags = o.trees;
+    woods.enabled = o.trees.enabled;
+    woods.shaders = library;
+    woods.mixes = speciesMixes(o.trees.forest.species);
+    woods.pendingCount = o.trees.forest.count;
+    woods.pendingSeed = static_cast<int>(std::min<std::uint64_t>(o.trees.forest.seed, 0x7fffffff));
+    woods.pendingSpacing = o.trees.forest.spacing;
+    woods.wind = o.trees.wind;
+    woods.view = static_cast<int>(o.trees.treeView());
+    if (woods.enabled) {
+      buildTrees(woods, *v.terrain);
+      if (o.camera.cameraPos.empty() && !grass.enabled) {
+        // As `sylva render --trees`: a tree near the centre, from a little above eye height.
+        start = forestCamera(*v.terrain, woods.scene->forest(), start.fovY);
       }
     }
     v.draw = v.terrain->drawOptions(start, o.camera.fog);
@@ -506,6 +749,10 @@ void runViewer(const ViewOptions& o) {
           grass.simulation->reloadShaders(disk);
         }
         grass.shaders = disk; // fields built from now on use the edited shaders too
+        if (woods.scene) {
+          woods.scene->reloadShaders(disk);
+        }
+        woods.shaders = disk;
       } else {
         v.demo->reloadShaders(disk);
       }
@@ -589,7 +836,13 @@ void runViewer(const ViewOptions& o) {
     }
 
     if (v.terrain) {
-      render::fitClipPlanes(camera, v.terrain->bounds()); // wherever the orbit or fly camera went
+      Aabb box = v.terrain->bounds();
+      if (woods.active() != nullptr) {
+        // Crowns reach above the terrain's highest point: keep them between the clip planes too.
+        box.min = glm::min(box.min, woods.active()->bounds().min);
+        box.max = glm::max(box.max, woods.active()->bounds().max);
+      }
+      render::fitClipPlanes(camera, box); // wherever the orbit or fly camera went
       if (grass.active() != nullptr) {
         camera.nearPlane = std::min(camera.nearPlane, 0.05f); // blades right below the eye (as grassCamera)
       }
@@ -613,6 +866,11 @@ void runViewer(const ViewOptions& o) {
         grass.simulation->advance(grass.simTime, grass.flags.wind());
         timers.end();
       }
+      if (woods.active() != nullptr) {
+        // The springs follow the scene time at their fixed rate (the fixed step when scripted, so
+        // screenshots repeat) and stop with the pause.
+        woods.active()->advance(sceneTime, woods.windFor(grass.flags), 8, &timers);
+      }
     }
     gl::bindDefaultFramebuffer(size.x, size.y);
     glEnable(GL_DEPTH_TEST);
@@ -622,6 +880,12 @@ void runViewer(const ViewOptions& o) {
     if (v.terrain) {
       drawTerrainWithGrass(*v.terrain, grass.active(), camera, size.x, size.y, sceneTime, v.draw,
                            grass.drawOptions(), &timers);
+      if (woods.active() != nullptr) {
+        trees::TreeDrawOptions treeOptions;
+        treeOptions.view = static_cast<trees::TreeView>(woods.view);
+        treeOptions.environment = v.draw.environment;
+        woods.active()->draw(camera, size.x, size.y, sceneTime, woods.flags.lod, treeOptions, &timers);
+      }
       if (grass.simulation && grass.active() != nullptr) {
         timers.begin("bodies");
         grass.simulation->drawBodies(camera, size.x, size.y, sceneTime, v.draw.environment);
@@ -629,6 +893,9 @@ void runViewer(const ViewOptions& o) {
       }
       if (showUi && grass.active() != nullptr) {
         grass.counters = grass.active()->readCounters();
+      }
+      if (showUi && woods.panelOpen && woods.active() != nullptr) {
+        woods.visible = woods.active()->renderer().readVisibleCounts(); // synchronous: only while shown
       }
     } else {
       v.demo->render(camera, size.x, size.y, sceneTime, &timers, v.draw.wireframe);
@@ -641,7 +908,7 @@ void runViewer(const ViewOptions& o) {
       std::vector<float> plot(frameTimes.begin(), frameTimes.end());
       ImGui::PlotLines("##frametimes", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, 50.0f,
                        ImVec2(260, 40));
-      if (ImGui::BeginTable("passes", 3)) {
+      if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingFixedFit)) { // pass names in full
         ImGui::TableSetupColumn("pass");
         ImGui::TableSetupColumn("CPU ms");
         ImGui::TableSetupColumn("GPU ms");
@@ -661,6 +928,7 @@ void runViewer(const ViewOptions& o) {
         terrainPanel(v, camera, aspect);
         grassPanel(grass, *v.terrain);
         simulationPanel(grass, *v.terrain, camera);
+        treesPanel(woods, *v.terrain, timers);
       } else {
         ImGui::Checkbox("wireframe", &v.draw.wireframe);
       }
@@ -700,6 +968,7 @@ void registerView(CLI::App& app) {
   o->camera.add(*command);
   o->grass.add(*command);
   o->simulation.add(*command);
+  o->trees.add(*command);
   command->add_option("--width", o->width, "Window width")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
@@ -721,6 +990,11 @@ void registerView(CLI::App& app) {
     }
     if (o->simulation.enabled() && !o->grass.enabled) {
       fail("--physics: needs --grass (the bodies move through the grass field)");
+    }
+    // Checked even without --trees: the panel can turn the forest on with these settings.
+    o->trees.check();
+    if (o->trees.enabled && o->scene != "terrain") {
+      fail("--trees: trees grow on a terrain (--scene terrain), not on the {} scene", o->scene);
     }
     // Checked even without --physics: B and the panel start a simulation with these settings.
     (void)o->simulation.solverSettings();

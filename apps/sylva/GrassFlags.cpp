@@ -76,7 +76,8 @@ void GrassFlags::add(CLI::App& command) {
   command.add_option("--grass-view", view, "Blade view: shaded, lod (level colours) or tiles")
       ->check(CLI::IsMember({"shaded", "lod", "tiles"}))
       ->capture_default_str();
-  command.add_option("--wind-speed", windSpeed, "Mean wind speed, m/s")
+  command
+      .add_option("--wind-speed", windSpeed, "Mean wind speed, m/s (the wind of the grass and of the trees)")
       ->check(finiteRange(0.0, 60.0))
       ->capture_default_str();
   command

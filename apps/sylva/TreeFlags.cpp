@@ -5,8 +5,10 @@
 
 #include "SourceOptions.hpp"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sylva::app {
@@ -56,6 +58,9 @@ void TreeFlags::add(CLI::App& command) {
       .add_option("--trees-view", view, "Trees view: shaded, pieces (piece types), bones (root weights), lod")
       ->check(CLI::IsMember({"shaded", "pieces", "bones", "lod"}))
       ->capture_default_str();
+  command.add_flag("--trees-wind,!--no-trees-wind", wind,
+                   "Trees sway in the wind of --wind-speed, --wind-direction, --wind-gusts, --wind-seed "
+                   "(joint springs; --no-trees-wind or --trees-wind=false: rest pose)");
 }
 
 void TreeFlags::check() const {
@@ -96,30 +101,149 @@ std::shared_ptr<trees::Forest> TreeFlags::buildForest(const terrain::TerrainScen
   return std::make_shared<trees::Forest>(trees::placeForest(scene.field(), settings));
 }
 
+trees::JointWindRest forestWindRest(const trees::Forest& forest) {
+  std::vector<trees::JointWindTree> list;
+  list.reserve(forest.trees.size());
+  for (const trees::ForestTree& t : forest.trees) {
+    trees::JointWindTree w;
+    w.topology = &t.topology;
+    w.species = &forest.species[static_cast<std::size_t>(t.species)];
+    w.base = t.base;
+    w.pose = t.pose;
+    w.timeOffset = t.phase;
+    list.push_back(w);
+  }
+  return trees::buildJointWindRest(forest.pieces, list);
+}
+
+TreeScene::TreeScene(const shader::Library& library, std::shared_ptr<const trees::Forest> forest, bool wind)
+    : mShaders(library), mForest(std::move(forest)),
+      mRenderer(std::make_unique<trees::TreeRenderer>(library, mForest)) {
+  // Bounds from the joints at rest with a margin of half the tallest tree: every piece lies within a few rim
+  // radii of its joints, and bends of at most 30° per joint move a crown by less than that.
+  std::vector<gpu::JointFrame> frames;
+  trees::forestFrames(*mForest, {}, frames);
+  mBounds = Aabb{glm::vec3(0.0f), glm::vec3(0.0f)};
+  float tallest = 0.0f;
+  for (std::size_t t = 0; t < mForest->trees.size(); ++t) {
+    const float foot = mForest->trees[t].base[3].y;
+    const std::size_t first = mForest->jointOffset[t];
+    for (std::size_t j = first; j < first + mForest->trees[t].topology.jointCount(); ++j) {
+      const glm::vec3 p(frames[j].x.w, frames[j].y.w, frames[j].z.w);
+      mBounds.min = j == 0 ? p : glm::min(mBounds.min, p);
+      mBounds.max = j == 0 ? p : glm::max(mBounds.max, p);
+      tallest = std::max(tallest, p.y - foot);
+    }
+  }
+  if (!frames.empty()) {
+    const float margin = 0.5f * tallest + 2.0f;
+    mBounds.min -= glm::vec3(margin);
+    mBounds.max += glm::vec3(margin);
+  }
+  setWind(wind);
+}
+
+void TreeScene::setWind(bool on) {
+  if (on && !mWind) {
+    mWind = std::make_unique<trees::JointWindGpu>(mShaders, forestWindRest(*mForest));
+  }
+  mWindOn = on;
+  mRenderer->useFrames(on ? &mWind->frames() : nullptr);
+}
+
+void TreeScene::advance(double time, const wind::WindSettings& wind, int maxSteps,
+                        render::GpuTimers* timers) {
+  mSteps = 0;
+  if (!mWindOn) {
+    return;
+  }
+  int steps = 0;
+  if (!mClock) {
+    // From rest, a fixed stretch of wind before the first frame: the same time gives the same state.
+    mClock = time - kTreeWindWarmup;
+    steps = trees::fixedSteps(*mClock, time, kTreeWindStep,
+                              static_cast<int>(std::ceil(kTreeWindWarmup / kTreeWindStep)) + 1);
+  } else {
+    steps = trees::fixedSteps(*mClock, time, kTreeWindStep, std::max(maxSteps, 1));
+  }
+  if (steps == 0) {
+    return;
+  }
+  if (timers != nullptr) {
+    timers->begin("trees wind");
+  }
+  // Step i runs at the wind time clock − (n − 1 − i)·dt (fixedSteps' contract).
+  for (int i = 0; i < steps; ++i) {
+    const double at = *mClock - static_cast<double>(steps - 1 - i) * kTreeWindStep;
+    mWind->step(wind::toUniforms(wind, static_cast<float>(at)), static_cast<float>(kTreeWindStep));
+  }
+  mWind->updateFrames();
+  if (timers != nullptr) {
+    timers->end();
+  }
+  mSteps = steps;
+}
+
+void TreeScene::draw(const render::Camera& camera, int width, int height, double time,
+                     const trees::TreeLod& lod, const trees::TreeDrawOptions& options,
+                     render::GpuTimers* timers) {
+  const float aspect = static_cast<float>(std::max(width, 1)) / static_cast<float>(std::max(height, 1));
+  mRenderer->cull(camera, aspect, lod, timers);
+  mRenderer->draw(camera, width, height, time, lod, timers, options);
+}
+
+void TreeScene::reloadShaders(const shader::Library& library) {
+  mRenderer->reloadShaders(library);
+  if (mWind) {
+    mWind->reloadShaders(library);
+  }
+  mShaders = library;
+}
+
+std::size_t TreeScene::gpuBytes() const {
+  std::size_t bytes = mRenderer->gpuBytes();
+  if (mWind) {
+    bytes += mWind->jointCount() * (sizeof(gpu::TreeJointRest) + sizeof(glm::vec4) + sizeof(gpu::JointFrame));
+  }
+  return bytes;
+}
+
 render::Camera forestCamera(const terrain::TerrainScene& scene, const trees::Forest& forest, float fovY) {
   render::Camera camera = scene.defaultCamera();
   camera.fovY = fovY;
   if (forest.trees.empty()) {
     return camera;
   }
-  // The tree nearest the footprint's centre, seen from 14 m away at a little above eye height.
+  // The tree nearest the footprint's centre.
   const glm::vec2 centre(scene.field().extentX() * 0.5f, scene.field().extentZ() * 0.5f);
-  const trees::ForestTree* best = &forest.trees.front();
+  std::size_t best = 0;
   float bestDistance = 1e30f;
-  for (const trees::ForestTree& t : forest.trees) {
-    const float d = glm::length(glm::vec2(t.base[3].x, t.base[3].z) - centre);
+  for (std::size_t i = 0; i < forest.trees.size(); ++i) {
+    const glm::vec4& at = forest.trees[i].base[3];
+    const float d = glm::length(glm::vec2(at.x, at.z) - centre);
     if (d < bestDistance) {
       bestDistance = d;
-      best = &t;
+      best = i;
     }
   }
-  const glm::vec3 foot(best->base[3]);
-  const glm::vec3 eye = foot + glm::vec3(12.0f, 0.0f, 9.0f);
+  // Its height from the joints at rest (the crown's pieces reach a little past the last joints).
+  std::vector<gpu::JointFrame> frames;
+  trees::forestFrames(forest, {}, frames);
+  const glm::vec3 foot(forest.trees[best].base[3]);
+  float top = foot.y;
+  const std::size_t first = forest.jointOffset[best];
+  for (std::size_t j = first; j < first + forest.trees[best].topology.jointCount(); ++j) {
+    top = std::max(top, frames[j].y.w);
+  }
+  const float height = std::max(top - foot.y, 1.0f) * 1.1f;
+  // Seen from a little above eye height, far enough that the whole tree and a few neighbours show.
+  const float distance = std::clamp(2.5f * height, 8.0f, 60.0f);
+  const glm::vec3 eye = foot + distance * glm::vec3(0.8f, 0.0f, 0.6f);
   const float ground = terrain::heightAt(scene.field(), std::clamp(eye.x, 0.0f, scene.field().extentX()),
                                          std::clamp(eye.z, 0.0f, scene.field().extentZ())) *
                        scene.exaggeration();
   camera.position = glm::vec3(eye.x, (std::isnan(ground) ? foot.y : ground) + 2.5f, eye.z);
-  camera.target = foot + glm::vec3(0.0f, 4.0f, 0.0f);
+  camera.target = foot + glm::vec3(0.0f, 0.45f * height, 0.0f);
   camera.nearPlane = 0.1f;
   return camera;
 }

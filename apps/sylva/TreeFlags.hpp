@@ -1,12 +1,17 @@
 #pragma once
 // Command-line options for a forest on the terrain (`sylva render --trees`, `sylva view --trees`).
 
+#include <sylva/core/Geometry.hpp>
+#include <sylva/render/GpuTimers.hpp>
 #include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/trees/JointWindGpu.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/wind/Wind.hpp>
 
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,10 +23,13 @@ struct TreeFlags {
   trees::ForestSettings forest = defaultForest();
   trees::TreeLod lod;
   std::string view = "shaded";
+  /** --trees-wind: the joints sway in the wind (--wind-speed, --wind-direction, --wind-gusts, --wind-seed).
+   */
+  bool wind = true;
 
   static trees::ForestSettings defaultForest();
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
-   * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-view. */
+   * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-view, --trees-wind. */
   void add(CLI::App& command);
   /** Throws naming the option when a value is malformed (before any work is done). */
   void check() const;
@@ -30,10 +38,78 @@ struct TreeFlags {
   std::shared_ptr<trees::Forest> buildForest(const terrain::TerrainScene& scene) const;
 };
 
+/** Fixed time step of the trees' joint springs, seconds (60 Hz, whatever the frame rate). */
+inline constexpr double kTreeWindStep = 1.0 / 60.0;
+/**
+ * Seconds of wind the springs feel, from rest, before the first frame: it shows trees already swaying (not
+ * starting from straight), and the same first frame for the same time.
+ */
+inline constexpr double kTreeWindWarmup = 4.0;
+
+/**
+ * A forest ready to draw (`sylva render --trees`, `sylva view --trees`): the forest, its renderer and, while
+ * the wind is on, its joint springs on the GPU (JointWindGpu) stepped at kTreeWindStep, whose frames the
+ * renderer draws; with the wind off the renderer draws the rest pose. Needs a current GL context; not
+ * thread-safe.
+ */
+class TreeScene {
+public:
+  /** Uploads `forest`; with `wind`, builds the springs' rest data and GPU state too (else on setWind(true)).
+   */
+  TreeScene(const shader::Library& library, std::shared_ptr<const trees::Forest> forest, bool wind);
+
+  /** Turns the wind on (building the springs on first use; they go on from their last state) or off. */
+  void setWind(bool on);
+  /** Whether the trees are drawn in the wind (else in their rest pose). */
+  bool windOn() const { return mWindOn; }
+
+  /**
+   * Steps the springs in `wind` at kTreeWindStep up to scene time `time` (seconds) and rebuilds the joint
+   * frames. The first call starts from rest kTreeWindWarmup seconds before `time`; later calls take at most
+   * `maxSteps` steps (after a stall the clock skips ahead, see trees::fixedSteps). Nothing while the wind is
+   * off. With `timers`, the two compute passes are timed as "trees wind".
+   */
+  void advance(double time, const wind::WindSettings& wind, int maxSteps = 8,
+               render::GpuTimers* timers = nullptr);
+  /** Culls and draws the forest for `camera` into the bound framebuffer (`width` × `height` pixels). */
+  void draw(const render::Camera& camera, int width, int height, double time, const trees::TreeLod& lod,
+            const trees::TreeDrawOptions& options, render::GpuTimers* timers = nullptr);
+  /** Recompiles every program (viewer hot reload); keeps the old ones and throws on error. */
+  void reloadShaders(const shader::Library& library);
+
+  /** The forest drawn. */
+  const trees::Forest& forest() const { return *mForest; }
+  /** The renderer (visible counts, GPU memory). */
+  trees::TreeRenderer& renderer() { return *mRenderer; }
+  /** World box around every tree at rest with a margin for the wind's bends, metres. */
+  const Aabb& bounds() const { return mBounds; }
+  /** Spring steps of the last advance(). */
+  int lastSteps() const { return mSteps; }
+  /** Bytes of GPU memory held by the renderer and the springs. */
+  std::size_t gpuBytes() const;
+
+private:
+  shader::Library mShaders;
+  std::shared_ptr<const trees::Forest> mForest;
+  std::unique_ptr<trees::TreeRenderer> mRenderer;
+  std::unique_ptr<trees::JointWindGpu> mWind;
+  Aabb mBounds;
+  bool mWindOn = false;
+  /** The springs' simulated time, seconds; empty until the first advance(). */
+  std::optional<double> mClock;
+  int mSteps = 0;
+};
+
+/** The joint springs' rest data of `forest` (one JointWindTree per tree; its phase is the wind offset). */
+trees::JointWindRest forestWindRest(const trees::Forest& forest);
+
 /** "shaded" | "pieces" | "bones" | "lod" → TreeView; throws naming the option otherwise. */
 trees::TreeView parseTreeView(const std::string& name);
 
-/** A camera at eye height a little outside the forest's densest part, looking at a tree near the centre. */
+/**
+ * A camera 2.5 m above the ground, 2.5 tree heights (8 … 60 m) from the tree nearest the terrain's centre,
+ * looking at that tree's middle: the default view of `sylva render --trees` and `sylva view --trees`.
+ */
 render::Camera forestCamera(const terrain::TerrainScene& scene, const trees::Forest& forest, float fovY);
 
 } // namespace sylva::app

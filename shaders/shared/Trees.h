@@ -17,6 +17,11 @@ SYLVA_GPU_BEGIN
 #define SYLVA_TREE_MAX_PIECE_JOINTS 4   // root + up to three terminal joints (Psi)
 #define SYLVA_TREE_MAX_PIECES 8         // piece types in one renderer
 #define SYLVA_TREE_CULL_GROUP 64
+// Quads per indirect command. Mesa's draw module (llvmpipe) numbers the tessellated vertices of one instance
+// of a draw with 16 bits: at level 64 a quad makes up to 65 x 65 vertices, so 15 quads (63,375) fit and 16
+// would not; beyond that, parts of patches vanish. A piece type's quads are drawn as several commands of the
+// one multi-draw; the patch id (the quad's stable id) is gl_PrimitiveID plus the chunk's first quad.
+#define SYLVA_TREE_QUADS_PER_COMMAND 15
 
 /**
  * A joint's world frame as three rows of a 3x4 matrix: world = (dot(x, p1), dot(y, p1), dot(z, p1)) with
@@ -37,8 +42,9 @@ struct TreeInstanceGpu {
 SYLVA_ASSERT_SIZE(TreeInstanceGpu, 16);
 
 /**
- * Per piece type: bounding sphere in model space (xyz centre, w radius, rim units), index range (x first
- * index, y index count, z list offset, w capacity), and the inverse bind frame of each joint (rows).
+ * Per piece type: bounding sphere in model space (xyz centre, w radius, rim units), commands and list (x first
+ * indirect command, y commands (quad chunks), z instance list offset, w index count), and the inverse bind
+ * frame of each joint (rows).
  */
 struct TreePieceGpu {
   vec4 sphere;

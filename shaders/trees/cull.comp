@@ -37,6 +37,10 @@ void main() {
   if (trees.tess.w > 0.0 && distance(centre, frame.cameraPos.xyz) - radius > trees.tess.w) {
     return;
   }
-  uint slot = atomicAdd(commands[type * 5u + 1u], 1u);
+  // The type's first command hands out the slot; its other quad chunks count the same instances.
+  uint slot = atomicAdd(commands[piece.range.x * 5u + 1u], 1u);
+  for (uint k = 1u; k < piece.range.y; ++k) {
+    atomicAdd(commands[(piece.range.x + k) * 5u + 1u], 1u);
+  }
   visible[piece.range.z + slot] = i;
 }

@@ -12,12 +12,14 @@ in vec3 vcNormal[];
 in vec2 vcUv[];
 in float vcRootWeight[];
 flat in uint vcInstance[];
+flat in uint vcQuadBase[];
 
 out vec3 teWorld[];
 out vec3 teNormal[];
 out vec2 teUv[];
 out float teRootWeight[];
 flat out uint teInstance[];
+flat out uint teQuadBase[];
 
 float edgeLevel(vec3 a, vec3 b) {
   if (trees.tess.z > 0.0) {
@@ -35,6 +37,7 @@ void main() {
   teUv[gl_InvocationID] = vcUv[gl_InvocationID];
   teRootWeight[gl_InvocationID] = vcRootWeight[gl_InvocationID];
   teInstance[gl_InvocationID] = vcInstance[gl_InvocationID];
+  teQuadBase[gl_InvocationID] = vcQuadBase[gl_InvocationID];
   if (gl_InvocationID == 0) {
     // GL quad edges: outer[0] is u = 0 (corners 0, 3), [1] v = 0 (0, 1), [2] u = 1 (1, 2), [3] v = 1 (2, 3).
     float l0 = edgeLevel(vcWorld[0], vcWorld[3]);

@@ -13,6 +13,7 @@ in vec3 teNormal[];
 in vec2 teUv[];
 in float teRootWeight[];
 flat in uint teInstance[];
+flat in uint teQuadBase[];
 
 out vec3 fWorld;
 out vec3 fNormal;
@@ -45,7 +46,8 @@ void main() {
   fUv = w0 * teUv[0] + w1 * teUv[1] + w2 * teUv[2] + w3 * teUv[3];
   fRootWeight = w0 * teRootWeight[0] + w1 * teRootWeight[1] + w2 * teRootWeight[2] + w3 * teRootWeight[3];
   fInstance = teInstance[0];
-  fPatch = uint(gl_PrimitiveID);
+  // The quad's stable id within its piece (gl_PrimitiveID restarts with every command and instance).
+  fPatch = teQuadBase[0] + uint(gl_PrimitiveID);
   fLevel = gl_TessLevelInner[0];
   gl_Position = frame.viewProj * vec4(world, 1.0);
 }

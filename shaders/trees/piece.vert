@@ -1,4 +1,5 @@
 #version 450
+#extension GL_ARB_shader_draw_parameters : require
 // Skins one piece vertex (docs/trees.md). Rim vertices are not skinned by weights: they take the canonical
 // corner (and its fixed normal) straight through their one joint's frame, the same float operations on both
 // sides of a seam, so interlocking pieces meet bit for bit. Interior vertices blend up to four joints; the
@@ -18,6 +19,10 @@ out vec3 vcNormal;
 out vec2 vcUv;
 out float vcRootWeight;
 flat out uint vcInstance;
+flat out uint vcQuadBase;
+
+// Added to gl_DrawIDARB: the command index when the draws are single draws (the per-piece baseline).
+uniform uint uDrawBase;
 
 uint globalJoint(uvec4 inst, uint j) { return j == 0u ? inst.x : inst.y + j - 1u; }
 
@@ -68,4 +73,6 @@ void main() {
   vcNormal = normalize(normal);
   vcUv = aUv;
   vcInstance = aInstance;
+  // The quad chunk this command draws: its first quad id, so the patch id is the quad's stable id.
+  vcQuadBase = (uint(gl_DrawIDARB) + uDrawBase - pieceTable[type].range.x) * uint(SYLVA_TREE_QUADS_PER_COMMAND);
 }

@@ -28,7 +28,7 @@ TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const
   // One vertex and index buffer for all piece types; quads as 4-index patches.
   std::vector<PieceVertexGpu> vertices;
   std::vector<std::uint32_t> indices;
-  mCommandsReset.assign(kCommandUints * f.pieces.size(), 0u);
+  mCommandsReset.clear();
   for (std::size_t t = 0; t < f.pieces.size(); ++t) {
     const Piece& piece = f.pieces[t];
     if (piece.joints.size() > SYLVA_TREE_MAX_PIECE_JOINTS) {
@@ -53,14 +53,19 @@ TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const
       indices.insert(indices.end(), q.begin(), q.end());
     }
     const auto count = static_cast<std::uint32_t>(indices.size()) - firstIndex;
-    entry.range = glm::uvec4(firstIndex, count, mPacked.first[t], mPacked.count[t]);
+    // One command per chunk of at most SYLVA_TREE_QUADS_PER_COMMAND quads (all instances of the type in
+    // each).
+    const auto firstCommand = static_cast<std::uint32_t>(mCommandsReset.size() / kCommandUints);
+    const auto quads = static_cast<std::uint32_t>(piece.quads.size());
+    std::uint32_t chunks = 0;
+    for (std::uint32_t q = 0; q < quads; q += SYLVA_TREE_QUADS_PER_COMMAND, ++chunks) {
+      const std::uint32_t n = std::min<std::uint32_t>(SYLVA_TREE_QUADS_PER_COMMAND, quads - q);
+      mCommandsReset.insert(mCommandsReset.end(),
+                            {n * 4u, 0u, firstIndex + q * 4u, baseVertex, mPacked.first[t]});
+      mCommandType.push_back(static_cast<std::uint32_t>(t));
+    }
+    entry.range = glm::uvec4(firstCommand, chunks, mPacked.first[t], count);
     mPieceTable.push_back(entry);
-    std::uint32_t* c = &mCommandsReset[t * kCommandUints];
-    c[0] = count;
-    c[1] = 0;
-    c[2] = firstIndex;
-    c[3] = baseVertex;
-    c[4] = mPacked.first[t];
   }
   mVertexBytes = vertices.size() * sizeof(PieceVertexGpu);
   mIndexBytes = indices.size() * sizeof(std::uint32_t);
@@ -198,22 +203,30 @@ void TreeRenderer::submit(const TreeDrawOptions& options, bool perPiece) {
   }
   glPatchParameteri(GL_PATCH_VERTICES, 4);
   mDraw.use();
+  const GLint drawBase = glGetUniformLocation(mDraw.id(), "uDrawBase");
+  glUniform1ui(drawBase, 0u);
   if (perPiece) {
     mAllVao.bind();
     for (std::size_t t = 0; t < mPieceTable.size(); ++t) {
-      const std::uint32_t* c = &mCommandsReset[t * kCommandUints];
       for (std::uint32_t i = 0; i < mPacked.count[t]; ++i) {
-        glDrawElementsInstancedBaseVertexBaseInstance(
-            GL_PATCHES, static_cast<GLsizei>(c[0]), GL_UNSIGNED_INT,
-            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(c[2]) * sizeof(std::uint32_t)), 1,
-            static_cast<GLint>(c[3]), mPacked.first[t] + i);
+        for (std::uint32_t k = 0; k < mPieceTable[t].range.y; ++k) {
+          const std::uint32_t command = mPieceTable[t].range.x + k;
+          const std::uint32_t* c = &mCommandsReset[command * kCommandUints];
+          // A single draw has gl_DrawID 0: the command index comes as a uniform instead.
+          glUniform1ui(drawBase, command);
+          glDrawElementsInstancedBaseVertexBaseInstance(
+              GL_PATCHES, static_cast<GLsizei>(c[0]), GL_UNSIGNED_INT,
+              reinterpret_cast<const void*>(static_cast<std::uintptr_t>(c[2]) * sizeof(std::uint32_t)), 1,
+              static_cast<GLint>(c[3]), mPacked.first[t] + i);
+        }
       }
     }
+    glUniform1ui(drawBase, 0u);
   } else {
     mVao.bind();
     mCommands.bind(GL_DRAW_INDIRECT_BUFFER);
     glMultiDrawElementsIndirect(GL_PATCHES, GL_UNSIGNED_INT, nullptr,
-                                static_cast<GLsizei>(mPieceTable.size()),
+                                static_cast<GLsizei>(mCommandsReset.size() / kCommandUints),
                                 kCommandUints * sizeof(std::uint32_t));
   }
   if (culling == GL_TRUE) {
@@ -263,7 +276,7 @@ std::vector<std::uint32_t> TreeRenderer::readVisibleCounts() const {
                           commands.data());
   std::vector<std::uint32_t> counts(mPieceTable.size());
   for (std::size_t t = 0; t < counts.size(); ++t) {
-    counts[t] = commands[t * kCommandUints + 1];
+    counts[t] = commands[mPieceTable[t].range.x * kCommandUints + 1];
   }
   return counts;
 }

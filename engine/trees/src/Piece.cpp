@@ -37,7 +37,9 @@ const CornerTable& table() {
   return t;
 }
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 bool finite(const glm::mat4& m) {
   for (int c = 0; c < 4; ++c) {
@@ -74,9 +76,13 @@ float similarityScale(const glm::mat4& m, float tolerance) {
 
 } // namespace
 
-glm::vec3 rimCorner(int k) { return table().corner[static_cast<std::size_t>(((k % 6) + 6) % 6)]; }
+glm::vec3 rimCorner(int k) {
+  return table().corner[static_cast<std::size_t>(((k % 6) + 6) % 6)];
+}
 
-glm::vec3 rimNormal(int k) { return table().normal[static_cast<std::size_t>(((k % 6) + 6) % 6)]; }
+glm::vec3 rimNormal(int k) {
+  return table().normal[static_cast<std::size_t>(((k % 6) + 6) % 6)];
+}
 
 glm::mat4 rimRotation(int steps) {
   // Rotation about +y taking corner k (angle 60°k from x towards z) to corner k + steps.
@@ -121,14 +127,14 @@ void validatePiece(const Piece& piece, const std::string& where, float tolerance
   }
   for (std::size_t i = 0; i < piece.vertices.size(); ++i) {
     const PieceVertex& v = piece.vertices[i];
-    if (!finite(v.position) || !finite(v.normal) || !std::isfinite(v.weights.x + v.weights.y + v.weights.z +
-                                                                   v.weights.w)) {
+    if (!finite(v.position) || !finite(v.normal) ||
+        !std::isfinite(v.weights.x + v.weights.y + v.weights.z + v.weights.w)) {
       fail("{}: piece '{}': vertex {} is not finite", where, name, i);
     }
     float sum = 0.0f;
     for (int w = 0; w < 4; ++w) {
-      if (v.weights[w] < 0.0f || (v.weights[w] > 0.0f && v.joints[static_cast<std::size_t>(w)] >=
-                                                             piece.joints.size())) {
+      if (v.weights[w] < 0.0f ||
+          (v.weights[w] > 0.0f && v.joints[static_cast<std::size_t>(w)] >= piece.joints.size())) {
         fail("{}: piece '{}': vertex {} has a bad joint weight", where, name, i);
       }
       sum += v.weights[w];
@@ -147,8 +153,8 @@ void validatePiece(const Piece& piece, const std::string& where, float tolerance
       for (int c = 0; c < 4; ++c) {
         for (int k = 0; k < 4; ++k) {
           if (std::abs(rim.frame[c][k] - (c == k ? 1.0f : 0.0f)) > tolerance) {
-            fail("{}: piece '{}': root rim is not the standard rim (unit hexagon at the origin, axis +y)", where,
-                 name);
+            fail("{}: piece '{}': root rim is not the standard rim (unit hexagon at the origin, axis +y)",
+                 where, name);
           }
         }
       }
@@ -174,11 +180,12 @@ void validatePiece(const Piece& piece, const std::string& where, float tolerance
       }
       const glm::vec3 normal = glm::normalize(rotation * rimNormal(k));
       if (glm::length(v.normal - normal) > 1e-3f) {
-        fail("{}: piece '{}': {}: wrong normal at corner {} (the rim's quad ring must be the fixed cone)", where,
-             name, rimName, k);
+        fail("{}: piece '{}': {}: wrong normal at corner {} (the rim's quad ring must be the fixed cone)",
+             where, name, rimName, k);
       }
       if (v.rim != static_cast<int>(r) || v.corner != k || v.joints[0] != r || v.weights.x != 1.0f) {
-        fail("{}: piece '{}': {}: corner {} is not bound with weight 1 to joint {}", where, name, rimName, k, r);
+        fail("{}: piece '{}': {}: corner {} is not bound with weight 1 to joint {}", where, name, rimName, k,
+             r);
       }
     }
   }

@@ -25,9 +25,9 @@ Species base(const std::string& name) {
 }
 
 // Presets. The paper's almond (co-dominant Y forks) and its two rules; the others follow the shapes of
-// Weber & Penn's published tables (1995, Table 1 and their examples): excurrent trunks with many side branches
-// (aspen, tupelo, poplar, larch, birch), decurrent crowns that fork (oak, sassafras, apple), hanging twigs
-// (willow, by droop). Their per-level counts and angles map onto our pieces as segment counts, split
+// Weber & Penn's published tables (1995, Table 1 and their examples): excurrent trunks with many side
+// branches (aspen, tupelo, poplar, larch, birch), decurrent crowns that fork (oak, sassafras, apple), hanging
+// twigs (willow, by droop). Their per-level counts and angles map onto our pieces as segment counts, split
 // probabilities and bends.
 const std::map<std::string, std::function<Species()>>& presets() {
   static const std::map<std::string, std::function<Species()>> table{
@@ -174,7 +174,9 @@ void check(bool ok, const std::string& where, const char* field, const std::stri
   }
 }
 
-bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite3(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 glm::vec3 colour(const JsonNode& node) {
   node.arrayOf(3, "r, g, b");
@@ -226,14 +228,17 @@ void validate(const Species& s, const std::string& where) {
     check(o.minSegments >= 0 && o.minSegments <= 64, w, "minSegments", "must be in [0, 64]");
     check(o.maxSegments >= o.minSegments && o.maxSegments <= 64, w, "maxSegments",
           "must be in [minSegments, 64]");
-    for (auto [v, name] : {std::pair{o.fork, "fork"}, {o.trifurcation, "trifurcation"},
-                           {o.sideBranch, "sideBranch"}, {o.asymmetry, "asymmetry"}}) {
+    for (auto [v, name] : {std::pair{o.fork, "fork"},
+                           {o.trifurcation, "trifurcation"},
+                           {o.sideBranch, "sideBranch"},
+                           {o.asymmetry, "asymmetry"}}) {
       check(std::isfinite(v) && v >= 0.0f && v <= 1.0f, w, name, "must be in [0, 1]");
     }
     check(o.fork + o.trifurcation + o.sideBranch <= 1.0f + 1e-5f, w, "fork",
           "fork + trifurcation + sideBranch must be ≤ 1");
     check(o.asymmetry < 0.9f, w, "asymmetry", "must be < 0.9");
-    check(std::isfinite(o.bend) && o.bend >= 0.0f && o.bend <= 0.5f, w, "bend", "must be in [0, 0.5] radians");
+    check(std::isfinite(o.bend) && o.bend >= 0.0f && o.bend <= 0.5f, w, "bend",
+          "must be in [0, 0.5] radians");
     check(std::isfinite(o.droop) && std::abs(o.droop) <= 0.5f, w, "droop", "must be in [-0.5, 0.5] radians");
   }
 }
@@ -261,8 +266,7 @@ Species speciesPreset(const std::string& name) {
 }
 
 Species resolveSpecies(const std::string& nameOrPath) {
-  if (nameOrPath.find('/') != std::string::npos ||
-      (nameOrPath.size() > 5 && nameOrPath.ends_with(".json"))) {
+  if (nameOrPath.find('/') != std::string::npos || (nameOrPath.size() > 5 && nameOrPath.ends_with(".json"))) {
     return loadSpecies(nameOrPath);
   }
   return speciesPreset(nameOrPath);
@@ -311,37 +315,58 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
              : rule == "uniform-random" ? AssemblyRule::UniformRandom
                                         : AssemblyRule::Grammar;
   }
-  if (root.has("maxOrder")) s.maxOrder = root["maxOrder"].integer(0, 16);
-  if (root.has("maxDepth")) s.maxDepth = root["maxDepth"].integer(1, 64);
-  if (root.has("maxPieces")) s.maxPieces = root["maxPieces"].integer(2, 200000);
-  if (root.has("minRadius")) s.minRadius = static_cast<float>(root["minRadius"].number(1e-4, 0.99));
-  if (root.has("trunkRadius")) s.trunkRadius = static_cast<float>(root["trunkRadius"].number(0.002, 10));
-  if (root.has("sizeVariation")) s.sizeVariation = static_cast<float>(root["sizeVariation"].number(0, 0.99));
-  if (root.has("barkColour")) s.barkColour = colour(root["barkColour"]);
-  if (root.has("leafColour")) s.leafColour = colour(root["leafColour"]);
-  if (root.has("youngModulus")) s.youngModulus = static_cast<float>(root["youngModulus"].number(1e6, 1e12));
-  if (root.has("woodDensity")) s.woodDensity = static_cast<float>(root["woodDensity"].number(50, 2000));
-  if (root.has("damping")) s.damping = static_cast<float>(root["damping"].number(0.001, 1));
+  if (root.has("maxOrder"))
+    s.maxOrder = root["maxOrder"].integer(0, 16);
+  if (root.has("maxDepth"))
+    s.maxDepth = root["maxDepth"].integer(1, 64);
+  if (root.has("maxPieces"))
+    s.maxPieces = root["maxPieces"].integer(2, 200000);
+  if (root.has("minRadius"))
+    s.minRadius = static_cast<float>(root["minRadius"].number(1e-4, 0.99));
+  if (root.has("trunkRadius"))
+    s.trunkRadius = static_cast<float>(root["trunkRadius"].number(0.002, 10));
+  if (root.has("sizeVariation"))
+    s.sizeVariation = static_cast<float>(root["sizeVariation"].number(0, 0.99));
+  if (root.has("barkColour"))
+    s.barkColour = colour(root["barkColour"]);
+  if (root.has("leafColour"))
+    s.leafColour = colour(root["leafColour"]);
+  if (root.has("youngModulus"))
+    s.youngModulus = static_cast<float>(root["youngModulus"].number(1e6, 1e12));
+  if (root.has("woodDensity"))
+    s.woodDensity = static_cast<float>(root["woodDensity"].number(50, 2000));
+  if (root.has("damping"))
+    s.damping = static_cast<float>(root["damping"].number(0.001, 1));
   if (root.has("orders")) {
     const JsonNode orders = root["orders"];
     const std::size_t n = orders.array(1, 17);
     s.orders.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const JsonNode o = orders[i];
-      o.object({"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend", "droop"});
+      o.object(
+          {"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend", "droop"});
       OrderParams p;
-      if (o.has("minSegments")) p.minSegments = o["minSegments"].integer(0, 64);
-      if (o.has("maxSegments")) p.maxSegments = o["maxSegments"].integer(0, 64);
-      if (p.maxSegments < p.minSegments) o["maxSegments"].error("must be ≥ minSegments");
-      if (o.has("fork")) p.fork = static_cast<float>(o["fork"].number(0, 1));
-      if (o.has("trifurcation")) p.trifurcation = static_cast<float>(o["trifurcation"].number(0, 1));
-      if (o.has("sideBranch")) p.sideBranch = static_cast<float>(o["sideBranch"].number(0, 1));
+      if (o.has("minSegments"))
+        p.minSegments = o["minSegments"].integer(0, 64);
+      if (o.has("maxSegments"))
+        p.maxSegments = o["maxSegments"].integer(0, 64);
+      if (p.maxSegments < p.minSegments)
+        o["maxSegments"].error("must be ≥ minSegments");
+      if (o.has("fork"))
+        p.fork = static_cast<float>(o["fork"].number(0, 1));
+      if (o.has("trifurcation"))
+        p.trifurcation = static_cast<float>(o["trifurcation"].number(0, 1));
+      if (o.has("sideBranch"))
+        p.sideBranch = static_cast<float>(o["sideBranch"].number(0, 1));
       if (p.fork + p.trifurcation + p.sideBranch > 1.0f + 1e-5f) {
         o.error("fork + trifurcation + sideBranch must be ≤ 1");
       }
-      if (o.has("asymmetry")) p.asymmetry = static_cast<float>(o["asymmetry"].number(0, 0.89));
-      if (o.has("bend")) p.bend = static_cast<float>(o["bend"].number(0, 0.5));
-      if (o.has("droop")) p.droop = static_cast<float>(o["droop"].number(-0.5, 0.5));
+      if (o.has("asymmetry"))
+        p.asymmetry = static_cast<float>(o["asymmetry"].number(0, 0.89));
+      if (o.has("bend"))
+        p.bend = static_cast<float>(o["bend"].number(0, 0.5));
+      if (o.has("droop"))
+        p.droop = static_cast<float>(o["droop"].number(-0.5, 0.5));
       s.orders.push_back(p);
     }
   }

@@ -24,19 +24,21 @@ struct Open {
   int node;
   int rim;
   int order;
-  int segment; // I pieces so far on this axis
+  int segment;  // I pieces so far on this axis
   float radius; // rim radius in trunk radii
   float scale;  // bone scale of the terminal joint it belongs to
 };
 
-float rimScale(const Piece& piece, int rim) { return glm::length(glm::vec3(piece.rims[static_cast<std::size_t>(rim)].frame[0])); }
+float rimScale(const Piece& piece, int rim) {
+  return glm::length(glm::vec3(piece.rims[static_cast<std::size_t>(rim)].frame[0]));
+}
 
 struct PieceIds {
   int i, y, psi, branch, cap, foot;
   explicit PieceIds(const PieceSet& pieces)
-      : i(pieces.require("I", "pieces")), y(pieces.require("Y", "pieces")), psi(pieces.require("Psi", "pieces")),
-        branch(pieces.require("Branch", "pieces")), cap(pieces.require("Cap", "pieces")),
-        foot(pieces.require("Foot", "pieces")) {}
+      : i(pieces.require("I", "pieces")), y(pieces.require("Y", "pieces")),
+        psi(pieces.require("Psi", "pieces")), branch(pieces.require("Branch", "pieces")),
+        cap(pieces.require("Cap", "pieces")), foot(pieces.require("Foot", "pieces")) {}
 };
 
 } // namespace
@@ -50,7 +52,8 @@ void indexJoints(const PieceSet& pieces, TreeTopology& tree) {
   std::uint32_t next = 1;
   for (std::size_t n = 0; n < tree.nodes.size(); ++n) {
     TreeNode& node = tree.nodes[n];
-    node.rootJoint = node.parent < 0 ? 0u : tree.terminalJoint(static_cast<std::size_t>(node.parent), node.parentRim);
+    node.rootJoint =
+        node.parent < 0 ? 0u : tree.terminalJoint(static_cast<std::size_t>(node.parent), node.parentRim);
     node.jointBase = next;
     const Piece& piece = pieces[static_cast<std::size_t>(node.piece)];
     for (std::size_t r = 1; r < piece.rims.size(); ++r) {
@@ -73,7 +76,8 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
   tree.seed = seed;
   std::vector<float> scaleOfJoint{1.0f};
 
-  auto addNode = [&](int piece, const Open* at, int order, std::deque<Open>& open, int segment, float radius) {
+  auto addNode = [&](int piece, const Open* at, int order, std::deque<Open>& open, int segment,
+                     float radius) {
     TreeNode node;
     node.piece = piece;
     node.order = order;
@@ -81,7 +85,8 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
       node.parent = at->node;
       node.parentRim = at->rim;
       node.depth = tree.nodes[static_cast<std::size_t>(at->node)].depth + 1;
-      node.rotation = species.rule == AssemblyRule::Alternate ? (node.depth * 2) % 6 : static_cast<int>(rng.below(6));
+      node.rotation =
+          species.rule == AssemblyRule::Alternate ? (node.depth * 2) % 6 : static_cast<int>(rng.below(6));
     }
     tree.nodes.push_back(node);
     const int index = static_cast<int>(tree.nodes.size() - 1);
@@ -117,7 +122,8 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
     open.pop_front();
     const int depth = tree.nodes[static_cast<std::size_t>(at.node)].depth + 1;
     const bool budget = tree.nodes.size() + open.size() + 3 >= static_cast<std::size_t>(species.maxPieces);
-    const bool limit = depth >= std::min(species.maxDepth, kMaxDepth) || at.radius < species.minRadius || budget;
+    const bool limit =
+        depth >= std::min(species.maxDepth, kMaxDepth) || at.radius < species.minRadius || budget;
     int piece = ids.cap;
     if (!limit) {
       switch (species.rule) {
@@ -145,10 +151,10 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
           } else {
             // When the axis must split, the split probabilities are renormalised.
             const float x = must ? u * total : u;
-            piece = x < p.fork                                ? ids.y
-                    : x < p.fork + p.trifurcation             ? ids.psi
+            piece = x < p.fork                                   ? ids.y
+                    : x < p.fork + p.trifurcation                ? ids.psi
                     : x < p.fork + p.trifurcation + p.sideBranch ? ids.branch
-                                                              : ids.i;
+                                                                 : ids.i;
           }
         }
         break;
@@ -188,10 +194,11 @@ void validate(const TreeTopology& tree, const PieceSet& pieces, const std::strin
     if (node.parent < 0 || node.parent >= static_cast<int>(n)) {
       fail("{}: nodes[{}].parent: {} must name an earlier node", where, n, node.parent);
     }
-    const Piece& parent = pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
+    const Piece& parent =
+        pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
     if (node.parentRim < 1 || node.parentRim > static_cast<int>(parent.leafRims())) {
-      fail("{}: nodes[{}].rim: piece '{}' has leaf rims 1 … {}, not {}", where, n, parent.name, parent.leafRims(),
-           node.parentRim);
+      fail("{}: nodes[{}].rim: piece '{}' has leaf rims 1 … {}, not {}", where, n, parent.name,
+           parent.leafRims(), node.parentRim);
     }
     if (!used.insert({node.parent, node.parentRim}).second) {
       fail("{}: nodes[{}].rim: rim {} of node {} is used twice", where, n, node.parentRim, node.parent);
@@ -208,7 +215,8 @@ void validate(const TreeTopology& tree, const PieceSet& pieces, const std::strin
     const Piece& piece = pieces[static_cast<std::size_t>(tree.nodes[n].piece)];
     for (int r = 1; r <= static_cast<int>(piece.leafRims()); ++r) {
       if (used.count({static_cast<int>(n), r}) == 0) {
-        fail("{}: nodes[{}]: leaf rim {} of piece '{}' is open (close it with a Cap)", where, n, r, piece.name);
+        fail("{}: nodes[{}]: leaf rim {} of piece '{}' is open (close it with a Cap)", where, n, r,
+             piece.name);
       }
     }
   }
@@ -223,9 +231,11 @@ std::vector<glm::mat4> topologicalTransforms(const PieceSet& pieces, const TreeT
   std::vector<glm::mat4> out(tree.nodes.size(), glm::mat4(1.0f));
   for (std::size_t n = 1; n < tree.nodes.size(); ++n) {
     const TreeNode& node = tree.nodes[n];
-    const Piece& parent = pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
+    const Piece& parent =
+        pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
     const float s = tree.jointScale[node.rootJoint];
-    out[n] = out[static_cast<std::size_t>(node.parent)] * parent.joints[static_cast<std::size_t>(node.parentRim)].bind *
+    out[n] = out[static_cast<std::size_t>(node.parent)] *
+             parent.joints[static_cast<std::size_t>(node.parentRim)].bind *
              glm::scale(glm::mat4(1.0f), glm::vec3(s)) * rimRotation(node.rotation);
   }
   return out;
@@ -306,7 +316,8 @@ TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, co
   for (std::size_t i = 1; i < count; ++i) {
     TreeNode& node = tree.nodes[i];
     node.depth = tree.nodes[static_cast<std::size_t>(node.parent)].depth + 1;
-    const Piece& parent = pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
+    const Piece& parent =
+        pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
     if (node.parentRim > static_cast<int>(parent.leafRims())) {
       nodes[i]["rim"].error(fmt::format("piece '{}' has leaf rims 1 … {}", parent.name, parent.leafRims()));
     }

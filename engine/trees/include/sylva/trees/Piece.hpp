@@ -1,10 +1,10 @@
 #pragma once
 // Tree pieces (docs/trees.md, seed 000 §4.1): low-poly quad meshes whose rims are regular hexagons. Every rim
 // is the same edge loop up to a similarity: in its own rim frame it is the unit hexagon in the xz plane with
-// corner k at angle 60°·k, and the ring of quads next to it is a cone of one fixed aperture, so rim normals are
-// fixed too. A piece's root rim is the standard rim in model space; each leaf rim carries a building
-// transform (a similarity mapping the standard rim frame onto it). Rim vertices are bound with weight 1 to one
-// joint: the root joint (rim frame = identity) or the leaf rim's terminal joint (rim frame = building
+// corner k at angle 60°·k, and the ring of quads next to it is a cone of one fixed aperture, so rim normals
+// are fixed too. A piece's root rim is the standard rim in model space; each leaf rim carries a building
+// transform (a similarity mapping the standard rim frame onto it). Rim vertices are bound with weight 1 to
+// one joint: the root joint (rim frame = identity) or the leaf rim's terminal joint (rim frame = building
 // transform), so two interlocking pieces compute bit-identical rim positions and normals from one shared
 // joint matrix and the same canonical corner constants.
 
@@ -68,9 +68,10 @@ struct Joint {
 };
 
 /**
- * A piece: quads (corner indices counter-clockwise seen from outside), rims (rims[0] is the root rim; the rest
- * are leaf rims, rims[i] carrying joint i), joints (joints[0] the root). Quad i keeps index i as its stable id,
- * which later indexes per-instance tile tables; tileClass[i] says which class of bark tiles it accepts.
+ * A piece: quads (corner indices counter-clockwise seen from outside), rims (rims[0] is the root rim; the
+ * rest are leaf rims, rims[i] carrying joint i), joints (joints[0] the root). Quad i keeps index i as its
+ * stable id, which later indexes per-instance tile tables; tileClass[i] says which class of bark tiles it
+ * accepts.
  */
 struct Piece {
   std::string name;
@@ -87,8 +88,8 @@ struct Piece {
 
 /**
  * Checks every rule of interlocking pieces; throws sylva::Error "<where>: <what>" naming the rim at fault:
- * a root rim that is missing or not the standard rim, a rim that is not a regular hexagon (corners off by more
- * than `tolerance` rim units after mapping through its frame), rim normals that are not the fixed cone
+ * a root rim that is missing or not the standard rim, a rim that is not a regular hexagon (corners off by
+ * more than `tolerance` rim units after mapping through its frame), rim normals that are not the fixed cone
  * normals, rim vertices not bound with weight 1 to the rim's joint, a building transform that is not a
  * similarity, non-finite values, quads with bad indices, weights not summing to 1.
  */

@@ -1,7 +1,7 @@
 #pragma once
 // The built-in piece set (docs/trees.md): the paper's I (narrowing cylinder) and Y (symmetric fork), the
-// trifurcation Ψ and the branch–stem attachment ⊢ it names but does not show, a cap closing a branch tip and a
-// foot closing the trunk's base, all generated in code as quad meshes that satisfy validatePiece().
+// trifurcation Ψ and the branch–stem attachment ⊢ it names but does not show, a cap closing a branch tip and
+// a foot closing the trunk's base, all generated in code as quad meshes that satisfy validatePiece().
 
 #include <sylva/trees/Piece.hpp>
 
@@ -16,7 +16,8 @@ Piece makeI();
 Piece makeY();
 /** The trifurcation (a 3D Ψ): three leaf rims, 120° apart around the axis, tilted 38°. */
 Piece makePsi();
-/** The branch–stem attachment ⊢: the stem continues (scale 0.9) and a side branch leaves at 58° (scale 0.5). */
+/** The branch–stem attachment ⊢: the stem continues (scale 0.9) and a side branch leaves at 58° (scale 0.5).
+ */
 Piece makeBranch();
 /** A branch tip: the root rim closed by a short dome (no leaf rims). Bears foliage. */
 Piece makeCap();

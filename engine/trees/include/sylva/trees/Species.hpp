@@ -29,7 +29,8 @@ struct OrderParams {
   /** I pieces an axis of this order has before it may split, and after which it must split or end. */
   int minSegments = 2;
   int maxSegments = 5;
-  /** Probabilities of a split once allowed: symmetric fork Y, trifurcation Psi, side branch ⊢ (stem goes on). */
+  /** Probabilities of a split once allowed: symmetric fork Y, trifurcation Psi, side branch ⊢ (stem goes on).
+   */
   float fork = 0.3f;
   float trifurcation = 0.0f;
   float sideBranch = 0.3f;
@@ -37,7 +38,8 @@ struct OrderParams {
   float asymmetry = 0.0f;
   /** Random pose: bend amplitude per joint, radians (paper Fig. 6). */
   float bend = 0.1f;
-  /** Systematic droop towards the ground per joint, radians (weeping forms), applied along the bone's tilt. */
+  /** Systematic droop towards the ground per joint, radians (weeping forms), applied along the bone's tilt.
+   */
   float droop = 0.0f;
 };
 

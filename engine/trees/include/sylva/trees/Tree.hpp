@@ -40,7 +40,8 @@ struct TreeNode {
 /** A tree's topology and rest parameters (no placement). */
 struct TreeTopology {
   std::vector<TreeNode> nodes;
-  /** Per global joint: parent joint (-1 for the base), the node whose terminal joint it is (-1 for the base). */
+  /** Per global joint: parent joint (-1 for the base), the node whose terminal joint it is (-1 for the base).
+   */
   std::vector<int> jointParent;
   std::vector<int> jointNode;
   /** Per global joint: bone scale (asymmetric forks), 1 by default. */
@@ -66,8 +67,8 @@ void indexJoints(const PieceSet& pieces, TreeTopology& tree);
 
 /**
  * Checks a topology against `pieces`: parents before children, rims in range and each used once, rotations
- * 0 … 5, depth ≤ 64, no open leaf rim, finite positive scales. Throws sylva::Error "<where>: nodes[i].<field>:
- * <reason>".
+ * 0 … 5, depth ≤ 64, no open leaf rim, finite positive scales. Throws sylva::Error "<where>:
+ * nodes[i].<field>: <reason>".
  */
 void validate(const TreeTopology& tree, const PieceSet& pieces, const std::string& where);
 
@@ -90,7 +91,8 @@ struct TreeStats {
 };
 TreeStats treeStats(const PieceSet& pieces, const TreeTopology& tree);
 
-/** Tree JSON (version 1): species, seed and nodes by piece name; strict loading with errors naming the field. */
+/** Tree JSON (version 1): species, seed and nodes by piece name; strict loading with errors naming the field.
+ */
 nlohmann::json toJson(const TreeTopology& tree, const PieceSet& pieces);
 TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, const std::string& where);
 TreeTopology loadTree(const std::filesystem::path& path, const PieceSet& pieces);

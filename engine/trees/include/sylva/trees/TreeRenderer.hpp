@@ -106,6 +106,8 @@ private:
   PackedInstances mPacked;
   std::vector<gpu::TreePieceGpu> mPieceTable;
   std::vector<std::uint32_t> mCommandsReset;
+  /** Piece type of each indirect command. */
+  std::vector<std::uint32_t> mCommandType;
   std::size_t mVertexBytes = 0;
   std::size_t mIndexBytes = 0;
   gl::Program mCull{gl::NoCreate};
