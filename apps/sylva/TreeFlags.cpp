@@ -15,8 +15,9 @@ namespace sylva::app {
 
 trees::ForestSettings TreeFlags::defaultForest() {
   trees::ForestSettings f;
-  f.species = {"almond", "quaking-aspen", "california-black-oak"};
-  f.count = 60;
+  f.species = {"almond", "quaking-aspen", "california-black-oak", "black-tupelo"};
+  f.count = 300;
+  f.regionRadius = 150.0f;
   f.seed = 3;
   f.spacing = 6.0f;
   f.maxSlope = 28.0f;
@@ -34,6 +35,11 @@ void TreeFlags::add(CLI::App& command) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   command.add_option("--trees-seed", forest.seed, "Seed of placement, topologies and poses")
+      ->capture_default_str();
+  command
+      .add_option("--trees-radius", forest.regionRadius,
+                  "Trees grow within this many metres of the terrain's centre (0: anywhere on it)")
+      ->check(finiteRange(0.0, 1.0e6))
       ->capture_default_str();
   command.add_option("--trees-spacing", forest.spacing, "Minimum distance between trunks, metres")
       ->check(finiteRange(0.0, 1000.0))
@@ -95,6 +101,7 @@ std::shared_ptr<trees::Forest> TreeFlags::buildForest(const terrain::TerrainScen
   check();
   trees::ForestSettings settings = forest;
   settings.verticalScale = scene.exaggeration();
+  settings.regionCentre = glm::vec2(scene.field().extentX(), scene.field().extentZ()) * 0.5f;
   if (scene.seaLevel()) {
     settings.minHeight = (*scene.seaLevel() + 0.5f) * scene.exaggeration();
   }

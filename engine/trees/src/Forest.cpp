@@ -56,6 +56,10 @@ void validate(const ForestSettings& s, const std::string& where) {
   if (std::isinf(s.minHeight) || std::isinf(s.maxHeight)) {
     fail("{}.minHeight/maxHeight: must be finite", where);
   }
+  if (!(std::isfinite(s.regionRadius) && s.regionRadius >= 0.0f && std::isfinite(s.regionCentre.x) &&
+        std::isfinite(s.regionCentre.y))) {
+    fail("{}.region: centre and radius must be finite, radius ≥ 0 metres", where);
+  }
   if (!(std::isfinite(s.verticalScale) && s.verticalScale > 0.0f)) {
     fail("{}.verticalScale: must be a finite number > 0", where);
   }
@@ -81,7 +85,14 @@ Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& se
   const float cosMax = std::cos(settings.maxSlope * std::numbers::pi_v<float> / 180.0f);
   const int attempts = settings.count * 40;
   for (int a = 0; a < attempts && static_cast<int>(forest.trees.size()) < settings.count; ++a) {
-    const glm::vec2 p(rng.uniform(0.0f, terrain.extentX()), rng.uniform(0.0f, terrain.extentZ()));
+    glm::vec2 p(rng.uniform(0.0f, terrain.extentX()), rng.uniform(0.0f, terrain.extentZ()));
+    if (settings.regionRadius > 0.0f) {
+      // Uniform in the disc, then clamped to the footprint.
+      const float r = settings.regionRadius * std::sqrt(rng.uniform());
+      const float a = rng.uniform(0.0f, 2.0f * std::numbers::pi_v<float>);
+      p = glm::clamp(settings.regionCentre + r * glm::vec2(std::cos(a), std::sin(a)), glm::vec2(0.0f),
+                     glm::vec2(terrain.extentX(), terrain.extentZ()));
+    }
     const float yaw = rng.uniform(0.0f, 2.0f * std::numbers::pi_v<float>);
     const std::uint32_t pick = rng.below(static_cast<std::uint32_t>(forest.species.size()));
     const float h = terrain::heightAt(terrain, p.x, p.y) * settings.verticalScale;

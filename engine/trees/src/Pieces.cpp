@@ -250,12 +250,14 @@ Piece twoWay(const std::string& name, const glm::mat4& pFrame, const glm::mat4& 
 
 Piece makeI() {
   Builder b("I");
-  const float length = 3.0f;
+  // Branch segments are much longer than they are thick: 5 rim radii.
+  const float length = 5.0f;
   const float scale = 1.0f - length * kTanCone;
   const Ring root = b.rim(glm::mat4(1.0f));
   const Ring leaf = b.rim(frameAt(glm::vec3(0.0f, length, 0.0f), glm::mat4(1.0f), scale));
-  const Ring r1 = b.ring(glm::mat4(1.0f), 1.0f, 1.0f - 1.0f * kTanCone);
-  const Ring r2 = b.ring(glm::mat4(1.0f), 2.0f, 1.0f - 2.0f * kTanCone);
+  const float third = length / 3.0f;
+  const Ring r1 = b.ring(glm::mat4(1.0f), third, 1.0f - third * kTanCone);
+  const Ring r2 = b.ring(glm::mat4(1.0f), 2.0f * third, 1.0f - 2.0f * third * kTanCone);
   b.band(root, r1);
   b.band(r1, r2);
   b.band(r2, leaf);

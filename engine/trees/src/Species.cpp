@@ -63,7 +63,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
          Species s = base("quaking-aspen");
          s.maxOrder = 3;
          s.trunkRadius = 0.14f;
-         s.orders = {order(4, 9, 0.05f, 0.0f, 0.75f, 0.0f, 0.05f, 0.0f),
+         s.orders = {order(2, 8, 0.05f, 0.0f, 0.8f, 0.0f, 0.05f, 0.0f),
                      order(1, 3, 0.35f, 0.0f, 0.45f, 0.2f, 0.15f, 0.05f),
                      order(1, 2, 0.5f, 0.0f, 0.3f, 0.2f, 0.2f, 0.05f)};
          s.barkColour = {0.62f, 0.6f, 0.52f};
@@ -75,7 +75,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
          Species s = base("black-tupelo");
          s.maxOrder = 3;
          s.trunkRadius = 0.2f;
-         s.orders = {order(3, 8, 0.05f, 0.0f, 0.7f, 0.0f, 0.05f, 0.0f),
+         s.orders = {order(2, 7, 0.05f, 0.0f, 0.8f, 0.0f, 0.05f, 0.0f),
                      order(1, 3, 0.3f, 0.0f, 0.5f, 0.25f, 0.12f, 0.12f),
                      order(1, 2, 0.4f, 0.0f, 0.3f, 0.2f, 0.2f, 0.1f)};
          s.leafColour = {0.2f, 0.38f, 0.12f};
@@ -125,7 +125,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
          Species s = base("lombardy-poplar");
          s.maxOrder = 2;
          s.trunkRadius = 0.2f;
-         s.orders = {order(6, 12, 0.02f, 0.0f, 0.85f, 0.0f, 0.02f, -0.12f),
+         s.orders = {order(2, 10, 0.02f, 0.0f, 0.9f, 0.0f, 0.02f, -0.12f),
                      order(2, 4, 0.2f, 0.0f, 0.4f, 0.1f, 0.05f, -0.25f)};
          s.leafColour = {0.24f, 0.44f, 0.15f};
          return s;
@@ -135,7 +135,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
          Species s = base("european-larch");
          s.maxOrder = 3;
          s.trunkRadius = 0.18f;
-         s.orders = {order(7, 12, 0.0f, 0.0f, 0.9f, 0.0f, 0.02f, 0.0f),
+         s.orders = {order(2, 10, 0.0f, 0.0f, 0.95f, 0.0f, 0.02f, 0.0f),
                      order(1, 3, 0.1f, 0.0f, 0.6f, 0.1f, 0.08f, 0.15f),
                      order(1, 2, 0.2f, 0.0f, 0.3f, 0.1f, 0.1f, 0.1f)};
          s.leafColour = {0.33f, 0.47f, 0.2f};
@@ -146,7 +146,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
          Species s = base("silver-birch");
          s.maxOrder = 3;
          s.trunkRadius = 0.13f;
-         s.orders = {order(4, 8, 0.1f, 0.0f, 0.7f, 0.0f, 0.04f, 0.0f),
+         s.orders = {order(2, 7, 0.1f, 0.0f, 0.8f, 0.0f, 0.04f, 0.0f),
                      order(1, 3, 0.3f, 0.0f, 0.5f, 0.2f, 0.12f, 0.18f),
                      order(2, 3, 0.2f, 0.0f, 0.5f, 0.2f, 0.12f, 0.25f)};
          s.barkColour = {0.8f, 0.78f, 0.72f};

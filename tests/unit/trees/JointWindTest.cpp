@@ -196,11 +196,13 @@ TEST(JointWind, PieceMassesComeFromTheMeshVolume) {
   JointWindSettings settings;
   settings.foliageArea = 0.0f;
   const JointWindRest rest = buildJointWindRest(f.pieces, std::span<const JointWindTree>(&t, 1), settings);
-  // The I (on the foot's leaf rim, scale 0.8) is a frustum of a hexagonal prism: length 3 rim units, corner
-  // radius 1 → 1 − 3 tan β, hexagon area (3√3/2)·R², volume h/3·(A₀ + A₁ + √(A₀A₁)).
+  // The I (on the foot's leaf rim, scale 0.8) is a frustum of a hexagonal prism: length L rim units (its leaf
+  // rim's height), corner radius 1 → 1 − L tan β, hexagon area (3√3/2)·R², volume L/3·(A₀ + A₁ + √(A₀A₁)).
+  const Piece& iPiece = f.pieces[static_cast<std::size_t>(f.pieces.find("I"))];
+  const double length = static_cast<double>(iPiece.rims[1].frame[3].y);
   const double unit = 0.2 * 0.8; // metres per rim unit of the I
-  const double r1 = 1.0 - 3.0 * std::tan(static_cast<double>(kRimConeAngle));
-  const double hexagon = 3.0 * std::sqrt(3.0) / 2.0 * 3.0 * (1.0 + r1 + r1 * r1) / 3.0;
+  const double r1 = 1.0 - length * std::tan(static_cast<double>(kRimConeAngle));
+  const double hexagon = 3.0 * std::sqrt(3.0) / 2.0 * length * (1.0 + r1 + r1 * r1) / 3.0;
   const double capMass = rest.springs[2].mass;
   const double iMass = rest.springs[1].mass - capMass;
   EXPECT_NEAR(iMass, species.woodDensity * hexagon * unit * unit * unit, 0.02 * iMass);

@@ -61,6 +61,9 @@ struct ForestSettings {
   /** Density noise: feature size in metres and the fraction of ground it leaves bare (0: uniform). */
   float clusterSize = 60.0f;
   float bare = 0.35f;
+  /** Region trees grow in: centre (world x, z metres) and radius in metres; radius 0: the whole terrain. */
+  glm::vec2 regionCentre{0.0f};
+  float regionRadius = 0.0f;
   /** Heights of the terrain field are multiplied by this to get drawn heights (terrain exaggeration). */
   float verticalScale = 1.0f;
 };

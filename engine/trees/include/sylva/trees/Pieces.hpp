@@ -10,7 +10,7 @@
 
 namespace sylva::trees {
 
-/** The narrowing cylinder: root rim, two inner rings, one leaf rim scaled by 1 − 3·tan β (length 3). */
+/** The narrowing cylinder: root rim, two inner rings, one leaf rim scaled by 1 − 5·tan β (length 5). */
 Piece makeI();
 /** The symmetric fork with co-dominant stems: two leaf rims tilted ±32° about z, scaled 0.78. */
 Piece makeY();

@@ -50,11 +50,11 @@ struct Species {
   /** Deepest branching order; axes of this order end in caps. */
   int maxOrder = 4;
   /** Depth limit (pieces from the root) for the alternate and uniform rules, and a hard cap for all. */
-  int maxDepth = 12;
+  int maxDepth = 24;
   /** At most this many pieces per tree (a recursion limit; open rims beyond it are capped). */
   int maxPieces = 4000;
   /** Rims narrower than this many trunk radii end in a cap. */
-  float minRadius = 0.05f;
+  float minRadius = 0.04f;
   /** Trunk radius at the base, metres (the piece unit). */
   float trunkRadius = 0.18f;
   /** Random scale per tree, ± fraction. */
