@@ -41,7 +41,7 @@ phase "asan: unit + gl"
 env -u SYLVA_REQUIRE_DISPLAY ctest --preset asan -j "$jobs"
 
 phase "build tsan (parallel CPU code)"
-scripts/build.sh tsan sylva_unit_core sylva_unit_terrain sylva_unit_folding sylva_unit_grass
+scripts/build.sh tsan sylva_unit_core sylva_unit_terrain sylva_unit_folding sylva_unit_grass sylva_unit_trees
 phase "tsan: parallel CPU code"
 ctest --preset tsan -j "$jobs"
 

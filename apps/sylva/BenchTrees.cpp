@@ -7,7 +7,12 @@
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/core/Parallel.hpp>
+#include <sylva/trees/JointWindGpu.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/wind/Wind.hpp>
+
+#include "TreeFlags.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -143,6 +148,49 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report) {
     }
     rows.push_back({"generate 1,000 almond trees (topology, pose, joint frames)",
                     render::Stats::of(ms).median, "ms", 50.0, true, 1, fmt::format("{} joints", joints)});
+  }
+  // 4. Wind on the joints: a forest of about 100,000 joints, one step plus every joint's frame, on the CPU
+  // (all cores) and on the GPU (wind.comp + frames.comp).
+  {
+    trees::Forest grid = trees::gridForest({"almond"}, 40, 9.0f, 21);
+    std::size_t keep = 0;
+    std::size_t joints = 0;
+    while (keep < grid.trees.size() && joints < 100000) {
+      joints += grid.trees[keep++].topology.jointCount();
+    }
+    grid.trees.resize(keep);
+    grid.index();
+    const trees::JointWindRest rest = forestWindRest(grid);
+    trees::JointWindState state(rest.jointCount());
+    wind::WindSettings settings;
+    settings.speed = 6.0f;
+    std::vector<gpu::JointFrame> frames;
+    float time = 0.0f;
+    const std::vector<double> cpu = timeRuns(3, std::max(10, runs * 3), [&] {
+      time += 1.0f / 60.0f;
+      trees::stepJointWind(rest, state, wind::toUniforms(settings, time), 1.0f / 60.0f);
+      trees::forestJointFrames(rest, state, frames);
+    });
+    trees::JointWindGpu gpuWind(library, rest);
+    const std::vector<double> gpu = timeRuns(3, std::max(10, runs * 3), [&] {
+      time += 1.0f / 60.0f;
+      gpuWind.step(wind::toUniforms(settings, time), 1.0f / 60.0f);
+      gpuWind.updateFrames();
+      glFinish();
+    });
+    auto ms = [](const std::vector<double>& s) {
+      std::vector<double> v;
+      for (double x : s) {
+        v.push_back(x * 1e3);
+      }
+      return render::Stats::of(v).median;
+    };
+    rows.push_back({fmt::format("wind on {} joints ({} trees): step + frames, CPU", rest.jointCount(), keep),
+                    ms(cpu), "ms", 4.0, true, static_cast<unsigned>(workerCount()), ""});
+    rows.push_back(
+        {fmt::format("wind on {} joints: step + frames, GPU (wind.comp, frames.comp)", rest.jointCount()),
+         ms(gpu), "ms", 0.25, true, 0,
+         fmt::format("{}; target for an NVIDIA GPU", rendererName.substr(0, 24))});
   }
   report["rows"] = printBenchRows(rows);
   report["fig16"] = fig16;

@@ -1,8 +1,9 @@
 #pragma once
 // Trees on the GPU (docs/trees.md, seed 000 §4): the piece meshes of a forest in one vertex and index buffer,
 // every piece instance of every tree in one instance buffer, every joint of every tree in one frame buffer.
-// Per frame a culling compute pass writes one indirect command per piece type (all instances of one type in
-// one command) and one glMultiDrawElementsIndirect draws them all as quad patches: skinned in the vertex
+// Per frame a culling compute pass writes the indirect commands of every piece type (all instances of a type
+// in each; a type's quads in chunks of SYLVA_TREE_QUADS_PER_COMMAND, see shared/Trees.h) and one
+// glMultiDrawElementsIndirect draws them all as quad patches: skinned in the vertex
 // shader, Phong-tessellated by distance in the tessellation shaders, lit in the fragment shader. Needs a
 // current GL context.
 
