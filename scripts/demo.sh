@@ -6,6 +6,7 @@
 #   out/coast.png         a real coastal DEM with bathymetry (British Columbia): sea level, water, 3x relief
 #   out/grass.png         a grass field on the demo landscape from eye height, in wind
 #   out/balls.gif         balls rolling down a slope through the simulated grass
+#   out/trees.png         a forest of trees built from interlocking pieces, swaying in the wind
 #   out/fold-beach.gif    folding textures: waves swash up a procedural beach and wash back
 #   out/fold-cat.gif      folding textures: a real cat photo (scikit-image's chelsea.png) squints
 set -euo pipefail
@@ -22,5 +23,7 @@ mkdir -p out
 "$sylva" render --grass --wind-speed 5 --out out/grass.png
 "$sylva" render --grass --physics balls --balls 6 --frames 90 --width 400 --height 225 --gif out/balls.gif \
   --out out/balls.png
+"$sylva" render --trees --trees-radius 40 --trees-spacing 3.5 --view-from top --look-at 1024,192,1024 \
+  --camera-pos 1060,195,1060 --out out/trees.png
 "$sylva" fold render data/folding/beach.json --fps 12 --gif out/fold-beach.gif
 "$sylva" fold render data/folding/cat.json --fps 12 --gif out/fold-cat.gif

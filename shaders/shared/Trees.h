@@ -17,6 +17,7 @@ SYLVA_GPU_BEGIN
 #define SYLVA_TREE_MAX_PIECE_JOINTS 4   // root + up to three terminal joints (Psi)
 #define SYLVA_TREE_MAX_PIECES 8         // piece types in one renderer
 #define SYLVA_TREE_CULL_GROUP 64
+#define SYLVA_TREE_MAX_SPECIES 8        // species with their own bark colour in one renderer
 // Quads per indirect command. Mesa's draw module (llvmpipe) numbers the tessellated vertices of one instance
 // of a draw with 16 bits: at level 64 a quad makes up to 65 x 65 vertices, so 15 quads (63,375) fit and 16
 // would not; beyond that, parts of patches vanish. A piece type's quads are drawn as several commands of the
@@ -35,7 +36,7 @@ struct JointFrame {
 SYLVA_ASSERT_SIZE(JointFrame, 48);
 
 /** One piece instance: x = root joint index, y = first terminal joint index, z = rim rotation (0 … 5) |
- * piece type << 8, w = tree index. */
+ * piece type << 8, w = tree index | species << 24. */
 struct TreeInstanceGpu {
   uvec4 joints;
 };
@@ -59,13 +60,13 @@ struct TreeUniforms {
   vec4 tess;          // x: K (pixels-to-level factor: viewport height / (2 tan(fov/2)) / target pixels per
                       // segment), y: maximum level, z: fixed level (> 0 overrides the distance rule), w: cull
                       // distance in metres
-  vec4 colours[2];    // bark colour (rgb), leaf colour (rgb)
+  vec4 colours[SYLVA_TREE_MAX_SPECIES]; // bark colour (rgb) per species of the forest
   uvec4 info;         // x: instance count, y: piece types, z: view (TreeView), w: debug flags (1: break rims)
   vec4 cull;          // x: bounding-sphere slack factor for bends; yzw: unused
   vec4 corners[6];    // rimCorner(k) exactly as the CPU computes it (xyz)
   vec4 rimNormals[6]; // rimNormal(k) (xyz)
 };
-SYLVA_ASSERT_SIZE(TreeUniforms, 368);
+SYLVA_ASSERT_SIZE(TreeUniforms, 464);
 
 // ---- Wind on the joints (sylva/trees/JointWind.hpp; shaders/trees/wind.comp and frames.comp)
 // --------------- Binding 29 (SYLVA_TREE_WIND_BINDING) holds vec4 motion[] per global joint: xy bend θ

@@ -38,9 +38,9 @@ void main() {
     float t = clamp(log2(max(fLevel, 1.0)) / 6.0, 0.0, 1.0);
     albedo = mix(vec3(0.15, 0.3, 0.9), vec3(0.95, 0.2, 0.1), t);
   } else {
-    uint h = lowbias32(fPatch * 747796405u ^ lowbias32(inst.w * 2891336453u + fInstance));
+    uint h = lowbias32(fPatch * 747796405u ^ lowbias32((inst.w & 0xffffffu) * 2891336453u + fInstance));
     float grain = 0.82 + 0.18 * float(h & 255u) / 255.0;
-    albedo = trees.colours[0].rgb * grain;
+    albedo = trees.colours[min(inst.w >> 24, uint(SYLVA_TREE_MAX_SPECIES - 1))].rgb * grain;
   }
   outColour = vec4(toSrgb(shadeOutdoor(albedo, n, fWorld)), 1.0);
 }

@@ -194,16 +194,8 @@ TEST(CliRender, BadCameraOptionsAndLimitsFailBeforeWork) {
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
 }
 
-/** Whether a window can open: false (the test skips) without a display, unless SYLVA_REQUIRE_DISPLAY=1. */
-bool haveDisplay() {
-  return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr;
-}
-
-/** SYLVA_REQUIRE_DISPLAY=1: a missing display fails the view tests instead of skipping them (CI). */
-bool displayRequired() {
-  const char* required = std::getenv("SYLVA_REQUIRE_DISPLAY");
-  return required != nullptr && std::string(required) == "1";
-}
+using test::displayRequired;
+using test::haveDisplay;
 
 // `sylva view --grass` in its scripted mode: the viewer builds the field, starts at the ground-level grass
 // camera and draws blades (with the grass panel open) until the screenshot. Needs a window: skipped without a

@@ -148,16 +148,8 @@ TEST(CliTreesRender, BadInputFailsWithOneLineAndNoOutput) {
   EXPECT_EQ(test::lineCount(demo.err), 1u) << demo.err;
 }
 
-/** Whether a window can open: false (the test skips) without a display, unless SYLVA_REQUIRE_DISPLAY=1. */
-bool haveDisplay() {
-  return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr;
-}
-
-/** SYLVA_REQUIRE_DISPLAY=1: a missing display fails the view tests instead of skipping them (CI). */
-bool displayRequired() {
-  const char* required = std::getenv("SYLVA_REQUIRE_DISPLAY");
-  return required != nullptr && std::string(required) == "1";
-}
+using test::displayRequired;
+using test::haveDisplay;
 
 // `sylva view --trees` in its scripted mode: the viewer builds the forest, starts at the forest camera,
 // steps the wind with the fixed step and draws the trees (with the Trees panel open, reading the visible

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <filesystem>
+#include <cstdlib>
 #include <string>
 
 namespace sylva::test {
@@ -44,6 +45,17 @@ inline std::string at(const TempDir& dir, const std::string& name) {
 inline std::size_t lineCount(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
          (!text.empty() && text.back() != '\n' ? 1 : 0);
+}
+
+/** Whether a window can open: false (the test skips) without a display, unless SYLVA_REQUIRE_DISPLAY=1. */
+inline bool haveDisplay() {
+  return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr;
+}
+
+/** SYLVA_REQUIRE_DISPLAY=1: a missing display fails the view tests instead of skipping them (CI). */
+inline bool displayRequired() {
+  const char* required = std::getenv("SYLVA_REQUIRE_DISPLAY");
+  return required != nullptr && std::string(required) == "1";
 }
 
 } // namespace sylva::test

@@ -145,9 +145,12 @@ void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, co
   u.tess.y = std::clamp(lod.maxLevel, 1.0f, 64.0f);
   u.tess.z = lod.fixedLevel > 0.0f ? std::clamp(lod.fixedLevel, 1.0f, 64.0f) : 0.0f;
   u.tess.w = lod.drawDistance;
-  const Species& s = mForest->species.empty() ? Species{} : mForest->species.front();
-  u.colours[0] = glm::vec4(s.barkColour, 1.0f);
-  u.colours[1] = glm::vec4(s.leafColour, 1.0f);
+  for (std::size_t k = 0; k < SYLVA_TREE_MAX_SPECIES; ++k) {
+    // Species beyond the table share its last colour (the shader clamps the index the same way).
+    const std::size_t from = std::min(k, mForest->species.size() - 1);
+    u.colours[k] =
+        glm::vec4(mForest->species.empty() ? Species{}.barkColour : mForest->species[from].barkColour, 1.0f);
+  }
   u.info =
       glm::uvec4(static_cast<unsigned>(mPacked.instances.size()), static_cast<unsigned>(mPieceTable.size()),
                  static_cast<unsigned>(view), breakRims ? 1u : 0u);
@@ -237,11 +240,8 @@ void TreeRenderer::submit(const TreeDrawOptions& options, bool perPiece) {
   glCullFace(static_cast<GLenum>(cullMode));
 }
 
-void TreeRenderer::draw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
-                        render::GpuTimers* timers, const TreeDrawOptions& options) {
-  if (timers != nullptr) {
-    timers->begin("trees");
-  }
+void TreeRenderer::prepareDraw(const render::Camera& camera, int width, int height, double time,
+                               const TreeLod& lod, const TreeDrawOptions& options) {
   uploadUniforms(camera, static_cast<float>(width) / static_cast<float>(std::max(height, 1)), lod,
                  options.view, options.breakRims);
   // Level = K · edge length / distance: K turns metres at a distance into pixels, per target segment length.
@@ -251,6 +251,14 @@ void TreeRenderer::draw(const render::Camera& camera, int width, int height, dou
   mFrame.update(camera, width, height, time, options.environment);
   mFrame.bind();
   bindAll();
+}
+
+void TreeRenderer::draw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
+                        render::GpuTimers* timers, const TreeDrawOptions& options) {
+  if (timers != nullptr) {
+    timers->begin("trees");
+  }
+  prepareDraw(camera, width, height, time, lod, options);
   submit(options, false);
   if (timers != nullptr) {
     timers->end();
@@ -259,14 +267,7 @@ void TreeRenderer::draw(const render::Camera& camera, int width, int height, dou
 
 void TreeRenderer::drawPerPiece(const render::Camera& camera, int width, int height, double time,
                                 const TreeLod& lod, const TreeDrawOptions& options) {
-  uploadUniforms(camera, static_cast<float>(width) / static_cast<float>(std::max(height, 1)), lod,
-                 options.view, options.breakRims);
-  mLast.tess.x = static_cast<float>(height) / (2.0f * std::tan(camera.fovY * 0.5f)) /
-                 std::max(lod.pixelsPerSegment, 0.5f);
-  mUniforms.setSubData(0, sizeof(mLast), &mLast);
-  mFrame.update(camera, width, height, time, options.environment);
-  mFrame.bind();
-  bindAll();
+  prepareDraw(camera, width, height, time, lod, options);
   submit(options, true);
 }
 

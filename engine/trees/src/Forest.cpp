@@ -186,10 +186,10 @@ PackedInstances packInstances(const Forest& forest) {
     const std::uint32_t offset = forest.jointOffset[ti];
     for (const TreeNode& n : t.topology.nodes) {
       const auto type = static_cast<std::size_t>(n.piece);
-      out.instances[cursor[type]++].joints =
-          glm::uvec4(offset + n.rootJoint, offset + n.jointBase,
-                     static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8),
-                     static_cast<std::uint32_t>(ti));
+      out.instances[cursor[type]++].joints = glm::uvec4(
+          offset + n.rootJoint, offset + n.jointBase,
+          static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8),
+          static_cast<std::uint32_t>(ti) | (static_cast<std::uint32_t>(std::min(t.species, 255)) << 24));
     }
   }
   return out;

@@ -4,9 +4,10 @@
 // shows only front faces. Each frame draws the front faces over a black background, then the back faces with
 // depth test LESS in pure magenta: a back-face pixel is the inside (or, beyond it, the background) showing
 // through a crack. The footprint is defined robustly: only pixels whose 3 x 3 neighbourhood holds no
-// background count, so the silhouette (where a grazing back face may win a pixel by rasterisation alone) is
-// out and every crack inside the surface is in. Zero such pixels in every frame = watertight. With the rims
-// broken by 3 % the same check must find cracks, so it is known to work.
+// background and whose front surface around them is continuous in depth (within 5 %) count, so silhouettes
+// (where a grazing back face may win a pixel by rasterisation alone, against the background or a farther
+// branch) are out and every crack inside the surface is in. Zero such pixels in every frame = watertight.
+// With the rims broken by 3 % the same check must find cracks, so it is known to work.
 #include <sylva/core/Random.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
@@ -17,6 +18,8 @@
 #include <glm/geometric.hpp>
 
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include <memory>
 
@@ -139,6 +142,11 @@ public:
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthMask(GL_TRUE);
     mImage = mTarget.readColor();
+    // The front surface's depth (the back faces did not write it), as eye-space distance.
+    const Image window = mTarget.readDepth();
+    const float n = camera.nearPlane;
+    const float f = camera.farPlane;
+    const auto eye = [&](int x, int y) { return n * f / (f - window.get(x, y, 0) * (f - n)); };
     const auto is = [&](int x, int y, float r, float g, float b) {
       return mImage.get(x, y, 0) == r && mImage.get(x, y, 1) == g && mImage.get(x, y, 2) == b;
     };
@@ -148,12 +156,21 @@ public:
         if (!is(x, y, 1.0f, 0.0f, 1.0f)) {
           continue;
         }
+        // Inside the footprint: no background around it, and the front surface around it continuous (a
+        // silhouette against a farther branch is an edge of the footprint too, not a crack).
         bool inside = true;
+        float nearest = 1e30f;
+        float farthest = 0.0f;
         for (int dy = -1; dy <= 1 && inside; ++dy) {
           for (int dx = -1; dx <= 1 && inside; ++dx) {
             inside = !is(x + dx, y + dy, 0.0f, 0.0f, 0.0f);
+            if (dx != 0 || dy != 0) {
+              nearest = std::min(nearest, eye(x + dx, y + dy));
+              farthest = std::max(farthest, eye(x + dx, y + dy));
+            }
           }
         }
+        inside = inside && farthest - nearest < 0.05f * nearest;
         count += inside ? 1 : 0;
       }
     }

@@ -12,11 +12,11 @@ namespace sylva::trees {
 
 /** The narrowing cylinder: root rim, two inner rings, one leaf rim scaled by 1 − 5·tan β (length 5). */
 Piece makeI();
-/** The symmetric fork with co-dominant stems: two leaf rims tilted ±32° about z, scaled 0.78. */
+/** The symmetric fork with co-dominant stems: two leaf rims tilted ±30° about x, scaled 0.72. */
 Piece makeY();
-/** The trifurcation (a 3D Ψ): three leaf rims, 120° apart around the axis, tilted 38°. */
+/** The trifurcation (a 3D Ψ): three leaf rims, 120° apart around the axis, tilted 35°, scaled 0.62. */
 Piece makePsi();
-/** The branch–stem attachment ⊢: the stem continues (scale 0.9) and a side branch leaves at 58° (scale 0.5).
+/** The branch–stem attachment ⊢: the stem continues (scale 0.85) and a side branch leaves at 58° (scale 0.5).
  */
 Piece makeBranch();
 /** A branch tip: the root rim closed by a short dome (no leaf rims). Bears foliage. */

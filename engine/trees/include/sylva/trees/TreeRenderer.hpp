@@ -101,6 +101,9 @@ private:
   void uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod, TreeView view,
                       bool breakRims);
   void bindAll() const;
+  /** Uniforms, frame block and bindings of a draw (both draw paths). */
+  void prepareDraw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
+                   const TreeDrawOptions& options);
   void submit(const TreeDrawOptions& options, bool perPiece);
 
   std::shared_ptr<const Forest> mForest;
