@@ -7,8 +7,10 @@
 
 #include <GLFW/glfw3.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <mutex>
+#include <thread>
 
 namespace sylva::platform {
 
@@ -25,7 +27,15 @@ int gWindowCount = 0;
 
 bool ensureGlfw() {
   glfwSetErrorCallback(onGlfwError);
-  return glfwInit() == GLFW_TRUE;
+  // A busy X server (Xvfb while another client's windows close) can refuse a connection for a moment: seen
+  // once as "Failed to open display" in a CI run whose display was up. Try a few times before giving up.
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    if (glfwInit() == GLFW_TRUE) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  }
+  return false;
 }
 
 } // namespace
