@@ -195,7 +195,16 @@ using U8 = std::uint32_t __attribute__((vector_size(32)));
   out = y0 + (y1 - y0) * w;
 }
 
-#if defined(__x86_64__)
+// target_clones dispatches through an ifunc resolver, which runs before ThreadSanitizer's runtime is up and
+// crashes every TSan binary at load; TSan builds take the baseline code (same results, bit for bit).
+#if defined(__SANITIZE_THREAD__)
+#define SYLVA_WIND_NO_CLONES 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define SYLVA_WIND_NO_CLONES 1
+#endif
+#endif
+#if defined(__x86_64__) && !defined(SYLVA_WIND_NO_CLONES)
 __attribute__((target_clones("avx2", "default")))
 #endif
 void windBatch(const gpu::WindUniforms& wind, const glm::vec2* positions, const float* offsets, glm::vec2* out,
