@@ -161,9 +161,9 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
       }
       }
     }
-    scaleOfJoint.push_back(at.scale); // placeholder order; rebuilt below from node order
+    // The bone scale of the rim this node sits on, kept by node index (joint indices come later).
+    scaleOfJoint.push_back(at.scale);
     addNode(piece, &at, at.order, open, at.segment, at.radius);
-    tree.nodes.back().order = at.order;
   }
   // Joint scales: each node's root joint is its parent's terminal joint; the scale chosen for that rim was
   // recorded in scaleOfJoint in node order (entry n for node n).
