@@ -75,6 +75,41 @@ for entry in "${entries[@]}"; do
   echo "fetched  ${target}  (from $(basename "${deb}"))"
 done
 
+# npm packages: bark and leaf textures of ez-tree (MIT; oak and willow bark from Poly Haven, CC0). `npm pack`
+# fetches the tarball from the registry without installing anything; single files are extracted from it.
+npm_entries=(
+  "@dgreenheck/ez-tree@1.1.0|package/src/lib/assets/bark|ez-tree/bark|birch_color_1k.jpg birch_normal_1k.jpg oak_color_1k.jpg oak_normal_1k.jpg pine_color_1k.jpg pine_normal_1k.jpg willow_color_1k.jpg willow_normal_1k.jpg"
+  "@dgreenheck/ez-tree@1.1.0|package/src/lib/assets/leaves|ez-tree/leaves|ash_color.png aspen_color.png oak_color.png pine_color.png"
+)
+for entry in "${npm_entries[@]}"; do
+  IFS='|' read -r spec inner subdir files <<<"${entry}"
+  mkdir -p "${dest}/${subdir}"
+  missing=0
+  for f in ${files}; do
+    [[ -s "${dest}/${subdir}/${f}" ]] || missing=1
+  done
+  if [[ ${missing} -eq 0 ]]; then
+    echo "present  ${dest}/${subdir}/ (${spec})"
+    continue
+  fi
+  if ! command -v npm >/dev/null 2>&1; then
+    echo "fetch-sample-data: npm is needed for ${spec} (apt-get install npm)" >&2
+    exit 1
+  fi
+  npmdir="${work}/npm-$(echo "${spec}" | tr '/@' '__')"
+  mkdir -p "${npmdir}"
+  if [[ -z "$(find "${npmdir}" -maxdepth 1 -name '*.tgz' | head -n 1)" ]]; then
+    (cd "${npmdir}" && npm pack --silent "${spec}" >/dev/null)
+  fi
+  tgz="$(find "${npmdir}" -maxdepth 1 -name '*.tgz' | head -n 1)"
+  for f in ${files}; do
+    tar -xzf "${tgz}" -C "${npmdir}" "${inner}/${f}"
+    cp "${npmdir}/${inner}/${f}" "${dest}/${subdir}/${f}.part"
+    mv "${dest}/${subdir}/${f}.part" "${dest}/${subdir}/${f}"
+  done
+  echo "fetched  ${dest}/${subdir}/  (from ${spec})"
+done
+
 echo "sample data in ${dest}:"
 for entry in "${entries[@]}"; do
   IFS='|' read -r _ _ name <<<"${entry}"

@@ -18,6 +18,18 @@ SYLVA_GPU_BEGIN
 #define SYLVA_TREE_MAX_PIECES 8         // piece types in one renderer
 #define SYLVA_TREE_CULL_GROUP 64
 #define SYLVA_TREE_MAX_SPECIES 8        // species with their own bark colour in one renderer
+// Storage bindings of the tree surface, foliage and far-field passes. They reuse numbers of the grass
+// simulation's compute passes (never bound in one program together); every pass binds its buffers before use.
+#define SYLVA_TREE_QUAD_BINDING 16     // storage: uint[] per piece type per quad: tile class | rotation << 8
+#define SYLVA_TREE_CENTRE_BINDING 17   // storage: vec4[] per tree: base (world xyz, m), crown height (w, m)
+#define SYLVA_TREE_FOLIAGE_BINDING 18  // storage: foliage anchors (FoliageRenderer)
+#define SYLVA_TREE_IMPOSTOR_BINDING 19 // storage: far-field impostor instances (ImpostorRenderer)
+// Texture units of the tree passes.
+#define SYLVA_TREE_BARK_COLOUR_UNIT 8  // sampler2DArray: bark tiles, colour (sRGB8_ALPHA8), one layer per tile
+#define SYLVA_TREE_BARK_NORMAL_UNIT 9  // sampler2DArray: bark tiles, tangent-space normal (RGBA8, n = 2c - 1)
+#define SYLVA_TREE_FOLIAGE_UNIT 10     // sampler2D: the 2.5D leaf-cloud impostor (rgb colour, a depth)
+#define SYLVA_TREE_IMPOSTOR_UNIT 11    // sampler2DArray: far-field octahedral atlas (first of the units used)
+#define SYLVA_TREE_MAX_TILE_CLASSES 4  // bark tile classes (the pieces use 0: plain, 1: by a fork, 2: crotch)
 // Quads per indirect command. Mesa's draw module (llvmpipe) numbers the tessellated vertices of one instance
 // of a draw with 16 bits: at level 64 a quad makes up to 65 x 65 vertices, so 15 quads (63,375) fit and 16
 // would not; beyond that, parts of patches vanish. A piece type's quads are drawn as several commands of the
@@ -54,7 +66,8 @@ struct TreePieceGpu {
 };
 SYLVA_ASSERT_SIZE(TreePieceGpu, 224);
 
-/** Per draw: tessellation and culling settings. */
+/** Per draw: tessellation and culling settings. colours[s].w is species s's bark set (texture array layers
+ * colours[s].w · bark.x onwards). */
 struct TreeUniforms {
   vec4 frustum[6];    // world-space planes (xyz normal pointing inwards, w offset)
   vec4 tess;          // x: K (pixels-to-level factor: viewport height / (2 tan(fov/2)) / target pixels per
@@ -65,8 +78,15 @@ struct TreeUniforms {
   vec4 cull;          // x: bounding-sphere slack factor for bends; yzw: unused
   vec4 corners[6];    // rimCorner(k) exactly as the CPU computes it (xyz)
   vec4 rimNormals[6]; // rimNormal(k) (xyz)
+  uvec4 quadTable[2]; // first entry of piece type t in the quad table at SYLVA_TREE_QUAD_BINDING: [t / 4][t % 4]
+  uvec4 tileFirst;    // first layer of bark tile class c (0 … 3) within one species' bark set
+  uvec4 tileCount;    // tiles of class c (0: the class has none)
+  vec4 bark;          // x: layers per bark set (0: untextured, flat colours), y: tile size in texels,
+                      // z: normal-map strength (0: none), w: tile texels per metre of bark (for filtering)
+  vec4 far;           // x: distance where trees begin to cross-fade into far-field impostors (m), y: where they
+                      // are impostors only (m); y <= x: no far field, every tree is drawn as pieces
 };
-SYLVA_ASSERT_SIZE(TreeUniforms, 464);
+SYLVA_ASSERT_SIZE(TreeUniforms, 560);
 
 // ---- Wind on the joints (sylva/trees/JointWind.hpp; shaders/trees/wind.comp and frames.comp)
 // --------------- Binding 29 (SYLVA_TREE_WIND_BINDING) holds vec4 motion[] per global joint: xy bend θ

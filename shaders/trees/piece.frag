@@ -4,6 +4,14 @@
 #include "trees.glsl"
 #include "../common/lighting.glsl"
 #include "../common/hash.glsl"
+#include "../common/frame.glsl"
+#include "fade.glsl"
+
+layout(binding = SYLVA_TREE_BARK_COLOUR_UNIT) uniform sampler2DArray barkColour;
+layout(binding = SYLVA_TREE_BARK_NORMAL_UNIT) uniform sampler2DArray barkNormal;
+layout(std430, binding = SYLVA_TREE_CENTRE_BINDING) readonly buffer TreeCentres {
+  vec4 treeCentres[]; // base (xyz, m), crown height (w, m)
+};
 
 in vec3 fWorld;
 in vec3 fNormal;
@@ -12,6 +20,27 @@ in float fRootWeight;
 flat in uint fInstance;
 flat in uint fPatch;
 flat in float fLevel;
+in vec2 fTile;
+flat in uint fTileClass;
+
+/** The tangent-space normal `tn` (x along the tile's x, y along its y) in world space: the cotangent frame of
+ * the tile coordinates from screen-space derivatives (no stored tangents). */
+vec3 perturb(vec3 n, vec3 tn) {
+  vec3 dp1 = dFdx(fWorld);
+  vec3 dp2 = dFdy(fWorld);
+  vec2 dt1 = dFdx(fTile);
+  vec2 dt2 = dFdy(fTile);
+  vec3 perp2 = cross(dp2, n);
+  vec3 perp1 = cross(n, dp1);
+  vec3 t = perp2 * dt1.x + perp1 * dt2.x;
+  vec3 b = perp2 * dt1.y + perp1 * dt2.y;
+  float len = max(dot(t, t), dot(b, b));
+  if (!(len > 0.0)) {
+    return n;
+  }
+  float s = inversesqrt(len);
+  return normalize(mat3(t * s, b * s, n) * tn);
+}
 
 layout(location = 0) out vec4 outColour;
 
@@ -22,6 +51,15 @@ const vec3 kTypeColours[8] = vec3[8](vec3(0.85, 0.3, 0.25), vec3(0.3, 0.75, 0.3)
 void main() {
   vec3 n = normalize(gl_FrontFacing ? fNormal : -fNormal);
   uvec4 inst = instances[fInstance].joints;
+  uint tree = inst.w & 0xffffffu;
+  if (trees.far.y > trees.far.x) {
+    // Far field: dissolve into the impostor with the complementary mask of its pass.
+    vec4 c = treeCentres[tree];
+    float d = distance(frame.cameraPos.xyz, c.xyz + vec3(0.0, 0.5 * c.w, 0.0));
+    if (!piecesKeep(farBlend(d, trees.far.xy), uvec2(gl_FragCoord.xy), tree)) {
+      discard;
+    }
+  }
   uint view = trees.info.z;
   vec3 albedo;
   if (view == 1u) {
@@ -37,6 +75,19 @@ void main() {
     // Levels 1 … 64 on a log scale: blue (coarse) to red (fine).
     float t = clamp(log2(max(fLevel, 1.0)) / 6.0, 0.0, 1.0);
     albedo = mix(vec3(0.15, 0.3, 0.9), vec3(0.95, 0.2, 0.1), t);
+  } else if (trees.bark.x > 0.0) {
+    // Bark tiles: this quad's tile among its class, per piece instance (seed 000 §5.1).
+    uint species = min(inst.w >> 24, uint(SYLVA_TREE_MAX_SPECIES - 1));
+    uint cls = min(fTileClass, uint(SYLVA_TREE_MAX_TILE_CLASSES - 1));
+    uint tile = chooseTile(instanceTileSeed(inst.x), fPatch, trees.tileFirst[cls], trees.tileCount[cls]);
+    float layer = trees.colours[species].w * trees.bark.x + float(tile);
+    // Edge lines of the quad sample the tiles' shared outermost texels.
+    float size = trees.bark.y;
+    vec3 st = vec3((fTile * (size - 1.0) + 0.5) / size, layer);
+    albedo = texture(barkColour, st).rgb;
+    if (trees.bark.z > 0.0) {
+      n = perturb(n, texture(barkNormal, st).xyz * 2.0 - 1.0);
+    }
   } else {
     uint h = lowbias32(fPatch * 747796405u ^ lowbias32((inst.w & 0xffffffu) * 2891336453u + fInstance));
     float grain = 0.82 + 0.18 * float(h & 255u) / 255.0;

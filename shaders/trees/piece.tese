@@ -22,6 +22,8 @@ out float fRootWeight;
 flat out uint fInstance;
 flat out uint fPatch;
 flat out float fLevel;
+out vec2 fTile;         // tile coordinates (x across, y along the branch) in [0, 1]^2
+flat out uint fTileClass;
 
 const float kAlpha = 0.75;
 
@@ -49,5 +51,8 @@ void main() {
   // The quad's stable id within its piece (gl_PrimitiveID restarts with every command and instance).
   fPatch = teQuadBase[0] + uint(gl_PrimitiveID);
   fLevel = gl_TessLevelInner[0];
+  uint entry = quadTileEntry((instances[teInstance[0]].joints.z >> 8) & 255u, fPatch);
+  fTile = tileCoord(vec2(u, v), entry >> 8);
+  fTileClass = entry & 255u;
   gl_Position = frame.viewProj * vec4(world, 1.0);
 }

@@ -1,6 +1,7 @@
 // Shared declarations of the tree passes (docs/trees.md): uniforms, joint frames, instances, piece table.
 #pragma once
 #include "../shared/Trees.h"
+#include "../common/hash.glsl"
 
 layout(std140, binding = SYLVA_TREE_BINDING) uniform TreeBlock {
   TreeUniforms trees;
@@ -17,6 +18,37 @@ layout(std430, binding = SYLVA_TREE_INSTANCE_BINDING) readonly buffer Instances 
 layout(std430, binding = SYLVA_TREE_PIECE_BINDING) readonly buffer PieceTable {
   TreePieceGpu pieceTable[];
 };
+
+// Tile class | rotation << 8 of every quad of every piece type (sylva::trees::quadTileTable).
+layout(std430, binding = SYLVA_TREE_QUAD_BINDING) readonly buffer QuadTable {
+  uint quadTiles[];
+};
+
+/** The quad table entry of quad `quad` of piece type `type`. */
+uint quadTileEntry(uint type, uint quad) {
+  return quadTiles[trees.quadTable[type / 4u][type % 4u] + quad];
+}
+
+/** Tile coordinates of quad point uv for tile rotation r (tileCoord in sylva/trees/Bark.hpp). */
+vec2 tileCoord(vec2 uv, uint r) {
+  r &= 3u;
+  if (r == 0u) {
+    return uv;
+  }
+  if (r == 1u) {
+    return vec2(uv.y, 1.0 - uv.x);
+  }
+  if (r == 2u) {
+    return vec2(1.0 - uv.x, 1.0 - uv.y);
+  }
+  return vec2(1.0 - uv.y, uv.x);
+}
+
+/** instanceTileSeed and chooseTile of sylva/trees/Bark.hpp. */
+uint instanceTileSeed(uint rootJoint) { return lowbias32(rootJoint * 0x9e3779b9u + 0x7f4a7c15u); }
+uint chooseTile(uint seed, uint quad, uint first, uint count) {
+  return first + lowbias32(seed ^ (quad * 0x85ebca6bu + 0x27d4eb2fu)) % count;
+}
 
 /** A point through a frame (three rows of a 3x4 matrix). */
 vec3 framePoint(JointFrame f, vec3 p) {

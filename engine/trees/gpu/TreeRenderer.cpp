@@ -3,6 +3,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/shader/Compiler.hpp>
+#include <sylva/trees/Tree.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -67,6 +68,24 @@ TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const
     entry.range = glm::uvec4(firstCommand, chunks, mPacked.first[t], count);
     mPieceTable.push_back(entry);
   }
+  // Tile class and rotation of every quad of every piece type (the patch id indexes it).
+  std::vector<std::uint32_t> quadTable;
+  for (std::size_t t = 0; t < f.pieces.size(); ++t) {
+    mQuadFirst[t] = static_cast<std::uint32_t>(quadTable.size());
+    const std::vector<std::uint32_t> entries = quadTileTable(f.pieces[t]);
+    quadTable.insert(quadTable.end(), entries.begin(), entries.end());
+  }
+  quadTable.push_back(0u);
+  mQuadTable = gl::Buffer{std::span<const std::uint32_t>(quadTable)};
+  // Tree centres for the far-field fade: base position and crown height in metres.
+  mCentres.reserve(f.trees.size() + 1);
+  for (const ForestTree& tree : f.trees) {
+    const float scale = glm::length(glm::vec3(tree.base[0]));
+    const float height = treeStats(f.pieces, tree.topology).height * scale;
+    mCentres.emplace_back(glm::vec3(tree.base[3]), height);
+  }
+  mCentreBuffer = gl::Buffer{
+      std::span<const glm::vec4>(mCentres.empty() ? std::vector<glm::vec4>{glm::vec4(0.0f)} : mCentres)};
   mVertexBytes = vertices.size() * sizeof(PieceVertexGpu);
   mIndexBytes = indices.size() * sizeof(std::uint32_t);
   mVertices = gl::Buffer{std::span<const PieceVertexGpu>(vertices)};
@@ -135,6 +154,64 @@ void TreeRenderer::useFrames(const gl::Buffer* external) {
   mExternalFrames = external;
 }
 
+void TreeRenderer::setBark(std::span<const BarkSet> sets, std::span<const int> speciesSet) {
+  if (sets.empty()) {
+    mBarkColour = gl::Texture{gl::NoCreate};
+    mBarkNormal = gl::Texture{gl::NoCreate};
+    mBarkLayers = 0;
+    return;
+  }
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    validate(sets[i], "bark set '" + sets[i].name + "'");
+    if (sets[i].tileSize != sets[0].tileSize || sets[i].colour.size() != sets[0].colour.size() ||
+        sets[i].classFirst != sets[0].classFirst || sets[i].classCount != sets[0].classCount) {
+      fail("bark set '{}': tile size and class layout differ from bark set '{}'", sets[i].name, sets[0].name);
+    }
+  }
+  const int size = sets[0].tileSize;
+  const auto perSet = static_cast<std::uint32_t>(sets[0].colour.size());
+  const auto layers = static_cast<int>(perSet * sets.size());
+  const int levels = static_cast<int>(std::floor(std::log2(static_cast<float>(size)))) + 1;
+  const bool normals =
+      std::all_of(sets.begin(), sets.end(), [](const BarkSet& s) { return !s.normal.empty(); });
+  gl::Texture colour = gl::Texture::create2DArray(GL_SRGB8_ALPHA8, size, size, layers, levels);
+  gl::Texture normal{gl::NoCreate};
+  if (normals) {
+    normal = gl::Texture::create2DArray(GL_RGBA8, size, size, layers, levels);
+  }
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    for (std::uint32_t k = 0; k < perSet; ++k) {
+      const int layer = static_cast<int>(i * perSet + k);
+      colour.upload(sets[i].colour[k], 0, layer);
+      if (normals) {
+        normal.upload(sets[i].normal[k], 0, layer);
+      }
+    }
+  }
+  const gl::SamplerState sampler{GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE};
+  colour.setSampler(sampler);
+  colour.generateMipmaps();
+  gl::setLabel(GL_TEXTURE, colour.id(), "bark tiles");
+  if (normals) {
+    normal.setSampler(sampler);
+    normal.generateMipmaps();
+  }
+  mBarkColour = std::move(colour);
+  mBarkNormal = std::move(normal);
+  mBarkLayers = perSet;
+  mBarkTileSize = size;
+  mBarkNormals = normals;
+  mTileFirst = sets[0].classFirst;
+  mTileCount = sets[0].classCount;
+  for (std::size_t s = 0; s < mSpeciesSet.size(); ++s) {
+    const int set = s < speciesSet.size() ? speciesSet[s] : 0;
+    if (set < 0 || static_cast<std::size_t>(set) >= sets.size()) {
+      fail("bark: species {} uses bark set {} (have {})", s, set, sets.size());
+    }
+    mSpeciesSet[s] = static_cast<std::uint32_t>(set);
+  }
+}
+
 void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod,
                                   TreeView view, bool breakRims) {
   gpu::TreeUniforms& u = mLast;
@@ -149,8 +226,21 @@ void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, co
     // Species beyond the table share its last colour (the shader clamps the index the same way).
     const std::size_t from = std::min(k, mForest->species.size() - 1);
     u.colours[k] =
-        glm::vec4(mForest->species.empty() ? Species{}.barkColour : mForest->species[from].barkColour, 1.0f);
+        glm::vec4(mForest->species.empty() ? Species{}.barkColour : mForest->species[from].barkColour,
+                  static_cast<float>(mSpeciesSet[from]));
   }
+  for (std::size_t t = 0; t < SYLVA_TREE_MAX_PIECES; ++t) {
+    u.quadTable[t / 4][static_cast<glm::length_t>(t % 4)] = mQuadFirst[t];
+  }
+  for (std::size_t c = 0; c < SYLVA_TREE_MAX_TILE_CLASSES; ++c) {
+    // Classes without tiles of their own fall back to class 0 (plain bark).
+    const bool own = mTileCount[c] > 0;
+    u.tileFirst[static_cast<glm::length_t>(c)] = own ? mTileFirst[c] : mTileFirst[0];
+    u.tileCount[static_cast<glm::length_t>(c)] = own ? mTileCount[c] : mTileCount[0];
+  }
+  u.bark = glm::vec4(static_cast<float>(mBarkLayers), static_cast<float>(mBarkTileSize),
+                     mBarkNormals ? 1.0f : 0.0f, 0.0f);
+  u.far = glm::vec4(lod.farRange, 0.0f, 0.0f);
   u.info =
       glm::uvec4(static_cast<unsigned>(mPacked.instances.size()), static_cast<unsigned>(mPieceTable.size()),
                  static_cast<unsigned>(view), breakRims ? 1u : 0u);
@@ -170,6 +260,14 @@ void TreeRenderer::bindAll() const {
   mVisible.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_VISIBLE_BINDING);
   mCommands.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_COMMAND_BINDING);
   mPieces.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_PIECE_BINDING);
+  mQuadTable.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_QUAD_BINDING);
+  mCentreBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_CENTRE_BINDING);
+  if (mBarkLayers > 0) {
+    mBarkColour.bind(SYLVA_TREE_BARK_COLOUR_UNIT);
+    if (mBarkNormals) {
+      mBarkNormal.bind(SYLVA_TREE_BARK_NORMAL_UNIT);
+    }
+  }
 }
 
 void TreeRenderer::cull(const render::Camera& camera, float aspect, const TreeLod& lod,
@@ -293,9 +391,14 @@ std::vector<std::uint32_t> TreeRenderer::readVisible(std::size_t type) const {
 }
 
 std::size_t TreeRenderer::gpuBytes() const {
+  // Tile arrays with their mip chains (4/3 of the base level), colour and normals.
+  const std::size_t barkBytes = mBarkLayers == 0
+                                    ? 0
+                                    : static_cast<std::size_t>(mBarkColour.layers()) * mBarkTileSize *
+                                          mBarkTileSize * 4 * 4 / 3 * (mBarkNormals ? 2 : 1);
   return mVertexBytes + mIndexBytes + mPacked.instances.size() * (sizeof(gpu::TreeInstanceGpu) + 8) +
          mPieceTable.size() * sizeof(gpu::TreePieceGpu) + mForest->jointCount * sizeof(gpu::JointFrame) +
-         sizeof(gpu::TreeUniforms);
+         sizeof(gpu::TreeUniforms) + mCentres.size() * sizeof(glm::vec4) + barkBytes;
 }
 
 } // namespace sylva::trees

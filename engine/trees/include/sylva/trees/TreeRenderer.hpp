@@ -9,15 +9,18 @@
 
 #include <sylva/gl/Buffer.hpp>
 #include <sylva/gl/Program.hpp>
+#include <sylva/gl/Texture.hpp>
 #include <sylva/gl/VertexArray.hpp>
 #include <sylva/render/Camera.hpp>
 #include <sylva/render/FrameUniforms.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
+#include <sylva/trees/Bark.hpp>
 #include <sylva/trees/Forest.hpp>
 
 #include <shared/Trees.h>
 
+#include <array>
 #include <memory>
 #include <span>
 #include <vector>
@@ -48,6 +51,11 @@ struct TreeLod {
   float fixedLevel = 0.0f;
   /** Pieces whose bounding sphere lies farther than this are not drawn, metres (0: no limit). */
   float drawDistance = 0.0f;
+  /**
+   * Far field, metres from the camera to a tree's crown centre: from x on a tree dissolves into its impostor
+   * (shaders/trees/fade.glsl), from y on only the impostor is drawn; y <= x: no far field.
+   */
+  glm::vec2 farRange{0.0f};
 };
 
 /** Per-draw options. */
@@ -71,6 +79,22 @@ public:
   void setFrames(std::span<const gpu::JointFrame> frames);
   /** Reads frames from `external` instead (e.g. the wind pass's output; not owned); null: the own buffer. */
   void useFrames(const gl::Buffer* external);
+  /** The joint frames the draws read (the external buffer when one is in use). */
+  const gl::Buffer& framesBuffer() const { return mExternalFrames != nullptr ? *mExternalFrames : mFrames; }
+
+  /**
+   * Bark tiles (docs/trees.md "Bark"): every set's tiles go into one texture array; species s draws with set
+   * speciesSet[s] (missing entries: set 0). All sets must have the same tile size and class layout. An empty
+   * span goes back to flat bark colours. Throws sylva::Error for invalid sets.
+   */
+  void setBark(std::span<const BarkSet> sets, std::span<const int> speciesSet = {});
+  /** Whether bark tiles are in use. */
+  bool textured() const { return mBarkLayers > 0; }
+
+  /** Per tree: base position (world xyz, metres) and crown height (w, metres), as at
+   * SYLVA_TREE_CENTRE_BINDING. */
+  const std::vector<glm::vec4>& treeCentres() const { return mCentres; }
+  const gl::Buffer& centresBuffer() const { return mCentreBuffer; }
 
   /** Culls every piece instance for `camera` at `aspect`, writing the indirect commands. */
   void cull(const render::Camera& camera, float aspect, const TreeLod& lod,
@@ -125,6 +149,18 @@ private:
   gl::Buffer mCommands{gl::NoCreate};
   gl::Buffer mFrames{gl::NoCreate};
   gl::Buffer mUniforms;
+  gl::Buffer mQuadTable{gl::NoCreate};
+  gl::Buffer mCentreBuffer{gl::NoCreate};
+  std::vector<glm::vec4> mCentres;
+  std::array<std::uint32_t, SYLVA_TREE_MAX_PIECES> mQuadFirst{};
+  gl::Texture mBarkColour{gl::NoCreate};
+  gl::Texture mBarkNormal{gl::NoCreate};
+  std::uint32_t mBarkLayers = 0;
+  int mBarkTileSize = 0;
+  bool mBarkNormals = false;
+  std::array<std::uint32_t, SYLVA_TREE_MAX_TILE_CLASSES> mTileFirst{};
+  std::array<std::uint32_t, SYLVA_TREE_MAX_TILE_CLASSES> mTileCount{};
+  std::array<std::uint32_t, SYLVA_TREE_MAX_SPECIES> mSpeciesSet{};
   const gl::Buffer* mExternalFrames = nullptr;
   gl::VertexArray mVao;
   gl::VertexArray mAllVao;
