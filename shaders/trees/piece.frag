@@ -75,6 +75,14 @@ void main() {
     // Levels 1 … 64 on a log scale: blue (coarse) to red (fine).
     float t = clamp(log2(max(fLevel, 1.0)) / 6.0, 0.0, 1.0);
     albedo = mix(vec3(0.15, 0.3, 0.9), vec3(0.95, 0.2, 0.1), t);
+  } else if (view == 4u) {
+    uint cls = min(fTileClass, uint(SYLVA_TREE_MAX_TILE_CLASSES - 1));
+    uint tile = trees.tileCount[cls] == 0u
+                    ? 0u
+                    : chooseTile(instanceTileSeed(inst.x), fPatch, trees.tileFirst[cls], trees.tileCount[cls]);
+    outColour = vec4(float(tile & 255u), float(fPatch & 255u), float(fInstance & 255u),
+                     float(1u + min(fInstance >> 8, 254u))) / 255.0;
+    return;
   } else if (trees.bark.x > 0.0) {
     // Bark tiles: this quad's tile among its class, per piece instance (seed 000 §5.1).
     uint species = min(inst.w >> 24, uint(SYLVA_TREE_MAX_SPECIES - 1));

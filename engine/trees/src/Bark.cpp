@@ -132,6 +132,15 @@ void validate(const BarkSet& set, const std::string& where) {
   }
 }
 
+std::uint32_t barkTile(const BarkSet& set, std::uint32_t rootJoint, std::uint32_t quad,
+                       std::uint32_t tileClass) {
+  std::size_t c = std::min<std::size_t>(tileClass, SYLVA_TREE_MAX_TILE_CLASSES - 1);
+  if (set.classCount[c] == 0) {
+    c = 0;
+  }
+  return chooseTile(instanceTileSeed(rootJoint), quad, set.classFirst[c], std::max(set.classCount[c], 1u));
+}
+
 std::vector<std::uint32_t> quadTileTable(const Piece& piece) {
   const std::vector<std::uint8_t> rotations = quadTileRotations(piece);
   std::vector<std::uint32_t> out(piece.quads.size());

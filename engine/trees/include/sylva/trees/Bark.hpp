@@ -62,6 +62,14 @@ struct BarkSet {
 /** Throws sylva::Error "<where>: …" for sets with missing classes, mixed sizes or out-of-range tiles. */
 void validate(const BarkSet& set, const std::string& where);
 
+/**
+ * The tile (index into set.colour) of quad `quad` of the piece instance with root joint `rootJoint` whose
+ * class is `tileClass`: chooseTile() among the class's tiles; classes without tiles use class 0's, as the
+ * renderer does.
+ */
+std::uint32_t barkTile(const BarkSet& set, std::uint32_t rootJoint, std::uint32_t quad,
+                       std::uint32_t tileClass);
+
 /** The packed quad table entry of every quad of `piece`: tile class | rotation << 8. */
 std::vector<std::uint32_t> quadTileTable(const Piece& piece);
 

@@ -36,6 +36,12 @@ enum class TreeView : int {
   Bones = 2,
   /** Tessellation level: blue (1) to red (64). */
   LodLevels = 3,
+  /**
+   * Bark tiles as ids, unlit, for tests and debugging: red = the tile (layer within the bark set), green =
+   * the quad id (patch), blue and alpha = the piece instance index: blue its low byte, alpha 1 + the rest
+   * (so alpha 0 is background), each / 255.
+   */
+  Tiles = 4,
 };
 
 /** Which faces to draw (trees are closed surfaces, so back faces are hidden and culled by default). */
