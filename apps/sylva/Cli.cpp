@@ -88,6 +88,9 @@ std::unique_ptr<Cli> makeCli() {
 #ifdef SYLVA_HAVE_CAPTURE
   registerCapture(app);
 #endif
+#ifdef SYLVA_HAVE_TEXSYNTH
+  registerTexsynth(app);
+#endif
   Cli* raw = cli.get();
   app.parse_complete_callback([raw] { log::setLevel(log::parseLevel(raw->logLevel)); });
   return cli;

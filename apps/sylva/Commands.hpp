@@ -37,6 +37,8 @@ void registerTree(CLI::App& app);
 void registerFold(CLI::App& app);
 /** `sylva capture [synth]` (grass blade capture, docs/capture.md). */
 void registerCapture(CLI::App& app);
+/** `sylva texsynth quilt|tiles|wang` (image quilting and tile sets, docs/texsynth.md). */
+void registerTexsynth(CLI::App& app);
 
 /** Host name, CPU model and core count, for benchmark reports. */
 struct MachineInfo {
