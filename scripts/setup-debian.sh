@@ -15,8 +15,9 @@ packages=(
   libfreenect-dev libfreenect-bin
   # grass simulation: rigid bodies and the terrain collider (Bullet)
   libbullet-dev
-  # trees: artist-made pieces (glTF, OBJ, Collada) through Assimp
-  libassimp-dev
+  # trees: artist-made pieces (glTF, OBJ, Collada) through Assimp; exported trees read back by tinygltf and
+  # checked by the Khronos gltf-validator (Node; scripts/fetch-node-tools.sh)
+  libassimp-dev libtinygltf-dev nodejs npm
   # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests

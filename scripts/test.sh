@@ -14,6 +14,8 @@ scripts/setup-debian.sh
 if [ -x scripts/fetch-sample-data.sh ]; then
   scripts/fetch-sample-data.sh
 fi
+# Node tools (gltf-validator for the tree export tests) into .cache/node/.
+scripts/fetch-node-tools.sh
 jobs="$(nproc 2>/dev/null || echo 2)"
 fuzz_seconds="${SYLVA_FUZZ_SECONDS:-10}"
 

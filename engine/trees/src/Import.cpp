@@ -1,5 +1,6 @@
 #include <sylva/trees/Import.hpp>
 
+#include "internal/Gltf.hpp"
 #include "internal/Skinning.hpp"
 
 #include <sylva/core/Error.hpp>
@@ -30,6 +31,9 @@ namespace sylva::trees {
 namespace {
 
 namespace fs = std::filesystem;
+using internal::appendBytes;
+using internal::base64;
+using internal::matrixJson;
 
 constexpr std::size_t kMaxLeafRims = 15;
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
@@ -670,38 +674,6 @@ std::string rimLabel(bool fromBones, int rim) {
 bool isGltf(const fs::path& file) {
   const std::string ext = lowerExtension(file);
   return ext == ".gltf" || ext == ".glb";
-}
-
-void appendBytes(std::vector<std::uint8_t>& buffer, const void* data, std::size_t size) {
-  const auto* bytes = static_cast<const std::uint8_t*>(data);
-  buffer.insert(buffer.end(), bytes, bytes + size);
-}
-
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::uint32_t b0 = bytes[i];
-    const std::uint32_t b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
-    const std::uint32_t b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
-    const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[v & 63] : '=';
-  }
-  return out;
-}
-
-nlohmann::json matrixJson(const glm::mat4& m) {
-  nlohmann::json out = nlohmann::json::array();
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) {
-      out.push_back(m[c][r]);
-    }
-  }
-  return out;
 }
 
 } // namespace
