@@ -14,10 +14,12 @@
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/TerrainMaps.hpp>
+#include <sylva/trees/Foliage.hpp>
 #include <sylva/trees/Import.hpp>
 #include <sylva/trees/Skeleton.hpp>
 #include <sylva/trees/Species.hpp>
 #include <sylva/trees/Tree.hpp>
+#include <sylva/texsynth/TileSetIo.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -391,6 +393,47 @@ void pieceImport(std::span<const std::uint8_t> bytes) {
   });
 }
 
+/**
+ * Leaf clouds for the foliage impostors: the bytes as an OBJ file through loadLeafCloud (Assimp's OBJ reader,
+ * triangulation, node walk, normalisation into the unit sphere), at most 4,096 triangles; a cloud that loads
+ * must validate.
+ */
+void leafModel(std::span<const std::uint8_t> bytes) {
+  const fs::path path = writeInput("leaves.obj", bytes);
+  expectCleanRejection([&] {
+    const trees::LeafCloud cloud = trees::loadLeafCloud(path, 4096);
+    trees::validate(cloud, "leaves.obj"); // throws (a finding) if the loader let a bad cloud through
+  });
+}
+
+/**
+ * tileset.json (texsynth): strict parsing of the description of a tile set; one that loads must survive its
+ * own toJson (its atlas grid recomputed from the tile count) and load again with the same classes.
+ */
+void texsynthTileset(std::span<const std::uint8_t> bytes) {
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(bytes.begin(), bytes.end());
+  } catch (const nlohmann::json::exception&) {
+    return;
+  }
+  std::optional<texsynth::TileSetDescription> description;
+  try {
+    description = texsynth::tileSetFromJson(json, "tileset.json");
+  } catch (const Error&) {
+  }
+  if (description) {
+    texsynth::TileSet set = description->set;
+    set.tiles.resize(static_cast<std::size_t>(description->tileTotal())); // toJson needs only their count
+    const texsynth::TileSetDescription again =
+        texsynth::tileSetFromJson(texsynth::toJson(set), "tileset.json"); // throws (a finding) if not
+    if (again.set.classes != description->set.classes || again.set.colours != description->set.colours ||
+        again.tileTotal() != description->tileTotal()) {
+      throw std::logic_error("tileset.json: the round trip changed the tile set");
+    }
+  }
+}
+
 } // namespace
 
 const std::vector<Target>& targets() {
@@ -412,6 +455,10 @@ const std::vector<Target>& targets() {
       {"tree_json", "tree and species JSON: loading, helpers, round trips, growing a tree", treeJson},
       {"piece_import", "artist tree pieces as OBJ through Assimp: rims, fitting, interlocking checks",
        pieceImport},
+      {"leaf_model", "leaf clouds for foliage impostors as OBJ through Assimp: triangles, UVs, normalisation",
+       leafModel},
+      {"texsynth_tileset", "tile-set descriptions (tileset.json, texsynth): strict parsing and a round trip",
+       texsynthTileset},
 #ifdef SYLVA_FUZZ_HAVE_CLI
       {"cli", "the sylva command line's option parsing and validation (commands not run)", runCliArguments},
 #endif

@@ -123,6 +123,69 @@ struct JointWindStepGpu {
 };
 SYLVA_ASSERT_SIZE(JointWindStepGpu, 32);
 
+// ---- Foliage: 2.5D leaf-cloud impostors (sylva/trees/Foliage.hpp, FoliageRenderer.hpp; shaders/trees/
+// leafcloud.* bake the cloud texture, foliage.* draw the billboards) ---------------------------------------
+// Storage at SYLVA_TREE_FOLIAGE_BINDING holds FoliageAnchorGpu[]; the cloud texture (rgb: lit colour, sRGB-
+// encoded at half scale; a: depth code) is at SYLVA_TREE_FOLIAGE_UNIT. Both passes read FoliageUniforms from
+// the uniform block binding of TreeUniforms (never bound in one program together; each pass binds its own).
+#define SYLVA_TREE_FOLIAGE_UNIFORM_BINDING SYLVA_TREE_BINDING // uniform block FoliageUniforms
+#define SYLVA_TREE_LEAF_UNIT 15 // sampler2D: the leaf texture the bake draws (sRGB8_ALPHA8, mipmapped)
+
+/** One foliage billboard, carried by a joint. */
+struct FoliageAnchorGpu {
+  vec4 place; // xyz: sphere centre in the root joint's frame (rim units); w: sphere radius (m)
+  vec4 spin;  // xy: cos, sin of the image's turn in the billboard plane; zw: unused
+  uvec4 info; // x: root joint (global index); y: tree index; z: species; w: unused
+};
+SYLVA_ASSERT_SIZE(FoliageAnchorGpu, 48);
+
+/** Per bake and draw of the foliage passes. */
+struct FoliageUniforms {
+  mat4 bake;       // cloud units → clip of the orthographic bake (foliageBakeMatrix)
+  vec4 forward;    // xyz: view direction the texture was baked for (world, unit); w: anchor count
+  vec4 right;      // xyz: the texture's +u axis (world, unit); w: colour code scale (rgb = srgb(lit · w))
+  vec4 up;         // xyz: the texture's +v axis (world, unit); w: 1 with a leaf texture, 0 without
+  vec4 sun;        // xyz: towards the sun (world, unit); w: sun intensity (bake lighting)
+  vec4 far;        // xy: far-field range (m, TreeLod::farRange; y <= x: none); z: draw distance (m,
+                   // TreeLod::drawDistance; 0: none); w: unused
+  vec4 leafColours[SYLVA_TREE_MAX_SPECIES]; // rgb: species leaf colour / leaf texture mean (linear)
+};
+SYLVA_ASSERT_SIZE(FoliageUniforms, 272);
+
+// ---- Far field: octahedral impostors (sylva/trees/ImpostorRenderer.hpp; shaders/trees/impostor.*) ---------
+// Storage at SYLVA_TREE_IMPOSTOR_BINDING holds ImpostorInstanceGpu[] (one per far tree). The atlas is two
+// sampler2DArray, one layer per species, views × views cells (hemi-octahedral grid, FarField.hpp): colour at
+// SYLVA_TREE_IMPOSTOR_UNIT (SRGB8_ALPHA8: albedo premultiplied by coverage, a coverage) and normal + depth at
+// SYLVA_TREE_IMPOSTOR_NORMAL_UNIT (RGBA8, premultiplied by coverage: rgb object-space normal as 0.5 + 0.5 n,
+// a depth towards the viewer as 0.5 + 0.5 · offset / bounding radius).
+#define SYLVA_TREE_IMPOSTOR_UNIFORM_BINDING 22 // uniform block ImpostorUniforms
+#define SYLVA_TREE_IMPOSTOR_NORMAL_UNIT 12     // sampler2DArray: normal + depth atlas
+#define SYLVA_TREE_IMPOSTOR_SOURCE_UNIT 13     // bake resolve: a view's colour (13) and depth (14)
+#define SYLVA_TREE_IMPOSTOR_RESOLVE_GROUP 8    // bake resolve work group side
+#define SYLVA_TREE_IMPOSTOR_FAR_ONLY 1u        // ImpostorInstanceGpu.info.w flag: no pieces, never dissolved
+#define SYLVA_TREE_IMPOSTOR_VISIBLE_BINDING 20 // storage: uint[] instances the cull kept (impostor_cull.comp)
+#define SYLVA_TREE_IMPOSTOR_COMMAND_BINDING 21 // storage: the indirect draw (4 uints: 4, instances, 0, 0)
+#define SYLVA_TREE_IMPOSTOR_CULL_GROUP 64
+
+/** One far tree: x y z base (world, m), w crown height (m); info x tree id (dissolve), y species, z yaw
+ * (float bits, radians), w flags. */
+struct ImpostorInstanceGpu {
+  vec4 placement;
+  uvec4 info;
+};
+SYLVA_ASSERT_SIZE(ImpostorInstanceGpu, 32);
+
+/** Per draw. sphere[s]: species s's bounding sphere, centre relative to the base (xyz) and radius (w), in
+ * crown heights (a tree of height h: centre base + yaw(xyz · h), radius w · h). */
+struct ImpostorUniforms {
+  vec4 atlas; // x: views per side, y: cell pixels, z: alpha threshold, w: 1 to refine by the baked depth
+  vec4 far;   // xy: far range (m): impostors dissolve in from x, alone from y; y <= x: far-only trees only
+  uvec4 info; // x: instances, y: species, zw: unused
+  vec4 sphere[SYLVA_TREE_MAX_SPECIES];
+  vec4 frustum[6]; // world-space planes (xyz normal pointing inwards, w offset)
+};
+SYLVA_ASSERT_SIZE(ImpostorUniforms, 272);
+
 SYLVA_GPU_END
 
 #endif
