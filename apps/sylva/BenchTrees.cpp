@@ -8,6 +8,7 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/core/Parallel.hpp>
+#include <sylva/trees/Bark.hpp>
 #include <sylva/trees/JointWindGpu.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
@@ -191,6 +192,30 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report) {
         {fmt::format("wind on {} joints: step + frames, GPU (wind.comp, frames.comp)", rest.jointCount()),
          ms(gpu), "ms", 0.25, true, 0,
          fmt::format("{}; target for an NVIDIA GPU", rendererName.substr(0, 24))});
+  }
+  // 5. Bark tile sets (texsynth): the trees' set (3 classes × 8 variants of 128² tiles) from the oak photo
+  // (halved to 512²) when it is fetched, and from procedural bark.
+  for (const std::string source : {"oak", "procedural"}) {
+    trees::BarkSources sources;
+    sources.tiles.tileSize = 128;
+    sources.variants = 8;
+    sources.photoSide = 512;
+    if (trees::barkSource(source, sources) != source) {
+      rows.push_back({"bark tile set from the oak photo", std::nan(""), "ms", std::nan(""), true, 1,
+                      "photo not fetched (scripts/fetch-sample-data.sh)"});
+      continue;
+    }
+    std::size_t tiles = 0;
+    const std::vector<double> seconds =
+        timeRuns(0, 2, [&] { tiles = trees::barkSetFromSource(source, sources).colour.size(); });
+    std::vector<double> ms;
+    for (double sec : seconds) {
+      ms.push_back(sec * 1e3);
+    }
+    rows.push_back({fmt::format("bark tile set from {} ({} tiles of 128², 3 classes)",
+                                source == "oak" ? "the oak photo 512²" : "procedural bark 512²", tiles),
+                    render::Stats::of(ms).median, "ms", std::nan(""), true, 1,
+                    "image quilting: SSD choice + min-error cuts"});
   }
   report["rows"] = printBenchRows(rows);
   report["fig16"] = fig16;

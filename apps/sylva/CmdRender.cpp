@@ -130,6 +130,8 @@ void registerRender(CLI::App& app) {
       if (o->trees.enabled) {
         std::shared_ptr<trees::Forest> placed = o->trees.buildForest(*scene);
         forest = std::make_unique<TreeScene>(library, placed, o->trees.wind);
+        forest->setBark(o->trees.barkSources());
+        o->trees.applyFoliage(*forest);
         log::info("trees: {} trees, {} pieces, {} joints, {}", placed->trees.size(),
                   forest->renderer().instances().instances.size(), placed->jointCount,
                   o->trees.wind ? "in the wind (--no-trees-wind: rest pose)" : "rest pose");

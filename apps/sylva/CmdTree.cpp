@@ -1,15 +1,20 @@
 // `sylva tree <sub>`: trees from interlocking pieces (docs/trees.md). generate grows a tree of a species from
 // a seed into a tree JSON file (atomically); info counts what a tree file holds; species lists the presets
 // and prints one as JSON to start a species file from; pieces lists the built-in pieces (and exports them as
-// OBJ and glTF for artists); import-piece checks an artist's piece file and prints its rims. Every error is
+// OBJ and glTF for artists); import-piece checks an artist's piece file and prints its rims; export writes a
+// whole tree as glTF (skinned, LOD chain, atlases, wind) or OBJ. Every error is
 // one line naming the file and field (or option), found before any output is written.
 #include "Commands.hpp"
 #include "SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/trees/Bark.hpp>
+#include <sylva/trees/Export.hpp>
 #include <sylva/trees/Import.hpp>
 #include <sylva/trees/Pieces.hpp>
+#include <sylva/trees/Skeleton.hpp>
 #include <sylva/trees/Species.hpp>
 #include <sylva/trees/Tree.hpp>
 
@@ -21,6 +26,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -285,18 +291,171 @@ void registerImportPiece(CLI::App& tree) {
   });
 }
 
+/** "8,3,1" → {8, 3, 1}; one-line errors naming the option. */
+std::vector<int> parseLevels(const std::string& text) {
+  std::vector<int> levels;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    char* end = nullptr;
+    const long value = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || end == nullptr || *end != '\0' || value < 1 || value > 64) {
+      fail("--levels {}: '{}' is not a tessellation level in [1, 64]", text, item);
+    }
+    levels.push_back(static_cast<int>(value));
+    start = comma + 1;
+  }
+  return levels;
+}
+
+void registerExport(CLI::App& tree) {
+  auto* command = tree.add_subcommand(
+      "export",
+      "Write a tree as glTF 2.0 (.gltf or .glb: skinned mesh on the tree's joints, LOD chain, bark and "
+      "impostor atlases, wind parameters) or OBJ (rest pose, finest LOD) for other tools");
+  struct Options {
+    std::string species;
+    std::uint64_t seed = 1;
+    std::string out;
+    std::string levels = "8,3,1";
+    std::string barkAtlas;
+    std::string bark = "auto";
+    std::string barkPhotos = "data/external/ez-tree/bark";
+    std::string impostorAtlas;
+    int impostorViews = 8;
+    std::string impostorLayout = "octahedral";
+    bool straight = false;
+  };
+  auto o = std::make_shared<Options>();
+  command
+      ->add_option("--species", o->species,
+                   "A preset name (see 'sylva tree species') or a species JSON file (a path with '/' or "
+                   "ending in .json)")
+      ->required();
+  command->add_option("--seed", o->seed, "Seed of the tree's random choices (as 'sylva tree generate')")
+      ->check(unsignedInteger())
+      ->capture_default_str();
+  command->add_option("-o,--out", o->out, "File to write (atomically): .gltf, .glb or .obj (+ .mtl)")
+      ->required();
+  command
+      ->add_option(
+          "--levels", o->levels,
+          "Phong tessellation level of each LOD, finest first, comma separated (each 1-64; OBJ writes "
+          "the first)")
+      ->capture_default_str();
+  command->add_option("--bark-atlas", o->barkAtlas,
+                      "PNG bark texture, embedded (glTF) or written beside the OBJ; mapped by the pieces' "
+                      "(u, v), repeating; overrides --bark");
+  command
+      ->add_option("--bark", o->bark,
+                   "Bark tiles per quad as the renderer draws them (docs/trees.md \"Bark\"), in one atlas: "
+                   "auto (the species' photos from --bark-photos, else procedural), procedural, a tile-set "
+                   "directory from 'sylva texsynth tiles', or none (the species' bark colour)")
+      ->capture_default_str();
+  command->add_option("--bark-photos", o->barkPhotos, "Directory of <name>_color_1k.jpg bark photos")
+      ->capture_default_str();
+  command->add_option(
+      "--impostor-atlas", o->impostorAtlas,
+      "PNG impostor atlas of N x N views of the tree: adds a camera-facing quad as the last LOD "
+      "(glTF only)");
+  command->add_option("--impostor-views", o->impostorViews, "Views per side of the impostor atlas")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command
+      ->add_option("--impostor-layout", o->impostorLayout,
+                   "Impostor atlas layout: octahedral (full sphere) or grid (yaw steps by rows)")
+      ->check(CLI::IsMember({"octahedral", "grid"}))
+      ->capture_default_str();
+  command->add_flag(
+      "--straight", o->straight,
+      "Export the straight rest pose (no bends); default: the pose the renderer draws for this seed");
+  command->footer("Examples:\n"
+                  "  sylva tree export --species almond --seed 42 -o almond.glb\n"
+                  "  sylva tree export --species oak --seed 7 --levels 8,3,1 --bark-atlas bark.png \\\n"
+                  "      --impostor-atlas oak-impostor.png --impostor-views 8 -o oak.gltf\n"
+                  "  sylva tree export --species weeping-willow --seed 3 -o willow.obj   # + willow.mtl\n"
+                  "Check a glTF with the Khronos validator: scripts/fetch-node-tools.sh, then\n"
+                  "  node tests/support/validate-gltf.mjs almond.glb\n");
+  command->callback([o] {
+    const std::string ext = lowerExtension(o->out);
+    if (ext != ".gltf" && ext != ".glb" && ext != ".obj") {
+      fail("-o {}: unsupported extension '{}' (use .gltf, .glb or .obj)", o->out, ext);
+    }
+    if (ext == ".obj" && !o->impostorAtlas.empty()) {
+      fail("--impostor-atlas: OBJ has no LOD chain; export .gltf or .glb for an impostor");
+    }
+    trees::TreeExportOptions options;
+    options.levels = parseLevels(o->levels);
+    const trees::Species species = trees::resolveSpecies(o->species);
+    const trees::PieceSet pieces = trees::standardPieces();
+    const trees::TreeTopology tree = trees::generateTree(pieces, species, o->seed);
+    std::vector<std::vector<std::uint8_t>> rotations;
+    for (const trees::Piece& piece : pieces.pieces) {
+      rotations.push_back(trees::quadTileRotations(piece));
+    }
+    trees::BarkSet bark;
+    trees::BarkAtlas atlas;
+    if (!o->barkAtlas.empty()) {
+      options.barkAtlas = loadImage(o->barkAtlas);
+    } else if (o->bark != "none") {
+      trees::BarkSources sources;
+      sources.mode = o->bark;
+      sources.photoDir = o->barkPhotos;
+      bark = trees::barkSetFromSource(trees::barkSource(species.bark, sources), sources);
+      atlas = trees::barkAtlas(bark);
+      options.barkAtlas = atlas.image;
+      // Each quad shows its tile as in the renderer (per piece instance by its root joint, per quad).
+      options.barkUv = [&](std::size_t node, std::size_t quad) {
+        const trees::TreeNode& n = tree.nodes[node];
+        const trees::Piece& piece = pieces[static_cast<std::size_t>(n.piece)];
+        const std::uint32_t tile =
+            trees::barkTile(bark, n.rootJoint, static_cast<std::uint32_t>(quad), piece.tileClass[quad]);
+        return trees::barkAtlasUv(atlas, tile, rotations[static_cast<std::size_t>(n.piece)][quad]);
+      };
+    }
+    if (!o->impostorAtlas.empty()) {
+      trees::ImpostorAtlas atlas;
+      atlas.image = loadImage(o->impostorAtlas);
+      atlas.viewsPerSide = o->impostorViews;
+      atlas.octahedral = o->impostorLayout == "octahedral";
+      if (atlas.image.width() % atlas.viewsPerSide != 0 || atlas.image.height() % atlas.viewsPerSide != 0) {
+        fail("--impostor-atlas {}: {}x{} pixels do not split into {} x {} equal views", o->impostorAtlas,
+             atlas.image.width(), atlas.image.height(), atlas.viewsPerSide, atlas.viewsPerSide);
+      }
+      options.impostor = std::move(atlas);
+    }
+    if (!o->straight) {
+      options.pose = trees::randomPose(tree, species, o->seed);
+    }
+    const trees::TreeExportStats stats = ext == ".obj"
+                                             ? trees::exportTreeObj(pieces, tree, species, o->out, options)
+                                             : trees::exportTreeGltf(pieces, tree, species, o->out, options);
+    std::printf("%s\n", o->out.c_str());
+    std::string lods;
+    for (std::size_t l = 0; l < stats.vertices.size(); ++l) {
+      lods += fmt::format("{}LOD{} level {}: {} vertices, {} triangles", l == 0 ? "" : "; ", l,
+                          options.levels[l], stats.vertices[l], stats.triangles[l]);
+    }
+    std::printf("%s, seed %llu: %zu pieces, %zu joints; %s%s (%zu bytes)\n", species.name.c_str(),
+                static_cast<unsigned long long>(o->seed), tree.nodes.size(), stats.joints, lods.c_str(),
+                options.impostor ? "; impostor quad" : "", stats.bytes);
+  });
+}
+
 } // namespace
 
 void registerTree(CLI::App& app) {
   auto* command = app.add_subcommand(
       "tree", "Trees from interlocking pieces: generate a tree of a species, inspect tree files, species "
-              "presets and pieces, check artist pieces (docs/trees.md)");
+              "presets and pieces, check artist pieces, export trees as glTF or OBJ (docs/trees.md)");
   command->require_subcommand(1);
   registerGenerate(*command);
   registerTreeInfo(*command);
   registerSpecies(*command);
   registerPieces(*command);
   registerImportPiece(*command);
+  registerExport(*command);
 }
 
 } // namespace sylva::app

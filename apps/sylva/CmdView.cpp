@@ -502,6 +502,8 @@ struct ViewerTrees {
 void buildTrees(ViewerTrees& t, const terrain::TerrainScene& scene) {
   std::shared_ptr<trees::Forest> forest = t.flags.buildForest(scene);
   auto built = std::make_unique<TreeScene>(t.shaders, forest, t.wind);
+  built->setBark(t.flags.barkSources());
+  t.flags.applyFoliage(*built);
   log::info("trees: {} trees, {} pieces, {} joints", forest->trees.size(),
             built->renderer().instances().instances.size(), forest->jointCount);
   t.scene = std::move(built);

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 
 namespace sylva::app {
 
@@ -67,6 +69,70 @@ void TreeFlags::add(CLI::App& command) {
   command.add_flag("--trees-wind,!--no-trees-wind", wind,
                    "Trees sway in the wind of --wind-speed, --wind-direction, --wind-gusts, --wind-seed "
                    "(joint springs; --no-trees-wind or --trees-wind=false: rest pose)");
+  command
+      .add_option("--trees-bark", bark,
+                  "Bark tiles: auto (each species' photos from --trees-bark-photos, else procedural), "
+                  "procedural, none (flat colours), or a tile-set directory from 'sylva texsynth tiles'")
+      ->capture_default_str();
+  command
+      .add_option("--trees-bark-photos", barkPhotos,
+                  "Directory of <name>_color_1k.jpg / <name>_normal_1k.jpg bark photos "
+                  "(scripts/fetch-sample-data.sh fetches oak, birch, pine, willow)")
+      ->capture_default_str();
+  command.add_option("--trees-bark-tile", barkTile, "Bark tile size, texels")
+      ->check(CLI::Range(8, 512))
+      ->capture_default_str();
+  command.add_option("--trees-bark-variants", barkVariants, "Bark tiles per tile class")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command.add_flag("--trees-foliage,!--no-trees-foliage", foliage,
+                   "Leaves as 2.5D impostors at the branch tips (--no-trees-foliage: bare trees)");
+  command
+      .add_option("--trees-leaves", leaves,
+                  "Leaf image: a PNG with alpha, auto (ez-tree's oak leaf when fetched, else procedural) or "
+                  "procedural")
+      ->capture_default_str();
+  command.add_option("--trees-leaf-model", leafModel,
+                     "Leaf-cloud model (OBJ, glTF, … through Assimp) instead of procedural leaf cards");
+}
+
+void TreeFlags::applyFoliage(TreeScene& scene) const {
+  if (!foliage) {
+    scene.setFoliage(false);
+    return;
+  }
+  std::optional<Image> image;
+  const std::filesystem::path autoLeaf = "data/external/ez-tree/leaves/oak_color.png";
+  if (leaves == "auto" && std::filesystem::exists(autoLeaf)) {
+    image = trees::loadLeafImage(autoLeaf);
+  } else if (leaves != "auto" && leaves != "procedural") {
+    image = trees::loadLeafImage(leaves);
+  }
+  std::optional<trees::LeafCloud> cloud;
+  if (!leafModel.empty()) {
+    cloud = trees::loadLeafCloud(leafModel);
+  }
+  scene.setFoliage(true, image ? &*image : nullptr, cloud ? &*cloud : nullptr);
+}
+
+std::optional<trees::BarkSources> TreeFlags::barkSources() const {
+  if (bark == "none") {
+    return std::nullopt;
+  }
+  trees::BarkSources s;
+  s.mode = bark;
+  s.photoDir = barkPhotos;
+  s.tiles.tileSize = barkTile;
+  s.variants = barkVariants;
+  // Synthesised sets are cached per user, as build tools cache their work.
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  if (xdg != nullptr && *xdg != '\0') {
+    s.cacheDir = std::filesystem::path(xdg) / "sylva" / "bark";
+  } else if (home != nullptr && *home != '\0') {
+    s.cacheDir = std::filesystem::path(home) / ".cache" / "sylva" / "bark";
+  }
+  return s;
 }
 
 void TreeFlags::check() const {
@@ -79,6 +145,15 @@ void TreeFlags::check() const {
     }
   }
   (void)parseTreeView(view);
+  if (bark != "auto" && bark != "procedural" && bark != "none" && !std::filesystem::is_directory(bark)) {
+    fail("--trees-bark: '{}' is not auto, procedural, none or a tile-set directory", bark);
+  }
+  if (leaves != "auto" && leaves != "procedural" && !std::filesystem::is_regular_file(leaves)) {
+    fail("--trees-leaves: '{}' is not auto, procedural or an image file", leaves);
+  }
+  if (!leafModel.empty() && !std::filesystem::is_regular_file(leafModel)) {
+    fail("--trees-leaf-model: no file '{}'", leafModel);
+  }
 }
 
 trees::TreeView parseTreeView(const std::string& name) {
@@ -150,6 +225,31 @@ TreeScene::TreeScene(const shader::Library& library, std::shared_ptr<const trees
   setWind(wind);
 }
 
+void TreeScene::setBark(const std::optional<trees::BarkSources>& sources) {
+  if (!sources) {
+    mRenderer->setBark({});
+    return;
+  }
+  std::vector<int> speciesSet;
+  const std::vector<trees::BarkSet> sets = trees::barkSetsFor(*mForest, *sources, speciesSet);
+  mRenderer->setBark(sets, speciesSet);
+}
+
+void TreeScene::setFoliage(bool enabled, const Image* leafImage, const trees::LeafCloud* cloud) {
+  if (!enabled) {
+    mFoliage.reset();
+    return;
+  }
+  auto foliage = std::make_unique<trees::FoliageRenderer>(mShaders, mForest);
+  if (leafImage != nullptr) {
+    foliage->setLeafTexture(*leafImage);
+  }
+  if (cloud != nullptr) {
+    foliage->setLeafCloud(*cloud);
+  }
+  mFoliage = std::move(foliage);
+}
+
 void TreeScene::setWind(bool on) {
   if (on && !mWind) {
     mWind = std::make_unique<trees::JointWindGpu>(mShaders, forestWindRest(*mForest));
@@ -197,10 +297,17 @@ void TreeScene::draw(const render::Camera& camera, int width, int height, double
   const float aspect = static_cast<float>(std::max(width, 1)) / static_cast<float>(std::max(height, 1));
   mRenderer->cull(camera, aspect, lod, timers);
   mRenderer->draw(camera, width, height, time, lod, timers, options);
+  if (mFoliage && options.view == trees::TreeView::Shaded) {
+    mFoliage->bake(camera, options.environment, timers);
+    mFoliage->draw(camera, width, height, time, *mRenderer, lod, timers, options.environment);
+  }
 }
 
 void TreeScene::reloadShaders(const shader::Library& library) {
   mRenderer->reloadShaders(library);
+  if (mFoliage) {
+    mFoliage->reloadShaders(library);
+  }
   if (mWind) {
     mWind->reloadShaders(library);
   }
@@ -208,7 +315,7 @@ void TreeScene::reloadShaders(const shader::Library& library) {
 }
 
 std::size_t TreeScene::gpuBytes() const {
-  std::size_t bytes = mRenderer->gpuBytes();
+  std::size_t bytes = mRenderer->gpuBytes() + (mFoliage ? mFoliage->gpuBytes() : 0);
   if (mWind) {
     bytes += mWind->jointCount() * (sizeof(gpu::TreeJointRest) + sizeof(glm::vec4) + sizeof(gpu::JointFrame));
   }

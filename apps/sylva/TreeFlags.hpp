@@ -4,6 +4,7 @@
 #include <sylva/core/Geometry.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/trees/FoliageRenderer.hpp>
 #include <sylva/trees/JointWindGpu.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
@@ -26,8 +27,24 @@ struct TreeFlags {
   /** --trees-wind: the joints sway in the wind (--wind-speed, --wind-direction, --wind-gusts, --wind-seed).
    */
   bool wind = true;
+  /** --trees-bark: auto | procedural | none | a tile-set directory (docs/trees.md "Bark"). */
+  std::string bark = "auto";
+  /** --trees-bark-photos, --trees-bark-tile, --trees-bark-variants. */
+  std::string barkPhotos = "data/external/ez-tree/bark";
+  int barkTile = trees::BarkSources::defaultBarkTiles().tileSize;
+  int barkVariants = 4;
+  /** --trees-foliage: 2.5D leaf-cloud impostors at the branch tips (docs/trees.md "Foliage"). */
+  bool foliage = true;
+  /** --trees-leaves: a leaf PNG with alpha, "auto" (ez-tree's oak leaf when fetched, else procedural) or
+   * "procedural"; --trees-leaf-model: a leaf-cloud model through Assimp ("" : procedural cards). */
+  std::string leaves = "auto";
+  std::string leafModel;
 
   static trees::ForestSettings defaultForest();
+  /** Where bark tiles come from; nullopt for --trees-bark none (flat bark colours). */
+  std::optional<trees::BarkSources> barkSources() const;
+  /** Puts foliage on `scene` as the flags say (none with --no-trees-foliage). */
+  void applyFoliage(class TreeScene& scene) const;
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
    * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-view, --trees-wind. */
   void add(CLI::App& command);
@@ -57,6 +74,17 @@ public:
   /** Uploads `forest`; with `wind`, builds the springs' rest data and GPU state too (else on setWind(true)).
    */
   TreeScene(const shader::Library& library, std::shared_ptr<const trees::Forest> forest, bool wind);
+
+  /** Bark tiles from `sources` (synthesised or loaded, see trees::barkSetsFor); nullopt: flat colours. */
+  void setBark(const std::optional<trees::BarkSources>& sources);
+
+  /**
+   * Foliage impostors with `leafImage` (RGBA, alpha-tested; null: procedural) and `cloud` (null: procedural
+   * leaf cards); nullopt-like `enabled` false removes them.
+   */
+  void setFoliage(bool enabled, const Image* leafImage = nullptr, const trees::LeafCloud* cloud = nullptr);
+  /** Foliage renderer, or null when foliage is off. */
+  trees::FoliageRenderer* foliage() { return mFoliage.get(); }
 
   /** Turns the wind on (building the springs on first use; they go on from their last state) or off. */
   void setWind(bool on);
@@ -93,6 +121,7 @@ private:
   std::shared_ptr<const trees::Forest> mForest;
   std::unique_ptr<trees::TreeRenderer> mRenderer;
   std::unique_ptr<trees::JointWindGpu> mWind;
+  std::unique_ptr<trees::FoliageRenderer> mFoliage;
   Aabb mBounds;
   bool mWindOn = false;
   /** The springs' simulated time, seconds; empty until the first advance(). */

@@ -1,7 +1,10 @@
 #include <sylva/trees/Bark.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Log.hpp>
 #include <sylva/core/Random.hpp>
+#include <sylva/texsynth/Procedural.hpp>
+#include <sylva/texsynth/TileSetIo.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -139,6 +142,179 @@ std::uint32_t barkTile(const BarkSet& set, std::uint32_t rootJoint, std::uint32_
     c = 0;
   }
   return chooseTile(instanceTileSeed(rootJoint), quad, set.classFirst[c], std::max(set.classCount[c], 1u));
+}
+
+BarkSet barkSetFromTiles(const texsynth::TileSet& tiles, const std::string& name) {
+  if (tiles.classes.empty() || tiles.classes.size() > SYLVA_TREE_MAX_TILE_CLASSES) {
+    fail("bark set '{}': {} tile classes (1 … {})", name, tiles.classes.size(), SYLVA_TREE_MAX_TILE_CLASSES);
+  }
+  BarkSet set;
+  set.name = name;
+  set.tileSize = tiles.tileSize;
+  for (const texsynth::Texture& tile : tiles.tiles) {
+    set.colour.push_back(texsynth::colourImage(tile));
+    if (tile.hasNormals()) {
+      set.normal.push_back(texsynth::normalImage(tile, texsynth::NormalGreen::AlongRows));
+    }
+  }
+  if (set.normal.size() != set.colour.size()) {
+    set.normal.clear();
+  }
+  for (std::size_t c = 0; c < tiles.classes.size(); ++c) {
+    set.classFirst[c] = static_cast<std::uint32_t>(tiles.firstTile(static_cast<int>(c)));
+    set.classCount[c] = static_cast<std::uint32_t>(tiles.tileCount(static_cast<int>(c)));
+  }
+  validate(set, "bark set '" + name + "'");
+  return set;
+}
+
+texsynth::TileSettings BarkSources::defaultBarkTiles() {
+  texsynth::TileSettings s;
+  s.tileSize = 128;
+  s.seed = 1;
+  s.maxCandidates = 512;
+  return s;
+}
+
+namespace {
+
+/** Halves a texture (2 × 2 box filter) until its larger side is at most `side`. */
+texsynth::Texture shrink(texsynth::Texture t, int side) {
+  while (std::max(t.width, t.height) > side && std::min(t.width, t.height) >= 2) {
+    texsynth::Texture half = texsynth::Texture::blank(t.width / 2, t.height / 2, t.channels, t.name);
+    for (int y = 0; y < half.height; ++y) {
+      for (int x = 0; x < half.width; ++x) {
+        float* out = half.at(x, y);
+        for (int c = 0; c < t.channels; ++c) {
+          out[c] = 0.25f * (t.at(2 * x, 2 * y)[c] + t.at(2 * x + 1, 2 * y)[c] + t.at(2 * x, 2 * y + 1)[c] +
+                            t.at(2 * x + 1, 2 * y + 1)[c]);
+        }
+      }
+    }
+    t = std::move(half);
+  }
+  return t;
+}
+
+std::string cacheKey(const std::string& source, const BarkSources& s) {
+  return fmt::format("{}-t{}-v{}-s{}-p{}-c{}-b{}-o{}", source, s.tiles.tileSize, s.variants, s.tiles.seed,
+                     s.photoSide, s.tiles.maxCandidates, s.tiles.band, s.tiles.overlap);
+}
+
+} // namespace
+
+std::string barkSource(const std::string& photo, const BarkSources& sources) {
+  if (sources.mode != "auto" && sources.mode != "procedural") {
+    return sources.mode;
+  }
+  if (sources.mode == "auto" && photo != "procedural" &&
+      std::filesystem::exists(sources.photoDir / (photo + "_color_1k.jpg"))) {
+    return photo;
+  }
+  return "procedural";
+}
+
+BarkSet barkSetFromSource(const std::string& source, const BarkSources& sources) {
+  const bool fromDir = sources.mode != "auto" && sources.mode != "procedural";
+  texsynth::TileSet tiles;
+  const std::filesystem::path cached = sources.cacheDir.empty() || fromDir
+                                           ? std::filesystem::path{}
+                                           : sources.cacheDir / cacheKey(source, sources);
+  if (fromDir) {
+    tiles = texsynth::loadTileSet(source);
+    log::info("bark: tile set {}", source);
+  } else if (!cached.empty() && std::filesystem::exists(cached / "tileset.json")) {
+    tiles = texsynth::loadTileSet(cached);
+    log::info("bark '{}': cached tile set {}", source, cached.string());
+  } else {
+    const std::filesystem::path colour = sources.photoDir / (source + "_color_1k.jpg");
+    const std::filesystem::path normal = sources.photoDir / (source + "_normal_1k.jpg");
+    texsynth::Texture photoTexture =
+        source == "procedural"
+            ? texsynth::proceduralBark(sources.photoSide, sources.tiles.seed)
+            : texsynth::loadPhotoTexture(colour,
+                                         std::filesystem::exists(normal) ? normal : std::filesystem::path{});
+    photoTexture = shrink(std::move(photoTexture), sources.photoSide);
+    const std::vector<texsynth::Texture> photos{std::move(photoTexture)};
+    // A narrow frame (the only part all tiles share) and a wide ring where the interior is cut in: the
+    // shared border is what shows as a pattern, so it is kept to a few texels.
+    texsynth::TileSettings settings = sources.tiles;
+    if (settings.band == 0) {
+      settings.band = std::max(2, settings.tileSize / 40);
+    }
+    if (settings.overlap == 0) {
+      settings.overlap = std::max(2, settings.tileSize / 8);
+    }
+    tiles = texsynth::barkTileSet(photos, sources.variants, settings);
+    log::info("bark '{}': synthesised {} tiles of {}²", source, tiles.tiles.size(), tiles.tileSize);
+    if (!cached.empty()) {
+      try {
+        texsynth::saveTileSet(cached, tiles);
+      } catch (const Error& e) {
+        log::warn("bark cache not written: {}", e.what());
+      }
+    }
+  }
+  return barkSetFromTiles(tiles, source);
+}
+
+std::vector<BarkSet> barkSetsFor(const Forest& forest, const BarkSources& sources,
+                                 std::vector<int>& speciesSet) {
+  std::vector<BarkSet> sets;
+  speciesSet.clear();
+  auto setFor = [&](const std::string& photo) -> int {
+    const std::string source = barkSource(photo, sources);
+    const auto known =
+        std::find_if(sets.begin(), sets.end(), [&](const BarkSet& s) { return s.name == source; });
+    if (known != sets.end()) {
+      return static_cast<int>(known - sets.begin());
+    }
+    sets.push_back(barkSetFromSource(source, sources));
+    return static_cast<int>(sets.size() - 1);
+  };
+  for (const Species& species : forest.species) {
+    speciesSet.push_back(setFor(species.bark));
+  }
+  if (sets.empty()) {
+    speciesSet.push_back(setFor("procedural"));
+  }
+  return sets;
+}
+
+BarkAtlas barkAtlas(const BarkSet& set) {
+  BarkAtlas atlas;
+  const int n = static_cast<int>(set.colour.size());
+  atlas.tileSize = set.tileSize;
+  atlas.columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  atlas.rows = (n + atlas.columns - 1) / atlas.columns;
+  atlas.image = Image(atlas.columns * set.tileSize, atlas.rows * set.tileSize, 3, PixelType::U8);
+  for (int i = 0; i < n; ++i) {
+    const Image& tile = set.colour[static_cast<std::size_t>(i)];
+    const int x0 = (i % atlas.columns) * set.tileSize;
+    const int y0 = (i / atlas.columns) * set.tileSize;
+    for (int y = 0; y < set.tileSize; ++y) {
+      for (int x = 0; x < set.tileSize; ++x) {
+        for (int c = 0; c < 3; ++c) {
+          atlas.image.set(x0 + x, y0 + y, c, tile.get(x, y, c));
+        }
+      }
+    }
+  }
+  return atlas;
+}
+
+std::array<glm::vec2, 4> barkAtlasUv(const BarkAtlas& atlas, std::uint32_t tile, int rotation) {
+  const std::array<glm::vec2, 4> corners{glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)};
+  const auto size = static_cast<float>(atlas.tileSize);
+  const glm::vec2 cell(static_cast<float>(static_cast<int>(tile) % atlas.columns) * size,
+                       static_cast<float>(static_cast<int>(tile) / atlas.columns) * size);
+  const glm::vec2 extent(static_cast<float>(atlas.image.width()), static_cast<float>(atlas.image.height()));
+  std::array<glm::vec2, 4> out{};
+  for (std::size_t c = 0; c < 4; ++c) {
+    // Texel centres of the tile's outermost rows and columns on the quad's edges, as the renderer samples.
+    out[c] = (cell + 0.5f + tileCoord(corners[c], rotation) * (size - 1.0f)) / extent;
+  }
+  return out;
 }
 
 std::vector<std::uint32_t> quadTileTable(const Piece& piece) {

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <functional>
+#include <algorithm>
 #include <map>
 
 namespace sylva::trees {
@@ -216,6 +217,8 @@ void validate(const Species& s, const std::string& where) {
         "sizeVariation", "must be in [0, 1)");
   check(!s.orders.empty() && s.orders.size() <= 17, where, "orders", "needs 1 … 17 entries");
   check(finite3(s.barkColour) && finite3(s.leafColour), where, "colours", "must be finite");
+  check(std::find(barkPhotoNames().begin(), barkPhotoNames().end(), s.bark) != barkPhotoNames().end(), where,
+        "bark", "must be one of oak, birch, pine, willow, procedural");
   check(std::isfinite(s.youngModulus) && s.youngModulus >= 1e6f && s.youngModulus <= 1e12f, where,
         "youngModulus", "must be in [1e6, 1e12] Pa");
   check(std::isfinite(s.woodDensity) && s.woodDensity >= 50.0f && s.woodDensity <= 2000.0f, where,
@@ -251,6 +254,11 @@ std::vector<std::string> speciesPresetNames() {
   return names;
 }
 
+const std::vector<std::string>& barkPhotoNames() {
+  static const std::vector<std::string> kNames{"oak", "birch", "pine", "willow", "procedural"};
+  return kNames;
+}
+
 Species speciesPreset(const std::string& name) {
   const auto it = presets().find(name);
   if (it == presets().end()) {
@@ -261,6 +269,14 @@ Species speciesPreset(const std::string& name) {
     fail("unknown species '{}' (known: {})", name, known);
   }
   Species s = it->second();
+  // Bark photos by the look of the real bark: smooth pale (birch, aspen), furrowed (oaks and most), scaly
+  // (larch), deeply ridged (willow, poplar).
+  static const std::map<std::string, std::string> kBark{{"quaking-aspen", "birch"},  {"silver-birch", "birch"},
+                                                        {"european-larch", "pine"},  {"weeping-willow", "willow"},
+                                                        {"lombardy-poplar", "willow"}};
+  if (const auto b = kBark.find(name); b != kBark.end()) {
+    s.bark = b->second;
+  }
   validate(s, "species '" + name + "'");
   return s;
 }
@@ -296,6 +312,7 @@ nlohmann::json toJson(const Species& s) {
           {"orders", orders},
           {"barkColour", {s.barkColour.r, s.barkColour.g, s.barkColour.b}},
           {"leafColour", {s.leafColour.r, s.leafColour.g, s.leafColour.b}},
+          {"bark", s.bark},
           {"youngModulus", s.youngModulus},
           {"woodDensity", s.woodDensity},
           {"damping", s.damping}};
@@ -305,8 +322,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, 1, where);
   const JsonNode root(json, where, "");
   root.object({"version", "name", "rule", "maxOrder", "maxDepth", "maxPieces", "minRadius", "trunkRadius",
-               "sizeVariation", "orders", "barkColour", "leafColour", "youngModulus", "woodDensity",
-               "damping"});
+               "sizeVariation", "orders", "barkColour", "leafColour", "bark", "youngModulus",
+               "woodDensity", "damping"});
   Species s;
   s.name = root["name"].string();
   if (root.has("rule")) {
@@ -331,6 +348,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     s.barkColour = colour(root["barkColour"]);
   if (root.has("leafColour"))
     s.leafColour = colour(root["leafColour"]);
+  if (root.has("bark"))
+    s.bark = root["bark"].choice({"oak", "birch", "pine", "willow", "procedural"});
   if (root.has("youngModulus"))
     s.youngModulus = static_cast<float>(root["youngModulus"].number(1e6, 1e12));
   if (root.has("woodDensity"))

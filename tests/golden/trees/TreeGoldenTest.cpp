@@ -1,8 +1,10 @@
 // Tree images: one almond tree in its random pose (shaded by the distance rule, and in the piece-type view),
 // and a small forest of four species, each from a fixed camera over a plain background.
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/trees/FoliageRenderer.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
 
+#include "ExternalData.hpp"
 #include "GlTest.hpp"
 #include "Golden.hpp"
 
@@ -51,6 +53,58 @@ TEST_F(TreeGolden, SmallForestOfFourSpecies) {
   camera.nearPlane = 0.1f;
   camera.farPlane = 200.0f;
   test::expectGolden(render(renderer, camera, TreeView::Shaded), "trees_forest_shaded", kTreeTolerance);
+}
+
+TEST_F(TreeGolden, BarkTilesCloseUp) {
+  // Procedural bark (no photos needed): the tile rule, rotations and seams at a trunk and a fork, close.
+  auto forest = std::make_shared<Forest>(gridForest({"california-black-oak"}, 1, 1.0f, 4));
+  TreeRenderer renderer(shaders(), forest);
+  BarkSources sources;
+  sources.mode = "procedural";
+  std::vector<int> speciesSet;
+  renderer.setBark(barkSetsFor(*forest, sources, speciesSet), speciesSet);
+  render::Camera camera;
+  camera.position = {0.9f, 1.4f, 1.2f};
+  camera.target = {0.0f, 1.3f, 0.0f};
+  camera.fovY = glm::radians(50.0f);
+  camera.nearPlane = 0.05f;
+  camera.farPlane = 100.0f;
+  test::expectGolden(render(renderer, camera, TreeView::Shaded), "trees_bark_closeup", kTreeTolerance);
+}
+
+TEST_F(TreeGolden, LeafyOakWithPhotoBarkAndLeaves) {
+  // The real thing: bark tiles synthesised from ez-tree's oak photo and normal map, foliage impostors of its
+  // oak leaf, one oak and an apple tree behind it (leaves depth-tested against each other and the branches).
+  const std::filesystem::path bark = test::externalData("ez-tree/bark/oak_color_1k.jpg");
+  const std::filesystem::path leaf = test::externalData("ez-tree/leaves/oak_color.png");
+  SYLVA_REQUIRE_EXTERNAL_DATA(bark);
+  SYLVA_REQUIRE_EXTERNAL_DATA(leaf);
+  auto forest = std::make_shared<Forest>(gridForest({"california-black-oak", "apple"}, 2, 4.0f, 11));
+  forest->trees.resize(2);
+  forest->index();
+  TreeRenderer renderer(shaders(), forest);
+  BarkSources sources;
+  sources.photoDir = bark.parent_path();
+  std::vector<int> speciesSet;
+  const std::vector<BarkSet> sets = barkSetsFor(*forest, sources, speciesSet);
+  ASSERT_EQ(sets[0].name, "oak");
+  renderer.setBark(sets, speciesSet);
+  FoliageRenderer foliage(shaders(), forest);
+  foliage.setLeafTexture(loadLeafImage(leaf));
+  render::Camera camera;
+  camera.position = {-1.6f, 2.6f, 6.2f};
+  camera.target = {0.6f, 3.1f, 0.0f};
+  camera.fovY = glm::radians(55.0f);
+  camera.nearPlane = 0.1f;
+  camera.farPlane = 200.0f;
+  render::RenderTarget target(320, 240);
+  target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+  const TreeLod lod;
+  renderer.cull(camera, target.aspect(), lod);
+  renderer.draw(camera, 320, 240, 0.0, lod);
+  foliage.bake(camera);
+  foliage.draw(camera, 320, 240, 0.0, renderer, lod);
+  test::expectGolden(target.readColor(), "trees_leafy_oak", kTreeTolerance);
 }
 
 } // namespace

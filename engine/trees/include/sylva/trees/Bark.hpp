@@ -7,6 +7,8 @@
 // GPU twins of tileCoord() and chooseTile().
 
 #include <sylva/core/Image.hpp>
+#include <sylva/trees/Forest.hpp>
+#include <sylva/texsynth/TileSet.hpp>
 #include <sylva/trees/Piece.hpp>
 
 #include <shared/Trees.h>
@@ -15,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -69,6 +72,66 @@ void validate(const BarkSet& set, const std::string& where);
  */
 std::uint32_t barkTile(const BarkSet& set, std::uint32_t rootJoint, std::uint32_t quad,
                        std::uint32_t tileClass);
+
+/**
+ * A bark set from a texsynth tile set (texsynth::barkTileSet or a loaded tile-set directory): 8-bit colour
+ * tiles, normal maps (n = 2c − 1, y along the tile's rows) when the set has normals, classes in order.
+ * Throws sylva::Error naming `name` when the set has more classes than SYLVA_TREE_MAX_TILE_CLASSES.
+ */
+BarkSet barkSetFromTiles(const texsynth::TileSet& tiles, const std::string& name);
+
+/** Where a forest's bark tiles come from (`sylva render --trees-bark`, scene files). */
+struct BarkSources {
+  /**
+   * "auto": each species' photos (Species::bark) from photoDir when they are there, else procedural bark;
+   * "procedural": procedural bark for every species; otherwise a tile-set directory (`sylva texsynth tiles`)
+   * for every species.
+   */
+  std::string mode = "auto";
+  /** Directory of `<name>_color_1k.jpg` and `<name>_normal_1k.jpg` (scripts/fetch-sample-data.sh). */
+  std::filesystem::path photoDir = "data/external/ez-tree/bark";
+  /** Synthesised sets are kept here and reused (empty: no cache). */
+  std::filesystem::path cacheDir;
+  /** Tile construction (tile size, seed, …). */
+  texsynth::TileSettings tiles = defaultBarkTiles();
+  /** Tiles per class. */
+  int variants = 4;
+  /** Photos are halved until their side is at most this many texels (bark scale and synthesis time). */
+  int photoSide = 256;
+
+  static texsynth::TileSettings defaultBarkTiles();
+};
+
+/**
+ * The bark sets of `forest` (one per distinct source among its species) and, in speciesSet, the set of each
+ * species. Logs where every set comes from; throws sylva::Error naming the file for unreadable photos or
+ * tile sets.
+ */
+std::vector<BarkSet> barkSetsFor(const Forest& forest, const BarkSources& sources,
+                                 std::vector<int>& speciesSet);
+
+/** Which source a species' bark comes from under `sources`: the photo name, "procedural", or the directory.
+ */
+std::string barkSource(const std::string& photo, const BarkSources& sources);
+/** The bark set of one source (see barkSource): loaded, cached or synthesised. Throws naming the file. */
+BarkSet barkSetFromSource(const std::string& source, const BarkSources& sources);
+
+/**
+ * A bark set's colour tiles in one image for exports: tile i at column i % columns, row i / columns (image
+ * rows top-down); a tile's row 0 (its edge 0) is its cell's top row.
+ */
+struct BarkAtlas {
+  Image image;
+  int columns = 1;
+  int rows = 1;
+  int tileSize = 0;
+};
+BarkAtlas barkAtlas(const BarkSet& set);
+/**
+ * UVs (glTF convention: v down the image) of a quad's four corners showing `tile` with `rotation`: the texel
+ * centres of the tile's outermost rows and columns, as the renderer samples them.
+ */
+std::array<glm::vec2, 4> barkAtlasUv(const BarkAtlas& atlas, std::uint32_t tile, int rotation);
 
 /** The packed quad table entry of every quad of `piece`: tile class | rotation << 8. */
 std::vector<std::uint32_t> quadTileTable(const Piece& piece);

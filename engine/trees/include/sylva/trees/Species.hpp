@@ -62,6 +62,11 @@ struct Species {
   std::vector<OrderParams> orders{OrderParams{}};
   glm::vec3 barkColour{0.33f, 0.25f, 0.19f};
   glm::vec3 leafColour{0.22f, 0.42f, 0.14f};
+  /**
+   * Bark photos the bark tiles are synthesised from (docs/trees.md "Bark"): one of barkPhotoNames() (ez-tree's
+   * oak, birch, pine, willow) or "procedural" (no photos needed).
+   */
+  std::string bark = "oak";
   /** Wind: Young's modulus of the wood, Pa; wood density kg/m³; damping ratio. */
   float youngModulus = 9e9f;
   float woodDensity = 700.0f;
@@ -77,6 +82,9 @@ struct Species {
  * (≤ 16, ≤ 64, ≤ 200,000), non-finite numbers.
  */
 void validate(const Species& species, const std::string& where);
+
+/** Valid values of Species::bark: oak, birch, pine, willow, procedural. */
+const std::vector<std::string>& barkPhotoNames();
 
 /** Names of the built-in presets (almond, quaking-aspen, black-tupelo, weeping-willow, …). */
 std::vector<std::string> speciesPresetNames();
