@@ -9,6 +9,7 @@
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/trees/Bark.hpp>
+#include <sylva/trees/FoliageRenderer.hpp>
 #include <sylva/trees/JointWindGpu.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
@@ -126,6 +127,34 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report) {
                     fmt::format("{:.1f}x level 1; paper: 2.8-3.0 ms, 1.45x", l10 / l1)});
     rows.push_back({"GPU memory of 100 trees (meshes, instances, joints)",
                     static_cast<double>(renderer.gpuBytes()) / 1e6, "MB", std::nan(""), true, 0, ""});
+    // Foliage (2.5D impostors): pass 1 bakes the leaf cloud for the view direction (only when it turns),
+    // pass 2 draws one billboard per branch tip. Each measured alone on top of the same bare trees.
+    trees::FoliageRenderer foliage(library, forest);
+    const double bare = medianMs(runs, [&] {
+      target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+      renderer.cull(camera, target.aspect(), lod);
+      renderer.draw(camera, width, height, 0.0, lod);
+    });
+    render::Camera turning = camera;
+    int turn = 0;
+    const double bake = medianMs(runs, [&] {
+      // A new view direction every frame, so every frame bakes.
+      turning.target = camera.target + glm::vec3(0.01f * static_cast<float>(++turn), 0.0f, 0.0f);
+      foliage.bake(turning);
+    });
+    const double leafy = medianMs(runs, [&] {
+      target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+      renderer.cull(camera, target.aspect(), lod);
+      renderer.draw(camera, width, height, 0.0, lod);
+      foliage.bake(camera);
+      foliage.draw(camera, width, height, 0.0, renderer, lod);
+    });
+    rows.push_back({fmt::format("foliage of 100 trees: bake the leaf cloud ({}² texture, {} leaf triangles)",
+                                foliage.stats().textureSize, foliage.stats().leafTriangles),
+                    bake, "ms", std::nan(""), true, 0, "pass 1; only when the view direction changes"});
+    rows.push_back({fmt::format("foliage of 100 trees: {} billboards (pass 2)", foliage.stats().anchors),
+                    leafy - bare, "ms", std::nan(""), true, 0,
+                    fmt::format("frame with leaves {:.1f} ms vs bare {:.1f} ms", leafy, bare)});
   }
 
   // 3. Generation: 1,000 trees (topology, transforms, bone buffers) on one thread.

@@ -132,6 +132,7 @@ void registerRender(CLI::App& app) {
         forest = std::make_unique<TreeScene>(library, placed, o->trees.wind);
         forest->setBark(o->trees.barkSources());
         o->trees.applyFoliage(*forest);
+        o->trees.applyFarField(*forest, *scene);
         log::info("trees: {} trees, {} pieces, {} joints, {}", placed->trees.size(),
                   forest->renderer().instances().instances.size(), placed->jointCount,
                   o->trees.wind ? "in the wind (--no-trees-wind: rest pose)" : "rest pose");

@@ -364,8 +364,9 @@ void registerExport(CLI::App& tree) {
       ->capture_default_str();
   command
       ->add_option("--impostor-layout", o->impostorLayout,
-                   "Impostor atlas layout: octahedral (full sphere) or grid (yaw steps by rows)")
-      ->check(CLI::IsMember({"octahedral", "grid"}))
+                   "Impostor atlas layout: octahedral (full sphere), hemi-octahedral (the atlases of "
+                   "'sylva render --trees-far', upper hemisphere) or grid (yaw steps by rows)")
+      ->check(CLI::IsMember({"octahedral", "hemi-octahedral", "grid"}))
       ->capture_default_str();
   command->add_flag(
       "--straight", o->straight,
@@ -418,7 +419,7 @@ void registerExport(CLI::App& tree) {
       trees::ImpostorAtlas atlas;
       atlas.image = loadImage(o->impostorAtlas);
       atlas.viewsPerSide = o->impostorViews;
-      atlas.octahedral = o->impostorLayout == "octahedral";
+      atlas.layout = o->impostorLayout;
       if (atlas.image.width() % atlas.viewsPerSide != 0 || atlas.image.height() % atlas.viewsPerSide != 0) {
         fail("--impostor-atlas {}: {}x{} pixels do not split into {} x {} equal views", o->impostorAtlas,
              atlas.image.width(), atlas.image.height(), atlas.viewsPerSide, atlas.viewsPerSide);

@@ -504,6 +504,7 @@ void buildTrees(ViewerTrees& t, const terrain::TerrainScene& scene) {
   auto built = std::make_unique<TreeScene>(t.shaders, forest, t.wind);
   built->setBark(t.flags.barkSources());
   t.flags.applyFoliage(*built);
+  t.flags.applyFarField(*built, scene);
   log::info("trees: {} trees, {} pieces, {} joints", forest->trees.size(),
             built->renderer().instances().instances.size(), forest->jointCount);
   t.scene = std::move(built);

@@ -94,6 +94,69 @@ void TreeFlags::add(CLI::App& command) {
       ->capture_default_str();
   command.add_option("--trees-leaf-model", leafModel,
                      "Leaf-cloud model (OBJ, glTF, … through Assimp) instead of procedural leaf cards");
+  command
+      .add_option("--trees-far", farDistance,
+                  "Trees farther than this many metres become octahedral impostors (0: never)")
+      ->check(finiteRange(0.0, 1.0e6))
+      ->capture_default_str();
+  command.add_option("--trees-far-band", farBand, "Metres over which trees dissolve into their impostors")
+      ->check(finiteRange(0.1, 1.0e4))
+      ->capture_default_str();
+  command
+      .add_option("--trees-far-count", farCount,
+                  "Impostor-only trees added around the forest out to the terrain's edge (needs --trees-far)")
+      ->check(CLI::Range(0, 2000000))
+      ->capture_default_str();
+}
+
+void TreeFlags::applyFarField(TreeScene& scene, const terrain::TerrainScene& terrain) const {
+  if (farDistance <= 0.0f) {
+    scene.setFarField(glm::vec2(0.0f));
+    return;
+  }
+  std::vector<trees::FarTree> extra;
+  if (farCount > 0) {
+    const trees::Forest& f = scene.forest();
+    const std::vector<glm::vec4>& centres = scene.renderer().treeCentres();
+    trees::FarTreeFieldSettings s;
+    s.count = farCount;
+    s.seed = forest.seed + 17;
+    s.centre = glm::vec2(terrain.field().extentX(), terrain.field().extentZ()) * 0.5f;
+    s.innerRadius = forest.regionRadius;
+    s.outerRadius = 0.5f * std::hypot(terrain.field().extentX(), terrain.field().extentZ());
+    s.species = static_cast<int>(std::max<std::size_t>(f.species.size(), 1));
+    s.verticalScale = terrain.exaggeration();
+    s.firstId = static_cast<std::uint32_t>(f.trees.size());
+    if (!centres.empty()) {
+      s.minHeight = s.maxHeight = centres[0].w;
+      for (const glm::vec4& c : centres) {
+        s.minHeight = std::min(s.minHeight, c.w);
+        s.maxHeight = std::max(s.maxHeight, c.w);
+      }
+    }
+    const float floor = terrain.seaLevel() ? (*terrain.seaLevel() + 0.5f) * terrain.exaggeration() : -1e30f;
+    // Only where trees may grow: above the sea, not steeper than --trees-max-slope.
+    const float maxGrade = std::tan(glm::radians(forest.maxSlope));
+    const terrain::HeightField& field = terrain.field();
+    auto height = [&](float x, float z) {
+      return terrain::heightAt(field, std::clamp(x, 0.0f, field.extentX()),
+                               std::clamp(z, 0.0f, field.extentZ())) *
+             terrain.exaggeration();
+    };
+    for (const trees::FarTree& t : trees::farTreeField(s, &field)) {
+      const float step = 2.0f;
+      const float gx =
+          (height(t.position.x + step, t.position.z) - height(t.position.x - step, t.position.z)) /
+          (2.0f * step);
+      const float gz =
+          (height(t.position.x, t.position.z + step) - height(t.position.x, t.position.z - step)) /
+          (2.0f * step);
+      if (t.position.y >= floor && std::hypot(gx, gz) <= maxGrade) {
+        extra.push_back(t);
+      }
+    }
+  }
+  scene.setFarField(glm::vec2(farDistance, farDistance + farBand), extra);
 }
 
 void TreeFlags::applyFoliage(TreeScene& scene) const {
@@ -227,18 +290,27 @@ TreeScene::TreeScene(const shader::Library& library, std::shared_ptr<const trees
 
 void TreeScene::setBark(const std::optional<trees::BarkSources>& sources) {
   if (!sources) {
+    mBarkSets.clear();
     mRenderer->setBark({});
     return;
   }
-  std::vector<int> speciesSet;
-  const std::vector<trees::BarkSet> sets = trees::barkSetsFor(*mForest, *sources, speciesSet);
-  mRenderer->setBark(sets, speciesSet);
+  mSpeciesSet.clear();
+  mBarkSets = trees::barkSetsFor(*mForest, *sources, mSpeciesSet);
+  mRenderer->setBark(mBarkSets, mSpeciesSet);
 }
 
 void TreeScene::setFoliage(bool enabled, const Image* leafImage, const trees::LeafCloud* cloud) {
+  mLeafImageCopy.reset();
+  mLeafCloud.reset();
   if (!enabled) {
     mFoliage.reset();
     return;
+  }
+  if (leafImage != nullptr) {
+    mLeafImageCopy = *leafImage;
+  }
+  if (cloud != nullptr) {
+    mLeafCloud = *cloud;
   }
   auto foliage = std::make_unique<trees::FoliageRenderer>(mShaders, mForest);
   if (leafImage != nullptr) {
@@ -248,6 +320,25 @@ void TreeScene::setFoliage(bool enabled, const Image* leafImage, const trees::Le
     foliage->setLeafCloud(*cloud);
   }
   mFoliage = std::move(foliage);
+}
+
+void TreeScene::setFarField(glm::vec2 range, std::span<const trees::FarTree> extra) {
+  if (range.y <= range.x) {
+    mImpostors.reset();
+    mFarRange = glm::vec2(0.0f);
+    return;
+  }
+  auto impostors = std::make_unique<trees::ImpostorRenderer>(mShaders);
+  // Each species' representative tree is baked as this scene draws it: bark tiles and foliage.
+  const trees::ImpostorBakeOptions options = trees::sceneBakeOptions(
+      mShaders, mBarkSets, mSpeciesSet, mFoliage != nullptr, mLeafImageCopy ? &*mLeafImageCopy : nullptr,
+      mLeafCloud ? &*mLeafCloud : nullptr);
+  impostors->bake(*mForest, options);
+  std::vector<trees::FarTree> all = trees::farTrees(*mForest);
+  all.insert(all.end(), extra.begin(), extra.end());
+  impostors->setTrees(all);
+  mImpostors = std::move(impostors);
+  mFarRange = range;
 }
 
 void TreeScene::setWind(bool on) {
@@ -295,11 +386,16 @@ void TreeScene::draw(const render::Camera& camera, int width, int height, double
                      const trees::TreeLod& lod, const trees::TreeDrawOptions& options,
                      render::GpuTimers* timers) {
   const float aspect = static_cast<float>(std::max(width, 1)) / static_cast<float>(std::max(height, 1));
-  mRenderer->cull(camera, aspect, lod, timers);
-  mRenderer->draw(camera, width, height, time, lod, timers, options);
+  trees::TreeLod l = lod;
+  l.farRange = mImpostors ? mFarRange : glm::vec2(0.0f);
+  mRenderer->cull(camera, aspect, l, timers);
+  mRenderer->draw(camera, width, height, time, l, timers, options);
   if (mFoliage && options.view == trees::TreeView::Shaded) {
     mFoliage->bake(camera, options.environment, timers);
-    mFoliage->draw(camera, width, height, time, *mRenderer, lod, timers, options.environment);
+    mFoliage->draw(camera, width, height, time, *mRenderer, l, timers, options.environment);
+  }
+  if (mImpostors && options.view == trees::TreeView::Shaded) {
+    mImpostors->draw(camera, width, height, time, mFarRange, timers, options.environment);
   }
 }
 
@@ -308,6 +404,9 @@ void TreeScene::reloadShaders(const shader::Library& library) {
   if (mFoliage) {
     mFoliage->reloadShaders(library);
   }
+  if (mImpostors) {
+    mImpostors->reloadShaders(library);
+  }
   if (mWind) {
     mWind->reloadShaders(library);
   }
@@ -315,7 +414,8 @@ void TreeScene::reloadShaders(const shader::Library& library) {
 }
 
 std::size_t TreeScene::gpuBytes() const {
-  std::size_t bytes = mRenderer->gpuBytes() + (mFoliage ? mFoliage->gpuBytes() : 0);
+  std::size_t bytes = mRenderer->gpuBytes() + (mFoliage ? mFoliage->gpuBytes() : 0) +
+                      (mImpostors ? mImpostors->gpuBytes() : 0);
   if (mWind) {
     bytes += mWind->jointCount() * (sizeof(gpu::TreeJointRest) + sizeof(glm::vec4) + sizeof(gpu::JointFrame));
   }

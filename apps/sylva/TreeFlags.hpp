@@ -5,6 +5,7 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/terrain/TerrainScene.hpp>
 #include <sylva/trees/FoliageRenderer.hpp>
+#include <sylva/trees/ImpostorRenderer.hpp>
 #include <sylva/trees/JointWindGpu.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
@@ -13,6 +14,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -39,12 +41,20 @@ struct TreeFlags {
    * "procedural"; --trees-leaf-model: a leaf-cloud model through Assimp ("" : procedural cards). */
   std::string leaves = "auto";
   std::string leafModel;
+  /** --trees-far: trees farther than this become octahedral impostors (metres; 0: never);
+   * --trees-far-band: over how many metres they dissolve; --trees-far-count: impostor-only trees added
+   * around the forest out to the terrain's edge (a forest to the horizon). */
+  float farDistance = 0.0f;
+  float farBand = 25.0f;
+  int farCount = 0;
 
   static trees::ForestSettings defaultForest();
   /** Where bark tiles come from; nullopt for --trees-bark none (flat bark colours). */
   std::optional<trees::BarkSources> barkSources() const;
   /** Puts foliage on `scene` as the flags say (none with --no-trees-foliage). */
   void applyFoliage(class TreeScene& scene) const;
+  /** Sets up the far field of `scene` on `terrain` as the flags say (none without --trees-far). */
+  void applyFarField(class TreeScene& scene, const terrain::TerrainScene& terrain) const;
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
    * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-view, --trees-wind. */
   void add(CLI::App& command);
@@ -86,6 +96,15 @@ public:
   /** Foliage renderer, or null when foliage is off. */
   trees::FoliageRenderer* foliage() { return mFoliage.get(); }
 
+  /**
+   * Far field (docs/trees.md "Far field"): bakes every species' impostor atlas (with this scene's bark and
+   * foliage) and draws `extra` impostor-only trees besides the forest's own; trees dissolve into impostors
+   * between `range.x` and `range.y` metres. range.y <= range.x turns it off.
+   */
+  void setFarField(glm::vec2 range, std::span<const trees::FarTree> extra = {});
+  /** The impostor renderer, or null without a far field. */
+  trees::ImpostorRenderer* impostors() { return mImpostors.get(); }
+
   /** Turns the wind on (building the springs on first use; they go on from their last state) or off. */
   void setWind(bool on);
   /** Whether the trees are drawn in the wind (else in their rest pose). */
@@ -122,6 +141,12 @@ private:
   std::unique_ptr<trees::TreeRenderer> mRenderer;
   std::unique_ptr<trees::JointWindGpu> mWind;
   std::unique_ptr<trees::FoliageRenderer> mFoliage;
+  std::unique_ptr<trees::ImpostorRenderer> mImpostors;
+  glm::vec2 mFarRange{0.0f};
+  std::vector<trees::BarkSet> mBarkSets;
+  std::vector<int> mSpeciesSet;
+  std::optional<Image> mLeafImageCopy;
+  std::optional<trees::LeafCloud> mLeafCloud;
   Aabb mBounds;
   bool mWindOn = false;
   /** The springs' simulated time, seconds; empty until the first advance(). */

@@ -4,6 +4,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/trees/FarField.hpp>
 #include <sylva/trees/Skeleton.hpp>
 #include <sylva/trees/Tessellation.hpp>
 
@@ -566,7 +567,21 @@ TreeExportStats exportTreeGltf(const PieceSet& pieces, const TreeTopology& tree,
     int bi = 0;
     int bj = 0;
     glm::vec3 dir(0.0f, 0.0f, 1.0f);
-    if (atlas.octahedral) {
+    if (atlas.layout == "hemi-octahedral") {
+      // The most horizontal view towards +z (hemi-octahedral grid vertices; rows from the bottom).
+      float best = -2.0f;
+      for (int j = 0; j < views; ++j) {
+        for (int i = 0; i < views; ++i) {
+          const glm::vec3 d = impostorViewDirection({i, j}, views);
+          if (d.z - std::abs(d.y) > best + 1e-6f) {
+            best = d.z - std::abs(d.y);
+            bi = i;
+            bj = views - 1 - j; // rows of the image from the top
+            dir = d;
+          }
+        }
+      }
+    } else if (atlas.layout == "octahedral") {
       float best = -2.0f;
       for (int j = 0; j < views; ++j) {
         for (int i = 0; i < views; ++i) {
@@ -630,16 +645,20 @@ TreeExportStats exportTreeGltf(const PieceSet& pieces, const TreeTopology& tree,
                        {"impostor",
                         {{"billboard", "camera-facing"},
                          {"pivot", {cx, b.min.y, cz}},
-                         {"layout", atlas.octahedral ? "octahedral" : "grid"},
+                         {"layout", atlas.layout},
                          {"viewsPerSide", views},
                          {"atlasSizePx", {atlas.image.width(), atlas.image.height()}},
                          {"viewSizePx", {atlas.image.width() / views, atlas.image.height() / views}},
                          {"quadView", {{"column", bi}, {"row", bj}, {"direction", {dir.x, dir.y, dir.z}}}},
                          {"octahedralConvention",
-                          "cell (column i, row j from the top) looks from the direction that decodes "
-                          "p = ((i + 0.5) / n, (j + 0.5) / n) * 2 - 1 as (x, z), y = 1 - |x| - |z| (folded "
-                          "when negative), "
-                          "y up"},
+                          atlas.layout == "hemi-octahedral"
+                              ? "cell (column i, row j from the bottom) looks from the direction that "
+                                "decodes e = (i, j) / (n - 1) * 2 - 1 as x = (e.x + e.y) / 2, "
+                                "z = (e.x - e.y) / 2, y = 1 - |x| - |z|, normalised (the upper hemisphere; "
+                                "FarField.hpp hemiOctDecode), y up"
+                              : "cell (column i, row j from the top) looks from the direction that decodes "
+                                "p = ((i + 0.5) / n, (j + 0.5) / n) * 2 - 1 as (x, z), y = 1 - |x| - |z| "
+                                "(folded when negative), y up"},
                          {"boundsMinM", {b.min.x, b.min.y, b.min.z}},
                          {"boundsMaxM", {b.max.x, b.max.y, b.max.z}}}}}}});
   }

@@ -61,10 +61,12 @@ struct ImpostorAtlas {
   /** Views per side of the atlas (≥ 1). */
   int viewsPerSide = 8;
   /**
-   * Layout of the views: octahedral (view (i, j) looks from the direction that octahedral-decodes the centre
-   * of cell (i, j), full sphere) or, when false, a plain grid of yaw steps by rows.
+   * Layout of the views: "octahedral" (view (i, j) looks from the direction that octahedral-decodes the
+   * centre of cell (i, j), full sphere), "hemi-octahedral" (ImpostorRenderer's atlases, FarField.hpp: cell
+   * (i, j), j counted from the image's bottom row, looks from impostorViewDirection((i, j), views): the
+   * grid vertices of the upper hemisphere) or "grid" (yaw steps by rows).
    */
-  bool octahedral = true;
+  std::string layout = "octahedral";
 };
 
 /** What exportTreeGltf() and exportTreeObj() write. */

@@ -4,12 +4,16 @@
 // shaders/trees/fade.glsl.
 
 #include <sylva/core/Random.hpp>
+#include <sylva/terrain/HeightField.hpp>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace sylva::trees {
 
@@ -38,5 +42,116 @@ inline bool piecesKeep(float blend, glm::uvec2 pixel, std::uint32_t tree) {
 inline bool impostorKeeps(float blend, glm::uvec2 pixel, std::uint32_t tree) {
   return blend >= fadeThreshold(pixel, tree);
 }
+
+// ---- Octahedral impostors (docs/trees.md "Far field"; GLSL twins in shaders/trees/impostor.glsl) ----------
+// A species is baked from views × views directions on the upper hemisphere: the vertices of a grid over the
+// hemi-octahedral square. Hemi-octahedral rather than full: trees are seen from above or from the side,
+// almost never from below, so the whole atlas goes to the upper hemisphere (twice the angular resolution of a
+// full octahedron for the same cells); directions below the horizon are clamped onto it.
+
+/** Unit direction (y up; y < 0 is clamped to the horizon) to hemi-octahedral coordinates in [0, 1]². */
+glm::vec2 hemiOctEncode(glm::vec3 direction);
+/** Hemi-octahedral coordinates in [0, 1]² to a unit direction with y ≥ 0. */
+glm::vec3 hemiOctDecode(glm::vec2 uv);
+
+/** The atlas of one species (one texture array layer): views × views cells of cell × cell pixels. */
+struct ImpostorLayout {
+  int views = 8;
+  int cell = 128;
+  int side() const { return views * cell; }
+};
+
+/** The direction (towards the viewer, object frame) baked into cell (i, j): grid vertex (i, j) / (views − 1).
+ */
+glm::vec3 impostorViewDirection(glm::ivec2 cell, int views);
+
+/**
+ * The three baked views to blend for `direction` (object frame, towards the viewer): the corners of the grid
+ * triangle holding its hemi-octahedral point, with barycentric weights (sum 1, continuous in the direction:
+ * a view's weight falls to 0 on the far edge of every triangle it belongs to).
+ */
+struct ImpostorViews {
+  std::array<glm::ivec2, 3> cells{};
+  glm::vec3 weights{0.0f};
+};
+ImpostorViews impostorViews(glm::vec3 direction, int views);
+
+/**
+ * The billboard frame of a view direction `forward` (unit, towards the viewer): right = cross(up hint,
+ * forward), up = cross(forward, right), with the up hint +y, or −z within 0.1° of straight up. A bake camera
+ * at centre + forward · d looking at the centre with this up sees `right` to the right and `up` upwards.
+ */
+struct ImpostorBasis {
+  glm::vec3 right{1.0f, 0.0f, 0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  glm::vec3 forward{0.0f, 0.0f, 1.0f};
+};
+ImpostorBasis impostorBasis(glm::vec3 forward);
+
+/**
+ * Pixel (x, y) of the atlas (x right, y up as GL stores it) where the point `local` of view `cell` lies:
+ * local = (right, up) coordinates on the view plane in units of the bounding radius, [-1, 1] covering the
+ * cell.
+ */
+glm::vec2 impostorAtlasPixel(glm::ivec2 cell, glm::vec2 local, const ImpostorLayout& layout);
+
+/** Rotation of a far tree about +y by `yaw` radians (as baseFrame turns a tree): object → world. */
+glm::vec3 yawRotate(glm::vec3 v, float yaw);
+
+// ---- Far trees ------------------------------------------------------------------------------------------
+
+/** A tree drawn as an impostor: no topology, just where, how tall, which species. */
+struct FarTree {
+  /** Base (world, metres), as ForestTree::base's translation. */
+  glm::vec3 position{0.0f};
+  /** Crown height, metres (as TreeRenderer::treeCentres() w: the rest pose height times the base scale). */
+  float height = 10.0f;
+  int species = 0;
+  /** The tree index of the dissolve (TreeRenderer's tree index for trees that also have pieces). */
+  std::uint32_t id = 0;
+  /** Turn about +y, radians (the impostor is turned by it). */
+  float yaw = 0.0f;
+  /** Trees without pieces: drawn at any distance, never dissolved. */
+  bool farOnly = false;
+};
+
+/**
+ * CPU twin of the impostor cull (shaders/trees/impostor.glsl impostorVisible): whether `tree` is drawn for a
+ * camera at `eye` with frustum `planes` (world, normals inwards) and far range `farRange`; `sphere` is its
+ * species' bounding sphere in crown heights (ImpostorRenderer::speciesSphere).
+ */
+bool impostorVisible(const FarTree& tree, glm::vec4 sphere, const std::array<glm::vec4, 6>& planes,
+                     glm::vec3 eye, glm::vec2 farRange);
+
+struct Forest;
+/** The far-field twins of a forest's trees (same index, base, crown height and yaw). */
+std::vector<FarTree> farTrees(const Forest& forest);
+
+/** A large far-only field (benchmarks, the horizon around a detailed forest). */
+struct FarTreeFieldSettings {
+  int count = 100000;
+  std::uint64_t seed = 1;
+  /** An annulus around `centre` (world x, z metres): trees lie between the radii, uniformly by area. */
+  glm::vec2 centre{0.0f};
+  float innerRadius = 0.0f;
+  float outerRadius = 2000.0f;
+  /** Species 0 … species − 1, uniformly. */
+  int species = 1;
+  /** Crown heights, uniformly in this range (metres). */
+  float minHeight = 8.0f;
+  float maxHeight = 16.0f;
+  /** Heights of the terrain field times this are drawn heights. */
+  float verticalScale = 1.0f;
+  /** First tree id (ids are firstId, firstId + 1, …). */
+  std::uint32_t firstId = 0;
+};
+
+/**
+ * `settings.count` far-only trees in the annulus, on flat ground at y = 0 or on `terrain` (points outside
+ * its footprint are redrawn, at most 40 tries per tree, so fewer trees when little of the annulus is
+ * terrain). Deterministic in the seed. Throws sylva::Error for bad settings.
+ */
+std::vector<FarTree> farTreeField(const FarTreeFieldSettings& settings,
+                                  const terrain::HeightField* terrain = nullptr);
 
 } // namespace sylva::trees

@@ -121,6 +121,8 @@ public:
   std::vector<std::uint32_t> readVisible(std::size_t type) const;
 
   const Forest& forest() const { return *mForest; }
+  /** The forest, shared (for passes that draw with this renderer, e.g. FoliageRenderer). */
+  const std::shared_ptr<const Forest>& sharedForest() const { return mForest; }
   const PackedInstances& instances() const { return mPacked; }
   /** Model-space bounding sphere (xyz centre, w radius; rim units) of piece type `type`. */
   glm::vec4 pieceSphere(std::size_t type) const { return mPieceTable[type].sphere; }

@@ -1,0 +1,140 @@
+#pragma once
+// Far-field octahedral impostors (docs/trees.md "Far field"): every species is baked once from views × views
+// directions over the upper hemisphere (hemi-octahedral grid, sylva/trees/FarField.hpp) into one layer of two
+// texture arrays: albedo + coverage, and object-space normal + depth. Far trees are then drawn as one
+// instanced draw of camera-facing billboards that blend the three nearest baked views per pixel (each sampled
+// where the pixel's ray meets its own view plane, refined by the baked depth), write the baked depth, are lit
+// like the pieces and dissolve with the complement of the pieces' screen-door mask in the far range's band.
+// Needs a current GL context.
+
+#include <sylva/core/Image.hpp>
+#include <sylva/gl/Buffer.hpp>
+#include <sylva/gl/Program.hpp>
+#include <sylva/gl/Texture.hpp>
+#include <sylva/gl/VertexArray.hpp>
+#include <sylva/render/Camera.hpp>
+#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/GpuTimers.hpp>
+#include <sylva/shader/Library.hpp>
+#include <sylva/trees/Bark.hpp>
+#include <sylva/trees/FarField.hpp>
+#include <sylva/trees/Foliage.hpp>
+#include <sylva/trees/Forest.hpp>
+
+#include <shared/Trees.h>
+
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace sylva::trees {
+
+class TreeRenderer;
+
+/** Atlas and draw settings. */
+struct ImpostorSettings {
+  /** Views per side and cell pixels (the atlas layer is views · cell square). */
+  ImpostorLayout layout{};
+  /** Blended coverage below this is discarded. */
+  float alphaThreshold = 0.35f;
+  /** Refine each view's sample by its baked depth (parallax); false: one sample on the view plane. */
+  bool depthParallax = true;
+  /** The bounding sphere is grown by this factor, so nothing of the tree touches a cell's edge. */
+  float sphereMargin = 1.05f;
+  /** Fixed tessellation level of the pieces in the bake (≤ 8 on llvmpipe). */
+  float bakeLevel = 4.0f;
+};
+
+/** Optional hooks of a bake. */
+struct ImpostorBakeOptions {
+  /** Called once per species on the one-tree renderer before its views are drawn (e.g. setBark). */
+  std::function<void(TreeRenderer&)> prepare;
+  /**
+   * Draws more of the tree (foliage) into each view after the pieces: the view's camera and size; draw with
+   * impostorBakeEnvironment() so the albedo can be recovered.
+   */
+  std::function<void(const render::Camera&, int width, int height)> extra;
+};
+
+/** The light of a bake: no sun, no fog (the colour is albedo times the sky light of the normal). */
+render::Environment impostorBakeEnvironment();
+
+/**
+ * Bake hooks that draw each species' tree as a scene does: with `bark` (one set per source, `speciesSet` per
+ * species; empty: flat colours) and, with `foliage`, leaf-cloud impostors of `leafImage` / `cloud` (null:
+ * procedural). The hooks own copies of everything they need.
+ */
+ImpostorBakeOptions sceneBakeOptions(const shader::Library& library, std::vector<BarkSet> bark,
+                                     std::vector<int> speciesSet, bool foliage,
+                                     const Image* leafImage = nullptr, const LeafCloud* cloud = nullptr);
+
+class ImpostorRenderer {
+public:
+  ImpostorRenderer(const shader::Library& library, const ImpostorSettings& settings = {});
+
+  /** Recompiles the programs (keeps the old ones and throws on error); later bakes use this library. */
+  void reloadShaders(const shader::Library& library);
+
+  /**
+   * Bakes every species of `forest` (at most SYLVA_TREE_MAX_SPECIES): species s from the forest's first tree
+   * of that species (re-placed at the origin, unturned), or from a generated tree when it has none. Replaces
+   * the atlas. Leaves the default framebuffer bound with the viewport unchanged.
+   */
+  void bake(const Forest& forest, const ImpostorBakeOptions& options = {});
+
+  /** The far trees to draw (instance buffer; grows as needed). */
+  void setTrees(std::span<const FarTree> trees);
+  std::size_t treeCount() const { return mTreeCount; }
+
+  /**
+   * Culls the far trees on the GPU (a compute pass writing the visible list and the instance count of one
+   * indirect draw) and draws them into the bound framebuffer (depth test and writes on): trees with pieces
+   * from farRange.x on (dissolving in until farRange.y), far-only trees at any distance (impostorVisible()).
+   */
+  void draw(const render::Camera& camera, int width, int height, double time, glm::vec2 farRange,
+            render::GpuTimers* timers = nullptr, const render::Environment& environment = {});
+
+  /** Trees the last draw's cull kept (synchronous readback). */
+  std::uint32_t readVisibleCount() const;
+
+  const ImpostorSettings& settings() const { return mSettings; }
+  int speciesCount() const { return mSpecies; }
+  /** Species s's bounding sphere: centre relative to the base (xyz) and radius (w), in crown heights. */
+  glm::vec4 speciesSphere(int species) const;
+  /** Albedo (sRGB, premultiplied by coverage) + coverage, one layer per species. */
+  const gl::Texture& atlasColour() const { return mColour; }
+  /** Object-space normal (0.5 + 0.5 n) + depth (0.5 + 0.5 · offset / radius), premultiplied by coverage. */
+  const gl::Texture& atlasNormal() const { return mNormal; }
+  /** Species s's colour atlas (RGBA8, file order: top row first) for export and pictures. */
+  Image readAtlas(int species) const;
+  /** Species s's normal + depth atlas (RGBA8, file order). */
+  Image readAtlasNormal(int species) const;
+  /** Bytes of GPU memory held (atlas with mips, instances, uniforms). */
+  std::size_t gpuBytes() const;
+
+private:
+  void bakeSpecies(const Forest& forest, int species, const ImpostorBakeOptions& options);
+
+  const shader::Library* mLibrary;
+  ImpostorSettings mSettings;
+  gl::Program mDraw{gl::NoCreate};
+  gl::Program mResolve{gl::NoCreate};
+  gl::Program mCull{gl::NoCreate};
+  gl::Buffer mVisible{gl::NoCreate};
+  gl::Buffer mCommand;
+  gl::Texture mColour{gl::NoCreate};
+  gl::Texture mNormal{gl::NoCreate};
+  int mLevels = 1;
+  int mSpecies = 0;
+  std::vector<glm::vec4> mSpheres;
+  gl::Buffer mInstances{gl::NoCreate};
+  std::size_t mTreeCount = 0;
+  gl::Buffer mUniforms;
+  gl::VertexArray mVao;
+  render::FrameUniformBuffer mFrame;
+};
+
+/** Packs far trees as the GPU reads them. */
+std::vector<gpu::ImpostorInstanceGpu> packImpostors(std::span<const FarTree> trees);
+
+} // namespace sylva::trees
