@@ -6,7 +6,8 @@
 #   out/coast.png         a real coastal DEM with bathymetry (British Columbia): sea level, water, 3x relief
 #   out/grass.png         a grass field on the demo landscape from eye height, in wind
 #   out/balls.gif         balls rolling down a slope through the simulated grass
-#   out/trees.png         a forest of trees built from interlocking pieces, swaying in the wind
+#   out/trees.png         a forest of trees built from interlocking pieces: photo bark tiles, leaves, wind
+#   out/forest-far.png    1,000 trees and 100,000 impostor trees to the horizon
 #   out/fold-beach.gif    folding textures: waves swash up a procedural beach and wash back
 #   out/fold-cat.gif      folding textures: a real cat photo (scikit-image's chelsea.png) squints
 set -euo pipefail
@@ -25,5 +26,8 @@ mkdir -p out
   --out out/balls.png
 "$sylva" render --trees --trees-radius 40 --trees-spacing 3.5 --view-from top --look-at 1024,192,1024 \
   --camera-pos 1060,195,1060 --out out/trees.png
+"$sylva" render --trees --trees-count 1000 --trees-radius 120 --trees-spacing 3.5 --trees-far 60 \
+  --trees-far-count 100000 --view-from top --look-at 1024,192,1024 --camera-pos 1060,195,1060 \
+  --out out/forest-far.png
 "$sylva" fold render data/folding/beach.json --fps 12 --gif out/fold-beach.gif
 "$sylva" fold render data/folding/cat.json --fps 12 --gif out/fold-cat.gif

@@ -928,7 +928,8 @@ void registerBench(CLI::App& app) {
           "extraction latency per 640x480 frame, refining) or grass (the paper's 955,264-blade field "
           "in one draw, patch memory, culling, LOD popping) or grass-sim (the paper's Table 1 workloads "
           "on the CPU and GPU solvers, and 500,000 blades with 1,024 bodies) or trees (the paper's Fig. 16 "
-          "workloads instanced and per piece, tessellation cost, generation, wind on joints)")
+          "workloads instanced and per piece, tessellation cost, foliage, 1,000 animated + 100,000 impostor "
+          "trees, generation, wind on joints, bark tile sets)")
       ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture", "grass", "grass-sim", "trees"}))
       ->capture_default_str();
   o->context.add(*command);

@@ -2,6 +2,7 @@
 // and a small forest of four species, each from a fixed camera over a plain background.
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/trees/FoliageRenderer.hpp>
+#include <sylva/trees/ImpostorRenderer.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
 
 #include "ExternalData.hpp"
@@ -105,6 +106,57 @@ TEST_F(TreeGolden, LeafyOakWithPhotoBarkAndLeaves) {
   foliage.bake(camera);
   foliage.draw(camera, 320, 240, 0.0, renderer, lod);
   test::expectGolden(target.readColor(), "trees_leafy_oak", kTreeTolerance);
+}
+
+TEST_F(TreeGolden, ForestToTheHorizon) {
+  // 36 trees as pieces (procedural bark, foliage) and 20,000 impostor-only trees out to 1.5 km, from eye
+  // height; trees between 30 and 45 m dissolve into their impostors. Ground and sky are two clear colours
+  // split at the horizon (the camera looks level, so the horizon is the middle row).
+  auto forest = std::make_shared<Forest>(gridForest({"almond", "apple"}, 6, 8.0f, 12));
+  TreeRenderer renderer(shaders(), forest);
+  BarkSources sources;
+  sources.mode = "procedural";
+  std::vector<int> speciesSet;
+  const std::vector<BarkSet> bark = barkSetsFor(*forest, sources, speciesSet);
+  renderer.setBark(bark, speciesSet);
+  FoliageRenderer foliage(shaders(), forest);
+  ImpostorSettings settings;
+  settings.layout.views = 6;
+  settings.layout.cell = 64;
+  ImpostorRenderer impostors(shaders(), settings);
+  impostors.bake(*forest, sceneBakeOptions(shaders(), bark, speciesSet, true));
+  std::vector<FarTree> far = farTrees(*forest);
+  FarTreeFieldSettings field;
+  field.count = 20000;
+  field.innerRadius = 40.0f;
+  field.outerRadius = 1500.0f;
+  field.species = 2;
+  field.firstId = static_cast<std::uint32_t>(forest->trees.size());
+  const std::vector<FarTree> extra = farTreeField(field);
+  far.insert(far.end(), extra.begin(), extra.end());
+  impostors.setTrees(far);
+  render::Camera camera;
+  camera.position = {-32.0f, 1.7f, -26.0f};
+  camera.target = {10.0f, 1.7f, 20.0f};
+  camera.fovY = glm::radians(60.0f);
+  camera.nearPlane = 0.2f;
+  camera.farPlane = 3000.0f;
+  render::RenderTarget target(320, 240);
+  target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, 0, 320, 120);
+  glClearColor(0.36f, 0.45f, 0.22f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+  TreeLod lod;
+  lod.farRange = glm::vec2(30.0f, 45.0f);
+  renderer.cull(camera, target.aspect(), lod);
+  renderer.draw(camera, 320, 240, 0.0, lod);
+  foliage.bake(camera);
+  foliage.draw(camera, 320, 240, 0.0, renderer, lod);
+  impostors.draw(camera, 320, 240, 0.0, lod.farRange);
+  EXPECT_GT(impostors.readVisibleCount(), 1000u);
+  test::expectGolden(target.readColor(), "trees_forest_horizon", kTreeTolerance);
 }
 
 } // namespace
