@@ -40,11 +40,13 @@ function(sylva_add_gpu_module name)
   target_compile_options(sylva_${name}_gpu PRIVATE ${SYLVA_WARNINGS})
 endfunction()
 
-# sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...> [LOCK <resource>])
+# sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...> [LOCK <resource>]
+#                [FILTER <gtest filter>])
 # One GoogleTest executable per (module, tier); every test case becomes a CTest test carrying the label.
 # LOCK: a CTest RESOURCE_LOCK shared by executables whose tests must not run at the same time.
+# FILTER: only the test cases the filter selects become CTest tests (one source split over two tiers).
 function(sylva_add_test name)
-  cmake_parse_arguments(ARG "" "LABEL;LOCK" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "LABEL;LOCK;FILTER" "SOURCES;DEPS" ${ARGN})
   if(NOT ARG_SOURCES)
     message(STATUS "Test ${name} has no sources yet; skipped")
     return()
@@ -58,7 +60,11 @@ function(sylva_add_test name)
   if(ARG_LOCK)
     set(lock RESOURCE_LOCK ${ARG_LOCK})
   endif()
-  gtest_discover_tests(${name}
+  set(filter)
+  if(ARG_FILTER)
+    set(filter TEST_FILTER ${ARG_FILTER})
+  endif()
+  gtest_discover_tests(${name} ${filter}
     DISCOVERY_MODE PRE_TEST
     PROPERTIES LABELS ${ARG_LABEL} ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}" ${lock}
     DISCOVERY_TIMEOUT 60)

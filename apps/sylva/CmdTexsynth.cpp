@@ -147,8 +147,9 @@ void runTiles(const TileOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   TileSet set;
   {
-    Progress progress("building bark tiles", static_cast<std::size_t>(3 * o.variants));
-    set = barkTileSet(photos, o.variants, settings, &progress);
+    const int colourings = o.colours * o.colours * o.colours * o.colours;
+    Progress progress("building bark tiles", static_cast<std::size_t>(3 * colourings * o.variants));
+    set = barkTileSet(photos, o.variants, settings, &progress, o.colours);
   }
   saveTileSet(o.out, set);
   std::fputs(summary(set, o.out, secondsSince(start)).c_str(), stdout);
@@ -236,12 +237,20 @@ void registerTexsynth(CLI::App& app) {
 
   auto* tilesCommand = command->add_subcommand(
       "tiles",
-      "Build the trees' bark tile set: one symmetric edge colour, classes plain, fork and crotch that "
-      "differ only inside");
+      "Build the trees' bark tile set: symmetric edge colours (any side matches any side), classes plain, "
+      "fork and crotch, one class per edge colouring of each (docs/trees.md \"Bark\")");
   auto t = std::make_shared<TileOptions>();
+  t->colours = 1;
+  t->variants = 8;
   addTileOptions(*tilesCommand, *t, 128);
-  tilesCommand->add_option("--variants", t->variants, "Tiles per class")
+  tilesCommand->add_option("--variants", t->variants, "Tiles per class (and edge colouring)")
       ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  tilesCommand
+      ->add_option("--colours", t->colours,
+                   "Symmetric edge colours (1: the paper's one border for all tiles; 2 or 3: Wang tiles, "
+                   "colours^4 classes per kind, as sylva render --trees uses with 2)")
+      ->check(CLI::Range(1, 3))
       ->capture_default_str();
   tilesCommand->callback([t] { runTiles(*t); });
 

@@ -2,16 +2,22 @@
 // a seed into a tree JSON file (atomically); info counts what a tree file holds; species lists the presets
 // and prints one as JSON to start a species file from; pieces lists the built-in pieces (and exports them as
 // OBJ and glTF for artists); import-piece checks an artist's piece file and prints its rims; export writes a
-// whole tree as glTF (skinned, LOD chain, atlases, wind) or OBJ. Every error is
-// one line naming the file and field (or option), found before any output is written.
+// whole tree as glTF (skinned, LOD chain, atlases, wind) or OBJ, baking its impostor atlas on a headless GL
+// context with --impostor (only then: every other export is CPU only). Every error is one line naming the
+// file and field (or option), found before any output is written.
 #include "Commands.hpp"
 #include "SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
+#include <sylva/core/Log.hpp>
+#include <sylva/shader/Library.hpp>
 #include <sylva/trees/Bark.hpp>
 #include <sylva/trees/Export.hpp>
+#include <sylva/trees/Foliage.hpp>
+#include <sylva/trees/Forest.hpp>
+#include <sylva/trees/ImpostorRenderer.hpp>
 #include <sylva/trees/Import.hpp>
 #include <sylva/trees/Pieces.hpp>
 #include <sylva/trees/Skeleton.hpp>
@@ -23,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -309,6 +316,69 @@ std::vector<int> parseLevels(const std::string& text) {
   return levels;
 }
 
+/** What `tree export --impostor` bakes. */
+struct ImpostorBake {
+  int views = 8;
+  int cell = 128;
+  bool foliage = true;
+  /** The bark tiles the tree is drawn with; none: flat bark colour. */
+  std::optional<trees::BarkSet> bark;
+  /** Set by bakeImpostor(): seconds from the context's creation to the atlas read back. */
+  double seconds = 0.0;
+};
+
+/**
+ * Bakes the impostor atlas of exactly the exported tree (its topology and pose, metres per rim unit `scale`)
+ * on a headless GL context, as `sylva render --trees-far` bakes a species: hemi-octahedral views with bark
+ * tiles and foliage (ez-tree's oak leaf when fetched, else the procedural leaf). Returns the atlas (RGBA8,
+ * file order) with the sphere its views frame, in metres, and sets bake.seconds.
+ */
+trees::ImpostorAtlas bakeImpostor(const ContextFlags& context, const trees::PieceSet& pieces,
+                                  const trees::Species& species, const trees::TreeTopology& topology,
+                                  const std::vector<glm::vec2>& pose, float scale, ImpostorBake& bake) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<platform::GlContext> glContext = platform::createHeadlessContext(context.options());
+  log::info("impostor: baking {} x {} views of {} px ({} px atlas{}{})", bake.views, bake.views, bake.cell,
+            bake.views * bake.cell, bake.bark ? ", bark tiles" : "", bake.foliage ? ", foliage" : "");
+  const shader::Library library;
+  auto forest = std::make_shared<trees::Forest>();
+  forest->pieces = pieces;
+  forest->species = {species};
+  trees::ForestTree one;
+  one.topology = topology;
+  one.species = 0;
+  one.base = trees::baseFrame(glm::vec3(0.0f), 0.0f, scale);
+  one.pose = pose;
+  forest->trees = {std::move(one)};
+  forest->index();
+  std::optional<Image> leaf;
+  const fs::path autoLeaf = "data/external/ez-tree/leaves/oak_color.png";
+  if (bake.foliage && fs::exists(autoLeaf)) {
+    leaf = trees::loadLeafImage(autoLeaf);
+  }
+  std::vector<trees::BarkSet> bark;
+  std::vector<int> speciesSet;
+  if (bake.bark) {
+    bark.push_back(*bake.bark);
+    speciesSet.push_back(0);
+  }
+  trees::ImpostorSettings settings;
+  settings.layout.views = bake.views;
+  settings.layout.cell = bake.cell;
+  trees::ImpostorRenderer impostors(library, settings);
+  impostors.bake(*forest, trees::sceneBakeOptions(library, std::move(bark), std::move(speciesSet),
+                                                  bake.foliage, leaf ? &*leaf : nullptr));
+  trees::ImpostorAtlas atlas;
+  atlas.image = impostors.readAtlas(0);
+  atlas.viewsPerSide = bake.views;
+  atlas.layout = "hemi-octahedral";
+  // speciesSphere is in crown heights (the tree's height in rim units times the scale, as the bake measures).
+  const float height = std::max(trees::treeStats(pieces, topology).height * scale, 1e-3f);
+  atlas.sphere = impostors.speciesSphere(0) * height;
+  bake.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return atlas;
+}
+
 void registerExport(CLI::App& tree) {
   auto* command = tree.add_subcommand(
       "export",
@@ -325,6 +395,11 @@ void registerExport(CLI::App& tree) {
     std::string impostorAtlas;
     int impostorViews = 8;
     std::string impostorLayout = "octahedral";
+    bool impostor = false;
+    int impostorCell = 128;
+    bool impostorFoliage = true;
+    std::string impostorPng;
+    ContextFlags context;
     bool straight = false;
   };
   auto o = std::make_shared<Options>();
@@ -359,15 +434,31 @@ void registerExport(CLI::App& tree) {
       "--impostor-atlas", o->impostorAtlas,
       "PNG impostor atlas of N x N views of the tree: adds a camera-facing quad as the last LOD "
       "(glTF only)");
-  command->add_option("--impostor-views", o->impostorViews, "Views per side of the impostor atlas")
+  command
+      ->add_option("--impostor-views", o->impostorViews,
+                   "Views per side of the impostor atlas (--impostor: 2-64)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  command
-      ->add_option("--impostor-layout", o->impostorLayout,
-                   "Impostor atlas layout: octahedral (full sphere), hemi-octahedral (the atlases of "
-                   "'sylva render --trees-far', upper hemisphere) or grid (yaw steps by rows)")
-      ->check(CLI::IsMember({"octahedral", "hemi-octahedral", "grid"}))
+  auto* layout =
+      command
+          ->add_option("--impostor-layout", o->impostorLayout,
+                       "Layout of --impostor-atlas: octahedral (full sphere), hemi-octahedral (the atlases "
+                       "of 'sylva render --trees-far', upper hemisphere) or grid (yaw steps by rows)")
+          ->check(CLI::IsMember({"octahedral", "hemi-octahedral", "grid"}))
+          ->capture_default_str();
+  command->add_flag("--impostor", o->impostor,
+                    "Bake the tree's impostor atlas (hemi-octahedral, --impostor-views x --impostor-cell, "
+                    "bark as --bark, foliage) on a headless GL context and embed it (glTF only)");
+  command->add_option("--impostor-cell", o->impostorCell, "Pixels per view side of the --impostor bake")
+      ->check(CLI::Range(8, 1024))
       ->capture_default_str();
+  command->add_flag(
+      "--impostor-foliage,!--no-impostor-foliage", o->impostorFoliage,
+      "Draw the foliage into the --impostor bake (default; --no-impostor-foliage: bare branches)");
+  command->add_option("--impostor-png", o->impostorPng,
+                      "Also write the --impostor atlas here as a PNG (atomically; file order, cell (i, j) "
+                      "with j counted from the bottom row)");
+  o->context.add(*command);
   command->add_flag(
       "--straight", o->straight,
       "Export the straight rest pose (no bends); default: the pose the renderer draws for this seed");
@@ -375,44 +466,76 @@ void registerExport(CLI::App& tree) {
                   "  sylva tree export --species almond --seed 42 -o almond.glb\n"
                   "  sylva tree export --species oak --seed 7 --levels 8,3,1 --bark-atlas bark.png \\\n"
                   "      --impostor-atlas oak-impostor.png --impostor-views 8 -o oak.gltf\n"
+                  "  sylva tree export --species almond --seed 42 --impostor --impostor-png atlas.png \\\n"
+                  "      -o almond.glb   # bakes the atlas (8 x 8 views of 128 px) on a headless context\n"
                   "  sylva tree export --species weeping-willow --seed 3 -o willow.obj   # + willow.mtl\n"
                   "Check a glTF with the Khronos validator: scripts/fetch-node-tools.sh, then\n"
                   "  node tests/support/validate-gltf.mjs almond.glb\n");
-  command->callback([o] {
+  command->callback([o, layout] {
     const std::string ext = lowerExtension(o->out);
     if (ext != ".gltf" && ext != ".glb" && ext != ".obj") {
       fail("-o {}: unsupported extension '{}' (use .gltf, .glb or .obj)", o->out, ext);
     }
+    if (o->impostor && !o->impostorAtlas.empty()) {
+      fail("--impostor: bakes the impostor atlas; it cannot be combined with --impostor-atlas (give one)");
+    }
     if (ext == ".obj" && !o->impostorAtlas.empty()) {
       fail("--impostor-atlas: OBJ has no LOD chain; export .gltf or .glb for an impostor");
+    }
+    if (ext == ".obj" && o->impostor) {
+      fail("--impostor: OBJ has no LOD chain; export .gltf or .glb for an impostor");
+    }
+    if (!o->impostorPng.empty() && !o->impostor) {
+      fail("--impostor-png {}: needs --impostor (the atlas it writes is baked by the export)",
+           o->impostorPng);
+    }
+    if (!o->impostorPng.empty() && lowerExtension(o->impostorPng) != ".png") {
+      fail("--impostor-png {}: the atlas is written as PNG; the file must end in .png", o->impostorPng);
+    }
+    if (o->impostor) {
+      if (layout->count() > 0 && o->impostorLayout != "hemi-octahedral") {
+        fail("--impostor-layout {}: --impostor bakes hemi-octahedral atlases", o->impostorLayout);
+      }
+      if (o->impostorViews < 2) {
+        fail("--impostor-views {}: --impostor bakes 2-64 views per side", o->impostorViews);
+      }
+      if (o->impostorViews * o->impostorCell > 8192) {
+        fail("--impostor-views {} x --impostor-cell {}: the atlas would be {} px per side (at most 8192)",
+             o->impostorViews, o->impostorCell, o->impostorViews * o->impostorCell);
+      }
     }
     trees::TreeExportOptions options;
     options.levels = parseLevels(o->levels);
     const trees::Species species = trees::resolveSpecies(o->species);
     const trees::PieceSet pieces = trees::standardPieces();
     const trees::TreeTopology tree = trees::generateTree(pieces, species, o->seed);
-    std::vector<std::vector<std::uint8_t>> rotations;
+    std::vector<trees::PieceTiling> tilings;
     for (const trees::Piece& piece : pieces.pieces) {
-      rotations.push_back(trees::quadTileRotations(piece));
+      tilings.push_back(trees::pieceTiling(piece));
     }
     trees::BarkSet bark;
     trees::BarkAtlas atlas;
-    if (!o->barkAtlas.empty()) {
-      options.barkAtlas = loadImage(o->barkAtlas);
-    } else if (o->bark != "none") {
+    // The bark tiles of --bark: the mesh's atlas (unless --bark-atlas overrides it) and the --impostor bake.
+    const bool tiles = o->bark != "none" && (o->barkAtlas.empty() || o->impostor);
+    if (tiles) {
       trees::BarkSources sources;
       sources.mode = o->bark;
       sources.photoDir = o->barkPhotos;
       bark = trees::barkSetFromSource(trees::barkSource(species.bark, sources), sources);
+    }
+    if (!o->barkAtlas.empty()) {
+      options.barkAtlas = loadImage(o->barkAtlas);
+    } else if (tiles) {
       atlas = trees::barkAtlas(bark);
       options.barkAtlas = atlas.image;
       // Each quad shows its tile as in the renderer (per piece instance by its root joint, per quad).
       options.barkUv = [&](std::size_t node, std::size_t quad) {
         const trees::TreeNode& n = tree.nodes[node];
         const trees::Piece& piece = pieces[static_cast<std::size_t>(n.piece)];
+        const trees::PieceTiling& tiling = tilings[static_cast<std::size_t>(n.piece)];
         const std::uint32_t tile =
-            trees::barkTile(bark, n.rootJoint, static_cast<std::uint32_t>(quad), piece.tileClass[quad]);
-        return trees::barkAtlasUv(atlas, tile, rotations[static_cast<std::size_t>(n.piece)][quad]);
+            trees::barkTile(bark, piece, tiling, n.rootJoint, static_cast<std::uint32_t>(quad));
+        return trees::barkAtlasUv(atlas, tile, tiling.rotation[quad]);
       };
     }
     if (!o->impostorAtlas.empty()) {
@@ -429,6 +552,17 @@ void registerExport(CLI::App& tree) {
     if (!o->straight) {
       options.pose = trees::randomPose(tree, species, o->seed);
     }
+    ImpostorBake bake;
+    if (o->impostor) {
+      bake.views = o->impostorViews;
+      bake.cell = o->impostorCell;
+      bake.foliage = o->impostorFoliage;
+      if (tiles) {
+        bake.bark = bark;
+      }
+      options.impostor =
+          bakeImpostor(o->context, pieces, species, tree, options.pose, species.trunkRadius, bake);
+    }
     const trees::TreeExportStats stats = ext == ".obj"
                                              ? trees::exportTreeObj(pieces, tree, species, o->out, options)
                                              : trees::exportTreeGltf(pieces, tree, species, o->out, options);
@@ -441,6 +575,17 @@ void registerExport(CLI::App& tree) {
     std::printf("%s, seed %llu: %zu pieces, %zu joints; %s%s (%zu bytes)\n", species.name.c_str(),
                 static_cast<unsigned long long>(o->seed), tree.nodes.size(), stats.joints, lods.c_str(),
                 options.impostor ? "; impostor quad" : "", stats.bytes);
+    if (o->impostor) {
+      const trees::ImpostorAtlas& atlas = *options.impostor;
+      std::printf("impostor: baked %d x %d hemi-octahedral views of %d px (%dx%d px atlas, bounding sphere "
+                  "radius %.2f m) in %.2f s\n",
+                  bake.views, bake.views, bake.cell, atlas.image.width(), atlas.image.height(),
+                  static_cast<double>(atlas.sphere->w), bake.seconds);
+    }
+    if (!o->impostorPng.empty()) {
+      savePng(o->impostorPng, options.impostor->image);
+      std::printf("%s\n", o->impostorPng.c_str());
+    }
   });
 }
 

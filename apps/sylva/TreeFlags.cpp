@@ -63,8 +63,10 @@ void TreeFlags::add(CLI::App& command) {
       ->check(finiteRange(0.0, 1.0e6))
       ->capture_default_str();
   command
-      .add_option("--trees-view", view, "Trees view: shaded, pieces (piece types), bones (root weights), lod")
-      ->check(CLI::IsMember({"shaded", "pieces", "bones", "lod"}))
+      .add_option(
+          "--trees-view", view,
+          "Trees view: shaded, pieces (piece types), bones (root weights), lod, tiles (bark tile ids)")
+      ->check(CLI::IsMember({"shaded", "pieces", "bones", "lod", "tiles"}))
       ->capture_default_str();
   command.add_flag("--trees-wind,!--no-trees-wind", wind,
                    "Trees sway in the wind of --wind-speed, --wind-direction, --wind-gusts, --wind-seed "
@@ -82,7 +84,7 @@ void TreeFlags::add(CLI::App& command) {
   command.add_option("--trees-bark-tile", barkTile, "Bark tile size, texels")
       ->check(CLI::Range(8, 512))
       ->capture_default_str();
-  command.add_option("--trees-bark-variants", barkVariants, "Bark tiles per tile class")
+  command.add_option("--trees-bark-variants", barkVariants, "Bark tiles per tile class and edge colouring")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   command.add_flag("--trees-foliage,!--no-trees-foliage", foliage,
@@ -228,7 +230,9 @@ trees::TreeView parseTreeView(const std::string& name) {
     return trees::TreeView::Bones;
   if (name == "lod")
     return trees::TreeView::LodLevels;
-  fail("--trees-view: '{}' is not one of shaded, pieces, bones, lod", name);
+  if (name == "tiles")
+    return trees::TreeView::Tiles;
+  fail("--trees-view: '{}' is not one of shaded, pieces, bones, lod, tiles", name);
 }
 
 trees::TreeView TreeFlags::treeView() const {
@@ -294,9 +298,12 @@ void TreeScene::setBark(const std::optional<trees::BarkSources>& sources) {
     mRenderer->setBark({});
     return;
   }
-  mSpeciesSet.clear();
-  mBarkSets = trees::barkSetsFor(*mForest, *sources, mSpeciesSet);
-  mRenderer->setBark(mBarkSets, mSpeciesSet);
+  // Into locals first: on an error the scene keeps its bark (the viewer's Bark combo relies on it).
+  std::vector<int> speciesSet;
+  std::vector<trees::BarkSet> sets = trees::barkSetsFor(*mForest, *sources, speciesSet);
+  mRenderer->setBark(sets, speciesSet);
+  mBarkSets = std::move(sets);
+  mSpeciesSet = std::move(speciesSet);
 }
 
 void TreeScene::setFoliage(bool enabled, const Image* leafImage, const trees::LeafCloud* cloud) {

@@ -34,7 +34,7 @@ struct TreeFlags {
   /** --trees-bark-photos, --trees-bark-tile, --trees-bark-variants. */
   std::string barkPhotos = "data/external/ez-tree/bark";
   int barkTile = trees::BarkSources::defaultBarkTiles().tileSize;
-  int barkVariants = 4;
+  int barkVariants = trees::BarkSources{}.variants;
   /** --trees-foliage: 2.5D leaf-cloud impostors at the branch tips (docs/trees.md "Foliage"). */
   bool foliage = true;
   /** --trees-leaves: a leaf PNG with alpha, "auto" (ez-tree's oak leaf when fetched, else procedural) or
@@ -87,6 +87,8 @@ public:
 
   /** Bark tiles from `sources` (synthesised or loaded, see trees::barkSetsFor); nullopt: flat colours. */
   void setBark(const std::optional<trees::BarkSources>& sources);
+  /** The bark sets in use (empty: flat colours). */
+  const std::vector<trees::BarkSet>& barkSets() const { return mBarkSets; }
 
   /**
    * Foliage impostors with `leafImage` (RGBA, alpha-tested; null: procedural) and `cloud` (null: procedural
@@ -157,7 +159,7 @@ private:
 /** The joint springs' rest data of `forest` (one JointWindTree per tree; its phase is the wind offset). */
 trees::JointWindRest forestWindRest(const trees::Forest& forest);
 
-/** "shaded" | "pieces" | "bones" | "lod" → TreeView; throws naming the option otherwise. */
+/** "shaded" | "pieces" | "bones" | "lod" | "tiles" → TreeView; throws naming the option otherwise. */
 trees::TreeView parseTreeView(const std::string& name);
 
 /**

@@ -20,7 +20,8 @@ SYLVA_GPU_BEGIN
 #define SYLVA_TREE_MAX_SPECIES 8        // species with their own bark colour in one renderer
 // Storage bindings of the tree surface, foliage and far-field passes. They reuse numbers of the grass
 // simulation's compute passes (never bound in one program together); every pass binds its buffers before use.
-#define SYLVA_TREE_QUAD_BINDING 16     // storage: uint[] per piece type per quad: tile class | rotation << 8
+#define SYLVA_TREE_QUAD_BINDING 16     // storage: uvec2[] per piece type per quad: x tile class | rotation << 8,
+                                       // y its four edge ids (8 bits each; 255: a rim edge)
 #define SYLVA_TREE_CENTRE_BINDING 17   // storage: vec4[] per tree: base (world xyz, m), crown height (w, m)
 #define SYLVA_TREE_FOLIAGE_BINDING 18  // storage: foliage anchors (FoliageRenderer)
 #define SYLVA_TREE_IMPOSTOR_BINDING 19 // storage: far-field impostor instances (ImpostorRenderer)
@@ -80,9 +81,9 @@ struct TreeUniforms {
   vec4 rimNormals[6]; // rimNormal(k) (xyz)
   uvec4 quadTable[2]; // first entry of piece type t in the quad table at SYLVA_TREE_QUAD_BINDING: [t / 4][t % 4]
   uvec4 tileFirst;    // first layer of bark tile class c (0 … 3) within one species' bark set
-  uvec4 tileCount;    // tiles of class c (0: the class has none)
+  uvec4 tileCount;    // variants per edge colouring of class c (its tiles: K⁴ blocks of this many)
   vec4 bark;          // x: layers per bark set (0: untextured, flat colours), y: tile size in texels,
-                      // z: normal-map strength (0: none), w: tile texels per metre of bark (for filtering)
+                      // z: normal-map strength (0: none), w: symmetric edge colours K
   vec4 far;           // x: distance where trees begin to cross-fade into far-field impostors (m), y: where they
                       // are impostors only (m); y <= x: no far field, every tree is drawn as pieces
 };

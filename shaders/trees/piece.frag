@@ -21,7 +21,8 @@ flat in uint fInstance;
 flat in uint fPatch;
 flat in float fLevel;
 in vec2 fTile;
-flat in uint fTileClass;
+flat in uint fTileClass; // class | rotation << 8
+flat in uint fTileEdges;
 
 /** The tangent-space normal `tn` (x along the tile's x, y along its y) in world space: the cotangent frame of
  * the tile coordinates from screen-space derivatives (no stored tangents). */
@@ -76,18 +77,14 @@ void main() {
     float t = clamp(log2(max(fLevel, 1.0)) / 6.0, 0.0, 1.0);
     albedo = mix(vec3(0.15, 0.3, 0.9), vec3(0.95, 0.2, 0.1), t);
   } else if (view == 4u) {
-    uint cls = min(fTileClass, uint(SYLVA_TREE_MAX_TILE_CLASSES - 1));
-    uint tile = trees.tileCount[cls] == 0u
-                    ? 0u
-                    : chooseTile(instanceTileSeed(inst.x), fPatch, trees.tileFirst[cls], trees.tileCount[cls]);
+    uint tile = trees.bark.x > 0.0 ? barkTile(inst.x, fPatch, fTileClass, fTileEdges) : 0u;
     outColour = vec4(float(tile & 255u), float(fPatch & 255u), float(fInstance & 255u),
                      float(1u + min(fInstance >> 8, 254u))) / 255.0;
     return;
   } else if (trees.bark.x > 0.0) {
-    // Bark tiles: this quad's tile among its class, per piece instance (seed 000 §5.1).
+    // Bark tiles: this quad's tile in its class with its edge colours, per piece instance (seed 000 §5.1).
     uint species = min(inst.w >> 24, uint(SYLVA_TREE_MAX_SPECIES - 1));
-    uint cls = min(fTileClass, uint(SYLVA_TREE_MAX_TILE_CLASSES - 1));
-    uint tile = chooseTile(instanceTileSeed(inst.x), fPatch, trees.tileFirst[cls], trees.tileCount[cls]);
+    uint tile = barkTile(inst.x, fPatch, fTileClass, fTileEdges);
     float layer = trees.colours[species].w * trees.bark.x + float(tile);
     // Edge lines of the quad sample the tiles' shared outermost texels.
     float size = trees.bark.y;

@@ -23,7 +23,8 @@ flat out uint fInstance;
 flat out uint fPatch;
 flat out float fLevel;
 out vec2 fTile;         // tile coordinates (x across, y along the branch) in [0, 1]^2
-flat out uint fTileClass;
+flat out uint fTileClass; // class | rotation << 8
+flat out uint fTileEdges; // the quad's four edge ids
 
 const float kAlpha = 0.75;
 
@@ -51,8 +52,9 @@ void main() {
   // The quad's stable id within its piece (gl_PrimitiveID restarts with every command and instance).
   fPatch = teQuadBase[0] + uint(gl_PrimitiveID);
   fLevel = gl_TessLevelInner[0];
-  uint entry = quadTileEntry((instances[teInstance[0]].joints.z >> 8) & 255u, fPatch);
-  fTile = tileCoord(vec2(u, v), entry >> 8);
-  fTileClass = entry & 255u;
+  uvec2 entry = quadTileEntry((instances[teInstance[0]].joints.z >> 8) & 255u, fPatch);
+  fTile = tileCoord(vec2(u, v), (entry.x >> 8) & 3u);
+  fTileClass = entry.x;
+  fTileEdges = entry.y;
   gl_Position = frame.viewProj * vec4(world, 1.0);
 }

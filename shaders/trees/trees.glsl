@@ -19,13 +19,13 @@ layout(std430, binding = SYLVA_TREE_PIECE_BINDING) readonly buffer PieceTable {
   TreePieceGpu pieceTable[];
 };
 
-// Tile class | rotation << 8 of every quad of every piece type (sylva::trees::quadTileTable).
+// Per quad of every piece type: x tile class | rotation << 8, y four edge ids (sylva::trees::quadTileTable).
 layout(std430, binding = SYLVA_TREE_QUAD_BINDING) readonly buffer QuadTable {
-  uint quadTiles[];
+  uvec2 quadTiles[];
 };
 
 /** The quad table entry of quad `quad` of piece type `type`. */
-uint quadTileEntry(uint type, uint quad) {
+uvec2 quadTileEntry(uint type, uint quad) {
   return quadTiles[trees.quadTable[type / 4u][type % 4u] + quad];
 }
 
@@ -48,6 +48,31 @@ vec2 tileCoord(vec2 uv, uint r) {
 uint instanceTileSeed(uint rootJoint) { return lowbias32(rootJoint * 0x9e3779b9u + 0x7f4a7c15u); }
 uint chooseTile(uint seed, uint quad, uint first, uint count) {
   return first + lowbias32(seed ^ (quad * 0x85ebca6bu + 0x27d4eb2fu)) % count;
+}
+
+/** edgeColour of sylva/trees/Bark.hpp: rim edges (id 255) have colour 0. */
+uint edgeColour(uint seed, uint edge, uint colours) {
+  if (edge == 255u || colours <= 1u) {
+    return 0u;
+  }
+  return lowbias32(seed ^ (edge * 0x9e3779b9u + 0x165667b1u)) % colours;
+}
+
+/** barkTile of sylva/trees/Bark.hpp: the layer within a bark set of a quad (class, rotation, edge ids). */
+uint barkTile(uint rootJoint, uint quad, uint classRotation, uint edges) {
+  uint cls = min(classRotation & 255u, uint(SYLVA_TREE_MAX_TILE_CLASSES - 1));
+  uint rotation = (classRotation >> 8) & 3u;
+  uint seed = instanceTileSeed(rootJoint);
+  uint colours = uint(trees.bark.w);
+  uint block = 0u;
+  uint weight = 1u;
+  for (uint k = 0u; k < 4u; ++k) {
+    uint e = (rotation + k) & 3u;
+    block += edgeColour(seed, (edges >> (8u * e)) & 255u, colours) * weight;
+    weight *= colours;
+  }
+  uint variants = max(trees.tileCount[cls], 1u);
+  return chooseTile(seed, quad, trees.tileFirst[cls] + block * variants, variants);
 }
 
 /** A point through a frame (three rows of a 3x4 matrix). */

@@ -8,7 +8,10 @@
 #include <sylva/core/Random.hpp>
 #include <sylva/texsynth/MinCut.hpp>
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -674,15 +677,22 @@ TileSet wangTileSet(const Texture& source, int colourCount, int variantsPerClass
 }
 
 TileSet barkTileSet(const std::vector<Texture>& photos, int variantsPerClass, const TileSettings& settings,
-                    Progress* progress) {
+                    Progress* progress, int edgeColours) {
   validate(settings, photos);
   checkVariants(variantsPerClass);
+  if (edgeColours < 1 || edgeColours > 3) {
+    fail("bark tile set: {} edge colours is out of range (1..3)", edgeColours);
+  }
   const Texture& edgeSource = photos.front();
   const Geometry g = geometryOf(settings, edgeSource.channels);
   Rng rng(settings.seed, 0x6261726bULL);
   const std::vector<float> corner = cornerTexel(edgeSource, rng);
-  const std::vector<EdgeColour> colours{{"bark", true}};
-  const std::vector<ColourMaterial> materials{symmetricBand(edgeSource, g, rng, corner.data(), 64)};
+  std::vector<EdgeColour> colours;
+  std::vector<ColourMaterial> materials;
+  for (int k = 0; k < edgeColours; ++k) {
+    colours.push_back({k == 0 ? std::string("bark") : fmt::format("bark{}", k), true});
+    materials.push_back(symmetricBand(edgeSource, g, rng, corner.data(), 64));
+  }
   const std::vector<Candidate> candidates = interiorCandidates(photos, settings);
   // Rougher classes draw from the rougher candidates: sort by roughness and keep the top fraction.
   std::vector<std::size_t> byRoughness(candidates.size());
@@ -699,13 +709,26 @@ TileSet barkTileSet(const std::vector<Texture>& photos, int variantsPerClass, co
     std::sort(chosen.begin(), chosen.end());
     return chosen;
   };
-  std::vector<ClassPlan> plans(3);
-  plans[kBarkPlain].info = {"plain", {0, 0, 0, 0}, "any", 0};
-  plans[kBarkPlain].allowed = roughest(1);
-  plans[kBarkFork].info = {"fork", {0, 0, 0, 0}, "rougher half", 0};
-  plans[kBarkFork].allowed = roughest(2);
-  plans[kBarkCrotch].info = {"crotch", {0, 0, 0, 0}, "roughest quarter", 0};
-  plans[kBarkCrotch].allowed = roughest(4);
+  // Per bark class, one class of tiles for every assignment of the colours to the four edges (combination
+  // e0 + K·e1 + K²·e2 + K³·e3), so any colouring of a mesh's edges finds its tile.
+  const int k = edgeColours;
+  const int combos = k * k * k * k;
+  std::vector<ClassPlan> plans;
+  const std::array<std::pair<const char*, const char*>, 3> kinds{
+      {{"plain", "any"}, {"fork", "rougher half"}, {"crotch", "roughest quarter"}}};
+  for (int b = 0; b < 3; ++b) {
+    const std::vector<std::size_t> allowed = roughest(std::size_t{1} << b);
+    for (int combo = 0; combo < combos; ++combo) {
+      ClassPlan plan;
+      const std::array<int, 4> edges{combo % k, combo / k % k, combo / (k * k) % k, combo / (k * k * k) % k};
+      plan.info = {combos == 1 ? std::string(kinds[static_cast<std::size_t>(b)].first)
+                               : fmt::format("{} {}{}{}{}", kinds[static_cast<std::size_t>(b)].first,
+                                             edges[0], edges[1], edges[2], edges[3]),
+                   edges, kinds[static_cast<std::size_t>(b)].second, 0};
+      plan.allowed = allowed;
+      plans.push_back(std::move(plan));
+    }
+  }
   return buildTiles(photos, colours, materials, plans, candidates, variantsPerClass, settings, g, progress);
 }
 

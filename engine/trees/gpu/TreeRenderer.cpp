@@ -69,14 +69,14 @@ TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const
     mPieceTable.push_back(entry);
   }
   // Tile class and rotation of every quad of every piece type (the patch id indexes it).
-  std::vector<std::uint32_t> quadTable;
+  std::vector<glm::uvec2> quadTable;
   for (std::size_t t = 0; t < f.pieces.size(); ++t) {
     mQuadFirst[t] = static_cast<std::uint32_t>(quadTable.size());
-    const std::vector<std::uint32_t> entries = quadTileTable(f.pieces[t]);
+    const std::vector<glm::uvec2> entries = quadTileTable(f.pieces[t]);
     quadTable.insert(quadTable.end(), entries.begin(), entries.end());
   }
-  quadTable.push_back(0u);
-  mQuadTable = gl::Buffer{std::span<const std::uint32_t>(quadTable)};
+  quadTable.emplace_back(0u);
+  mQuadTable = gl::Buffer{std::span<const glm::uvec2>(quadTable)};
   // Tree centres for the far-field fade: base position and crown height in metres.
   mCentres.reserve(f.trees.size() + 1);
   for (const ForestTree& tree : f.trees) {
@@ -164,7 +164,8 @@ void TreeRenderer::setBark(std::span<const BarkSet> sets, std::span<const int> s
   for (std::size_t i = 0; i < sets.size(); ++i) {
     validate(sets[i], "bark set '" + sets[i].name + "'");
     if (sets[i].tileSize != sets[0].tileSize || sets[i].colour.size() != sets[0].colour.size() ||
-        sets[i].classFirst != sets[0].classFirst || sets[i].classCount != sets[0].classCount) {
+        sets[i].classFirst != sets[0].classFirst || sets[i].classCount != sets[0].classCount ||
+        sets[i].edgeColours != sets[0].edgeColours) {
       fail("bark set '{}': tile size and class layout differ from bark set '{}'", sets[i].name, sets[0].name);
     }
   }
@@ -203,6 +204,7 @@ void TreeRenderer::setBark(std::span<const BarkSet> sets, std::span<const int> s
   mBarkNormals = normals;
   mTileFirst = sets[0].classFirst;
   mTileCount = sets[0].classCount;
+  mEdgeColours = sets[0].edgeColours;
   for (std::size_t s = 0; s < mSpeciesSet.size(); ++s) {
     const int set = s < speciesSet.size() ? speciesSet[s] : 0;
     if (set < 0 || static_cast<std::size_t>(set) >= sets.size()) {
@@ -234,12 +236,14 @@ void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, co
   }
   for (std::size_t c = 0; c < SYLVA_TREE_MAX_TILE_CLASSES; ++c) {
     // Classes without tiles of their own fall back to class 0 (plain bark).
+    // Per class: its first tile and its variants per edge colouring (blocks of K⁴ colourings follow).
     const bool own = mTileCount[c] > 0;
     u.tileFirst[static_cast<glm::length_t>(c)] = own ? mTileFirst[c] : mTileFirst[0];
-    u.tileCount[static_cast<glm::length_t>(c)] = own ? mTileCount[c] : mTileCount[0];
+    u.tileCount[static_cast<glm::length_t>(c)] =
+        std::max((own ? mTileCount[c] : mTileCount[0]) / colourings(mEdgeColours), 1u);
   }
   u.bark = glm::vec4(static_cast<float>(mBarkLayers), static_cast<float>(mBarkTileSize),
-                     mBarkNormals ? 1.0f : 0.0f, 0.0f);
+                     mBarkNormals ? 1.0f : 0.0f, static_cast<float>(mEdgeColours));
   u.far = glm::vec4(lod.farRange, 0.0f, 0.0f);
   u.info =
       glm::uvec4(static_cast<unsigned>(mPacked.instances.size()), static_cast<unsigned>(mPieceTable.size()),

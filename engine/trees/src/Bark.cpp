@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <queue>
 
 namespace sylva::trees {
@@ -118,6 +119,15 @@ void validate(const BarkSet& set, const std::string& where) {
   if (set.classCount[0] == 0) {
     fail("{}: class 0 (plain bark) has no tiles", where);
   }
+  if (set.edgeColours < 1 || set.edgeColours > 3) {
+    fail("{}: {} edge colours (1 … 3)", where, set.edgeColours);
+  }
+  for (std::size_t c = 0; c < set.classCount.size(); ++c) {
+    if (set.classCount[c] % colourings(set.edgeColours) != 0) {
+      fail("{}: class {} has {} tiles, not a multiple of the {} edge colourings", where, c, set.classCount[c],
+           colourings(set.edgeColours));
+    }
+  }
   auto check = [&](const Image& image, std::size_t i, const char* kind) {
     if (image.width() != set.tileSize || image.height() != set.tileSize) {
       fail("{}: {} tile {} is {}x{}, not {}x{}", where, kind, i, image.width(), image.height(), set.tileSize,
@@ -135,22 +145,100 @@ void validate(const BarkSet& set, const std::string& where) {
   }
 }
 
-std::uint32_t barkTile(const BarkSet& set, std::uint32_t rootJoint, std::uint32_t quad,
-                       std::uint32_t tileClass) {
-  std::size_t c = std::min<std::size_t>(tileClass, SYLVA_TREE_MAX_TILE_CLASSES - 1);
+PieceTiling pieceTiling(const Piece& piece) {
+  PieceTiling tiling;
+  tiling.rotation = quadTileRotations(piece);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  auto key = [](std::uint32_t a, std::uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  for (const auto& q : piece.quads) {
+    for (std::size_t e = 0; e < 4; ++e) {
+      ++uses[key(q[e], q[(e + 1) % 4])];
+    }
+  }
+  // Interior edges (shared by two quads) numbered in order of their vertex pairs: a stable id per piece.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint8_t> ids;
+  for (const auto& [edge, n] : uses) {
+    if (n >= 2) {
+      if (ids.size() >= kRimEdge) {
+        fail("piece '{}': more than {} interior edges for bark tiles", piece.name, int{kRimEdge});
+      }
+      ids.emplace(edge, static_cast<std::uint8_t>(ids.size()));
+    }
+  }
+  for (const auto& q : piece.quads) {
+    std::array<std::uint8_t, 4> e{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const auto it = ids.find(key(q[k], q[(k + 1) % 4]));
+      e[k] = it == ids.end() ? kRimEdge : it->second;
+    }
+    tiling.edges.push_back(e);
+  }
+  return tiling;
+}
+
+std::uint32_t edgeColour(std::uint32_t seed, std::uint8_t edge, std::uint32_t colours) {
+  if (edge == kRimEdge || colours <= 1) {
+    return 0;
+  }
+  return lowbias32(seed ^ (std::uint32_t{edge} * 0x9e3779b9u + 0x165667b1u)) % colours;
+}
+
+std::uint32_t quadColouring(const PieceTiling& tiling, std::size_t quad, std::uint32_t seed,
+                            std::uint32_t colours) {
+  std::uint32_t index = 0;
+  std::uint32_t weight = 1;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t e = (tiling.rotation[quad] + k) % 4;
+    index += edgeColour(seed, tiling.edges[quad][e], colours) * weight;
+    weight *= colours;
+  }
+  return index;
+}
+
+std::uint32_t colourings(int edgeColours) {
+  const auto k = static_cast<std::uint32_t>(std::max(edgeColours, 1));
+  return k * k * k * k;
+}
+
+std::uint32_t barkTile(const BarkSet& set, const Piece& piece, const PieceTiling& tiling,
+                       std::uint32_t rootJoint, std::uint32_t quad) {
+  const std::uint32_t cls = quad < piece.tileClass.size() ? piece.tileClass[quad] : 0u;
+  std::size_t c = std::min<std::size_t>(cls, SYLVA_TREE_MAX_TILE_CLASSES - 1);
   if (set.classCount[c] == 0) {
     c = 0;
   }
-  return chooseTile(instanceTileSeed(rootJoint), quad, set.classFirst[c], std::max(set.classCount[c], 1u));
+  const std::uint32_t seed = instanceTileSeed(rootJoint);
+  const std::uint32_t variants = std::max(set.classCount[c] / colourings(set.edgeColours), 1u);
+  const std::uint32_t block =
+      quadColouring(tiling, quad, seed, static_cast<std::uint32_t>(std::max(set.edgeColours, 1)));
+  return chooseTile(seed, quad, set.classFirst[c] + block * variants, variants);
 }
 
 BarkSet barkSetFromTiles(const texsynth::TileSet& tiles, const std::string& name) {
-  if (tiles.classes.empty() || tiles.classes.size() > SYLVA_TREE_MAX_TILE_CLASSES) {
-    fail("bark set '{}': {} tile classes (1 … {})", name, tiles.classes.size(), SYLVA_TREE_MAX_TILE_CLASSES);
+  // Classes come in blocks of K⁴ edge colourings per bark kind (texsynth::barkTileSet).
+  const int k = static_cast<int>(tiles.colours.size());
+  const std::size_t block = colourings(k);
+  if (k < 1 || k > 3 || tiles.classes.empty() || tiles.classes.size() % block != 0 ||
+      tiles.classes.size() / block > SYLVA_TREE_MAX_TILE_CLASSES) {
+    fail("bark set '{}': {} tile classes for {} edge colours (1 … {} kinds of {} colourings)", name,
+         tiles.classes.size(), k, SYLVA_TREE_MAX_TILE_CLASSES, block);
+  }
+  for (std::size_t c = 0; c < tiles.classes.size(); ++c) {
+    const std::array<int, 4>& e = tiles.classes[c].edges;
+    const auto combo = static_cast<int>(c % block);
+    if (e != std::array<int, 4>{combo % k, combo / k % k, combo / (k * k) % k, combo / (k * k * k) % k} ||
+        tiles.classes[c].tileCount != tiles.classes[c - c % block].tileCount ||
+        std::any_of(tiles.colours.begin(), tiles.colours.end(),
+                    [](const texsynth::EdgeColour& colour) { return !colour.symmetric; })) {
+      fail("bark set '{}': class {} is not the edge colouring {} of symmetric colours with as many tiles as "
+           "its kind's others",
+           name, c, combo);
+    }
   }
   BarkSet set;
   set.name = name;
   set.tileSize = tiles.tileSize;
+  set.edgeColours = k;
   for (const texsynth::Texture& tile : tiles.tiles) {
     set.colour.push_back(texsynth::colourImage(tile));
     if (tile.hasNormals()) {
@@ -160,9 +248,10 @@ BarkSet barkSetFromTiles(const texsynth::TileSet& tiles, const std::string& name
   if (set.normal.size() != set.colour.size()) {
     set.normal.clear();
   }
-  for (std::size_t c = 0; c < tiles.classes.size(); ++c) {
-    set.classFirst[c] = static_cast<std::uint32_t>(tiles.firstTile(static_cast<int>(c)));
-    set.classCount[c] = static_cast<std::uint32_t>(tiles.tileCount(static_cast<int>(c)));
+  for (std::size_t kind = 0; kind < tiles.classes.size() / block; ++kind) {
+    set.classFirst[kind] = static_cast<std::uint32_t>(tiles.firstTile(static_cast<int>(kind * block)));
+    set.classCount[kind] = static_cast<std::uint32_t>(block) *
+                           static_cast<std::uint32_t>(tiles.tileCount(static_cast<int>(kind * block)));
   }
   validate(set, "bark set '" + name + "'");
   return set;
@@ -197,8 +286,9 @@ texsynth::Texture shrink(texsynth::Texture t, int side) {
 }
 
 std::string cacheKey(const std::string& source, const BarkSources& s) {
-  return fmt::format("{}-t{}-v{}-s{}-p{}-c{}-b{}-o{}", source, s.tiles.tileSize, s.variants, s.tiles.seed,
-                     s.photoSide, s.tiles.maxCandidates, s.tiles.band, s.tiles.overlap);
+  return fmt::format("{}-t{}-v{}-k{}-s{}-p{}-c{}-b{}-o{}", source, s.tiles.tileSize, s.variants,
+                     s.edgeColours, s.tiles.seed, s.photoSide, s.tiles.maxCandidates, s.tiles.band,
+                     s.tiles.overlap);
 }
 
 } // namespace
@@ -245,7 +335,7 @@ BarkSet barkSetFromSource(const std::string& source, const BarkSources& sources)
     if (settings.overlap == 0) {
       settings.overlap = std::max(2, settings.tileSize / 8);
     }
-    tiles = texsynth::barkTileSet(photos, sources.variants, settings);
+    tiles = texsynth::barkTileSet(photos, sources.variants, settings, nullptr, sources.edgeColours);
     log::info("bark '{}': synthesised {} tiles of {}²", source, tiles.tiles.size(), tiles.tileSize);
     if (!cached.empty()) {
       try {
@@ -317,13 +407,16 @@ std::array<glm::vec2, 4> barkAtlasUv(const BarkAtlas& atlas, std::uint32_t tile,
   return out;
 }
 
-std::vector<std::uint32_t> quadTileTable(const Piece& piece) {
-  const std::vector<std::uint8_t> rotations = quadTileRotations(piece);
-  std::vector<std::uint32_t> out(piece.quads.size());
+std::vector<glm::uvec2> quadTileTable(const Piece& piece) {
+  const PieceTiling tiling = pieceTiling(piece);
+  std::vector<glm::uvec2> out(piece.quads.size());
   for (std::size_t q = 0; q < out.size(); ++q) {
     const std::uint32_t cls = q < piece.tileClass.size() ? piece.tileClass[q] : 0u;
-    out[q] =
-        std::min<std::uint32_t>(cls, SYLVA_TREE_MAX_TILE_CLASSES - 1) | (std::uint32_t{rotations[q]} << 8);
+    out[q].x = std::min<std::uint32_t>(cls, SYLVA_TREE_MAX_TILE_CLASSES - 1) |
+               (std::uint32_t{tiling.rotation[q]} << 8);
+    for (std::size_t e = 0; e < 4; ++e) {
+      out[q].y |= std::uint32_t{tiling.edges[q][e]} << (8 * e);
+    }
   }
   return out;
 }

@@ -363,6 +363,11 @@ void checkOptions(const TreeExportOptions& options, const TreeTopology& tree, co
     if (options.impostor->viewsPerSide < 1 || options.impostor->viewsPerSide > 64) {
       fail("{}: impostor views per side {} is out of range [1, 64]", where, options.impostor->viewsPerSide);
     }
+    if (const std::optional<glm::vec4>& s = options.impostor->sphere;
+        s && !(std::isfinite(s->x) && std::isfinite(s->y) && std::isfinite(s->z) && std::isfinite(s->w) &&
+               s->w > 0.0f)) {
+      fail("{}: the impostor sphere must be finite with a radius > 0", where);
+    }
   }
 }
 
@@ -596,12 +601,21 @@ TreeExportStats exportTreeGltf(const PieceSet& pieces, const TreeTopology& tree,
       }
     }
     const Bounds& b = mesh.bounds;
-    const float cx = 0.5f * (b.min.x + b.max.x);
-    const float cz = 0.5f * (b.min.z + b.max.z);
-    const float half = 0.5f * std::max(b.max.x - b.min.x, b.max.z - b.min.z);
-    const std::array<glm::vec3, 4> corners{
-        glm::vec3(cx - half, b.min.y, cz), glm::vec3(cx + half, b.min.y, cz),
-        glm::vec3(cx + half, b.max.y, cz), glm::vec3(cx - half, b.max.y, cz)};
+    float cx = 0.5f * (b.min.x + b.max.x);
+    float cz = 0.5f * (b.min.z + b.max.z);
+    float half = 0.5f * std::max(b.max.x - b.min.x, b.max.z - b.min.z);
+    float y0 = b.min.y;
+    float y1 = b.max.y;
+    if (atlas.sphere) {
+      // The views frame this sphere: the quad is its square, so the view shows at the tree's size.
+      cx = atlas.sphere->x;
+      cz = atlas.sphere->z;
+      half = atlas.sphere->w;
+      y0 = atlas.sphere->y - atlas.sphere->w;
+      y1 = atlas.sphere->y + atlas.sphere->w;
+    }
+    const std::array<glm::vec3, 4> corners{glm::vec3(cx - half, y0, cz), glm::vec3(cx + half, y0, cz),
+                                           glm::vec3(cx + half, y1, cz), glm::vec3(cx - half, y1, cz)};
     const float u0 = static_cast<float>(bi) / static_cast<float>(views);
     const float u1 = static_cast<float>(bi + 1) / static_cast<float>(views);
     const float v0 = static_cast<float>(bj) / static_cast<float>(views);
@@ -613,8 +627,8 @@ TreeExportStats exportTreeGltf(const PieceSet& pieces, const TreeTopology& tree,
     const std::array<std::uint32_t, 6> quad{0, 1, 2, 0, 2, 3};
     const std::size_t position = buffer.addAccessor(
         buffer.addView(corners.data(), sizeof corners, kGltfArrayBuffer), kGltfFloat, 4, "VEC3");
-    buffer.accessors[position]["min"] = {cx - half, b.min.y, cz};
-    buffer.accessors[position]["max"] = {cx + half, b.max.y, cz};
+    buffer.accessors[position]["min"] = {cx - half, y0, cz};
+    buffer.accessors[position]["max"] = {cx + half, y1, cz};
     const std::size_t normal = buffer.addAccessor(
         buffer.addView(normals.data(), sizeof normals, kGltfArrayBuffer), kGltfFloat, 4, "VEC3");
     const std::size_t texcoord =
@@ -661,6 +675,10 @@ TreeExportStats exportTreeGltf(const PieceSet& pieces, const TreeTopology& tree,
                                 "(folded when negative), y up"},
                          {"boundsMinM", {b.min.x, b.min.y, b.min.z}},
                          {"boundsMaxM", {b.max.x, b.max.y, b.max.z}}}}}}});
+    if (atlas.sphere) {
+      nodes.back()["extras"]["impostor"]["sphereM"] = {atlas.sphere->x, atlas.sphere->y, atlas.sphere->z,
+                                                       atlas.sphere->w};
+    }
   }
   if (!lodIds.empty()) {
     nlohmann::json coverage = nlohmann::json::array();

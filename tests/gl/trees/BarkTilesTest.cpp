@@ -12,7 +12,11 @@
 namespace sylva::trees {
 namespace {
 
-using BarkTilesTest = test::GlTest;
+class BarkTilesTest : public test::GlTest {
+protected:
+  /** Draws the tile-id view with a solid set of `colours` edge colours; every fragment is checked. */
+  void expectTilesAsTheCpu(int colours);
+};
 
 render::Camera lookingAt(glm::vec3 from, glm::vec3 to) {
   render::Camera camera;
@@ -24,34 +28,55 @@ render::Camera lookingAt(glm::vec3 from, glm::vec3 to) {
   return camera;
 }
 
-/** Eight solid tiles of size 8 (class 0: 4 tiles, class 1: 2, class 2: 2), each its own colour. */
-BarkSet solidSet(const std::string& name, int shift) {
+/**
+ * Solid tiles of size 8, each its own colour. One edge colour: 8 tiles (class 0: 4, class 1: 2, class 2: 2);
+ * two edge colours: 3 classes × 16 colourings × 1 tile.
+ */
+BarkSet solidSet(const std::string& name, int shift, int edgeColours = 1) {
   BarkSet set;
   set.name = name;
   set.tileSize = 8;
-  for (int i = 0; i < 8; ++i) {
+  set.edgeColours = edgeColours;
+  const int tiles = edgeColours == 1 ? 8 : 48;
+  for (int i = 0; i < tiles; ++i) {
     Image tile(8, 8, 3, PixelType::U8);
     for (int y = 0; y < 8; ++y) {
       for (int x = 0; x < 8; ++x) {
-        tile.set(x, y, 0, static_cast<float>((i + shift) % 8) / 8.0f);
+        tile.set(x, y, 0, static_cast<float>((i + shift) % 48) / 48.0f);
         tile.set(x, y, 1, 0.2f + 0.1f * static_cast<float>(i % 3));
         tile.set(x, y, 2, 0.5f);
       }
     }
     set.colour.push_back(tile);
   }
-  set.classFirst = {0, 4, 6, 0};
-  set.classCount = {4, 2, 2, 0};
+  if (edgeColours == 1) {
+    set.classFirst = {0, 4, 6, 0};
+    set.classCount = {4, 2, 2, 0};
+  } else {
+    set.classFirst = {0, 16, 32, 0};
+    set.classCount = {16, 16, 16, 0};
+  }
   return set;
 }
 
 TEST_F(BarkTilesTest, EveryFragmentShowsTheTileTheCpuChooses) {
+  for (const int colours : {1, 2}) {
+    SCOPED_TRACE(colours);
+    expectTilesAsTheCpu(colours);
+  }
+}
+
+void BarkTilesTest::expectTilesAsTheCpu(int colours) {
   auto forest = std::make_shared<Forest>(gridForest({"almond", "apple"}, 2, 5.0f, 3));
   TreeRenderer renderer(shaders(), forest);
   ASSERT_LT(renderer.instances().instances.size(), 254u * 256u) << "instance ids are read back as two bytes";
-  const std::vector<BarkSet> sets{solidSet("a", 0)};
+  const std::vector<BarkSet> sets{solidSet("a", 0, colours)};
   renderer.setBark(sets);
   ASSERT_TRUE(renderer.textured());
+  std::vector<PieceTiling> tilings;
+  for (const Piece& piece : forest->pieces.pieces) {
+    tilings.push_back(pieceTiling(piece));
+  }
   const render::Camera camera = lookingAt({-3, 2.0f, 3.5f}, {0, 2.0f, 0});
   render::RenderTarget target(240, 180);
   TreeLod lod;
@@ -80,10 +105,11 @@ TEST_F(BarkTilesTest, EveryFragmentShowsTheTileTheCpuChooses) {
           static_cast<std::size_t>(std::lround(image.get(x, y, 2) * 255.0f) + 256 * (high - 1));
       ASSERT_LT(instance, instances.size());
       const glm::uvec4 inst = instances[instance].joints;
-      const Piece& piece = forest->pieces[(inst.z >> 8) & 255u];
+      const std::size_t type = (inst.z >> 8) & 255u;
+      const Piece& piece = forest->pieces[type];
       ASSERT_LT(quad, piece.quads.size());
       const std::uint32_t cls = piece.tileClass[quad];
-      const std::uint32_t expected = barkTile(sets[0], inst.x, quad, cls);
+      const std::uint32_t expected = barkTile(sets[0], piece, tilings[type], inst.x, quad);
       wrong += tile != expected ? 1 : 0;
       tiles.insert(static_cast<int>(tile));
       classes.insert(static_cast<int>(cls));
@@ -92,7 +118,7 @@ TEST_F(BarkTilesTest, EveryFragmentShowsTheTileTheCpuChooses) {
   EXPECT_GT(covered, 2000u);
   EXPECT_EQ(wrong, 0u) << "of " << covered << " fragments";
   // Enough variety that agreement means something: most tiles and at least the plain and fork classes.
-  EXPECT_GE(tiles.size(), 6u);
+  EXPECT_GE(tiles.size(), colours == 1 ? 6u : 24u);
   EXPECT_GE(classes.size(), 2u);
 }
 

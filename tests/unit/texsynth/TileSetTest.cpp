@@ -12,6 +12,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -320,6 +321,39 @@ void expectSymmetricEdges(const TileSet& set, float normalTolerance) {
 
 TEST(BarkTiles, SymmetricEdgesArePalindromesOnAllFourSides) {
   expectSymmetricEdges(barkSet(), 0.0f);
+}
+
+TEST(BarkTiles, TwoColoursCoverEveryEdgeColouringWithOneLinePerColour) {
+  const TileSet set = barkTileSet({proceduralBark(128, 33)}, 1, smallSettings(), nullptr, 2);
+  ASSERT_EQ(set.colours.size(), 2u);
+  ASSERT_EQ(set.classes.size(), 48u) << "3 kinds x 2^4 edge colourings";
+  ASSERT_EQ(set.tiles.size(), 48u);
+  // The line of each colour, from the first tile that has it on its bottom edge.
+  std::array<std::vector<float>, 2> lines;
+  for (std::size_t c = 0; c < set.classes.size(); ++c) {
+    const std::array<int, 4>& e = set.classes[c].edges;
+    const int combo = static_cast<int>(c % 16);
+    EXPECT_EQ(e, (std::array<int, 4>{combo % 2, combo / 2 % 2, combo / 4 % 2, combo / 8 % 2})) << c;
+  }
+  for (std::size_t i = 0; i < set.tiles.size(); ++i) {
+    for (int edge = 0; edge < 4; ++edge) {
+      const int colour = set.edgeColour(static_cast<int>(i), edge);
+      const std::vector<float> line = colourOf(edgeLine(set.tiles[i], edge), set.channels);
+      auto& reference = lines[static_cast<std::size_t>(colour)];
+      if (reference.empty()) {
+        reference = line;
+      }
+      ASSERT_EQ(line, reference) << "tile " << i << " edge " << edge << " colour " << colour;
+      for (int k = 0; k < kTile; ++k) {
+        ASSERT_EQ(line[static_cast<std::size_t>(3 * k)], line[static_cast<std::size_t>(3 * (kTile - 1 - k))])
+            << "palindrome";
+      }
+    }
+  }
+  EXPECT_NE(lines[0], lines[1]) << "two colours, two lines";
+  // They share the corner texel (tile corners are shared by up to four tiles of any colours).
+  EXPECT_EQ(std::vector<float>(lines[0].begin(), lines[0].begin() + 3),
+            std::vector<float>(lines[1].begin(), lines[1].begin() + 3));
 }
 
 TEST(BarkTiles, EveryTileHasTheSameBorderAndClassesDifferInside) {

@@ -86,16 +86,32 @@ TEST(BarkTest, ChosenTilesStayInTheirClassAndVaryPerInstance) {
 
 TEST(BarkTest, QuadTablePacksClassAndRotation) {
   const Piece y = makeY();
-  const std::vector<std::uint32_t> table = quadTileTable(y);
-  const std::vector<std::uint8_t> rotations = quadTileRotations(y);
+  const std::vector<glm::uvec2> table = quadTileTable(y);
+  const PieceTiling tiling = pieceTiling(y);
   ASSERT_EQ(table.size(), y.quads.size());
   std::set<std::uint32_t> classes;
+  std::map<std::uint32_t, int> edgeUses;
+  int rimEdges = 0;
   for (std::size_t q = 0; q < table.size(); ++q) {
-    EXPECT_EQ(table[q] & 255u, y.tileClass[q]);
-    EXPECT_EQ(table[q] >> 8, rotations[q]);
-    classes.insert(table[q] & 255u);
+    EXPECT_EQ(table[q].x & 255u, y.tileClass[q]);
+    EXPECT_EQ(table[q].x >> 8, tiling.rotation[q]);
+    classes.insert(table[q].x & 255u);
+    for (std::uint32_t e = 0; e < 4; ++e) {
+      const std::uint32_t id = (table[q].y >> (8 * e)) & 255u;
+      EXPECT_EQ(id, tiling.edges[q][e]);
+      if (id == kRimEdge) {
+        ++rimEdges;
+      } else {
+        ++edgeUses[id];
+      }
+    }
   }
   EXPECT_EQ(classes.size(), 3u) << "the fork has plain, fork and crotch quads";
+  // Every interior edge id is used by exactly two quads; the rim edges are those of its three rims.
+  for (const auto& [id, n] : edgeUses) {
+    EXPECT_EQ(n, 2) << "edge " << id;
+  }
+  EXPECT_EQ(rimEdges, 3 * kRimCorners);
 }
 
 TEST(BarkTest, ValidationNamesTheProblem) {
@@ -132,18 +148,12 @@ std::vector<std::array<int, 3>> edgeTexels(const Image& tile, int r, int from, i
   return out;
 }
 
-/** The tiles a quad of class `c` may show (classes without tiles show class 0's, as the renderer does). */
-std::vector<std::uint32_t> tilesOf(const BarkSet& set, std::uint32_t c) {
-  c = std::min<std::uint32_t>(c, SYLVA_TREE_MAX_TILE_CLASSES - 1);
-  if (set.classCount[c] == 0) {
-    c = 0;
-  }
-  std::vector<std::uint32_t> out;
-  for (std::uint32_t i = 0; i < set.classCount[c]; ++i) {
-    out.push_back(set.classFirst[c] + i);
-  }
-  return out;
-}
+/** Shared edges compared, those whose texels differ, and the distinct edge lines seen. */
+struct SeamCount {
+  std::size_t edges = 0;
+  std::size_t mismatches = 0;
+  std::set<std::vector<std::array<int, 3>>> lines;
+};
 
 int cornerOf(const std::array<std::uint32_t, 4>& quad, std::uint32_t vertex) {
   for (int c = 0; c < 4; ++c) {
@@ -154,83 +164,101 @@ int cornerOf(const std::array<std::uint32_t, 4>& quad, std::uint32_t vertex) {
   return -1;
 }
 
-/** The quad of `piece` with the edge (a, b) and the corner indices of a and b in it. */
-std::tuple<std::size_t, int, int> quadWithEdge(const Piece& piece, std::uint32_t a, std::uint32_t b) {
+/** The quads of `piece` with the edge (a, b). */
+std::vector<std::size_t> quadsWithEdge(const Piece& piece, std::uint32_t a, std::uint32_t b) {
+  std::vector<std::size_t> out;
   for (std::size_t q = 0; q < piece.quads.size(); ++q) {
     const int ca = cornerOf(piece.quads[q], a);
     const int cb = cornerOf(piece.quads[q], b);
     if (ca >= 0 && cb >= 0 && ((ca + 1) % 4 == cb || (cb + 1) % 4 == ca)) {
-      return {q, ca, cb};
+      out.push_back(q);
     }
   }
-  ADD_FAILURE() << piece.name << ": no quad with edge " << a << "-" << b;
-  return {0, 0, 1};
+  return out;
 }
 
-/** Shared edges whose texels differ, over every pair of tiles the two quads may show. */
-struct SeamCount {
-  std::size_t edges = 0;
-  std::size_t comparisons = 0;
-  std::size_t mismatches = 0;
+/** One piece instance: the piece, its tiling, its root joint (the tile seed). */
+struct Instance {
+  const Piece* piece;
+  const PieceTiling* tiling;
+  std::uint32_t rootJoint;
 };
 
-void compareSeam(const BarkSet& set, const Piece& pa, std::size_t qa, int a0, int a1, const Piece& pb,
-                 std::size_t qb, int b0, int b1, SeamCount& count) {
-  const int ra = quadTileRotations(pa)[qa];
-  const int rb = quadTileRotations(pb)[qb];
-  ++count.edges;
-  for (std::uint32_t ta : tilesOf(set, pa.tileClass[qa])) {
-    for (std::uint32_t tb : tilesOf(set, pb.tileClass[qb])) {
-      ++count.comparisons;
-      if (edgeTexels(set.colour[ta], ra, a0, a1) != edgeTexels(set.colour[tb], rb, b0, b1)) {
-        ++count.mismatches;
-      }
-    }
-  }
+/** The texels along edge a → b (vertex ids) in the tile quad `q` of instance `in` shows. */
+std::vector<std::array<int, 3>> seamTexels(const BarkSet& set, const Instance& in, std::size_t q,
+                                           std::uint32_t a, std::uint32_t b) {
+  const std::uint32_t tile =
+      barkTile(set, *in.piece, *in.tiling, in.rootJoint, static_cast<std::uint32_t>(q));
+  const auto& quad = in.piece->quads[q];
+  return edgeTexels(set.colour[tile], in.tiling->rotation[q], cornerOf(quad, a), cornerOf(quad, b));
 }
 
-/** Every shared edge inside every piece and across every rim (all six rotations of every child). */
+void compare(const std::vector<std::array<int, 3>>& a, const std::vector<std::array<int, 3>>& b,
+             SeamCount& count) {
+  ++count.edges;
+  count.mismatches += a != b ? 1 : 0;
+  count.lines.insert(a);
+}
+
+/**
+ * Every shared edge inside every piece (16 instances of each) and across every rim (every parent and child,
+ * all six rotations, 3 parent × 3 child instances), each quad showing the tile barkTile() picks for it.
+ */
 SeamCount countSeams(const BarkSet& set) {
   SeamCount count;
   const PieceSet pieces = standardPieces();
+  std::vector<PieceTiling> tilings;
   for (const Piece& piece : pieces.pieces) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> byEdge;
-    for (std::size_t q = 0; q < piece.quads.size(); ++q) {
+    tilings.push_back(pieceTiling(piece));
+  }
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const Piece& piece = pieces[p];
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (const auto& q : piece.quads) {
       for (std::size_t e = 0; e < 4; ++e) {
-        const std::uint32_t a = piece.quads[q][e];
-        const std::uint32_t b = piece.quads[q][(e + 1) % 4];
-        byEdge[{std::min(a, b), std::max(a, b)}].push_back(q);
+        edges.insert({std::min(q[e], q[(e + 1) % 4]), std::max(q[e], q[(e + 1) % 4])});
       }
     }
-    for (const auto& [edge, quads] : byEdge) {
-      if (quads.size() != 2) {
-        continue; // rim edges: checked across pieces below
+    for (std::uint32_t joint = 0; joint < 16; ++joint) {
+      const Instance in{&piece, &tilings[p], 1000 * static_cast<std::uint32_t>(p) + joint};
+      for (const auto& [a, b] : edges) {
+        const std::vector<std::size_t> both = quadsWithEdge(piece, a, b);
+        if (both.size() == 2) {
+          compare(seamTexels(set, in, both[0], a, b), seamTexels(set, in, both[1], a, b), count);
+        }
       }
-      const auto& qa = piece.quads[quads[0]];
-      const auto& qb = piece.quads[quads[1]];
-      compareSeam(set, piece, quads[0], cornerOf(qa, edge.first), cornerOf(qa, edge.second), piece, quads[1],
-                  cornerOf(qb, edge.first), cornerOf(qb, edge.second), count);
     }
   }
-  for (const Piece& parent : pieces.pieces) {
+  for (std::size_t pp = 0; pp < pieces.size(); ++pp) {
+    const Piece& parent = pieces[pp];
     for (std::size_t rim = 1; rim < parent.rims.size(); ++rim) {
-      for (const Piece& child : pieces.pieces) {
-        for (int rot = 0; rot < kRimCorners; ++rot) {
-          for (int k = 0; k < kRimCorners; ++k) {
-            // Parent leaf corner k meets child root corner k − rot.
-            const auto& pr = parent.rims[rim].vertices;
-            const auto& cr = child.rims[0].vertices;
-            const auto [qp, p0, p1] = quadWithEdge(parent, pr[static_cast<std::size_t>(k)],
-                                                   pr[static_cast<std::size_t>((k + 1) % 6)]);
-            const auto c0 = static_cast<std::size_t>((k - rot + 12) % 6);
-            const auto c1 = static_cast<std::size_t>((k + 1 - rot + 12) % 6);
-            const auto [qc, d0, d1] = quadWithEdge(child, cr[c0], cr[c1]);
-            const bool aFirst =
-                parent.quads[qp][static_cast<std::size_t>(p0)] == pr[static_cast<std::size_t>(k)];
-            const bool bFirst = child.quads[qc][static_cast<std::size_t>(d0)] == cr[c0];
-            // Read both from the vertex at corner k to the one at corner k + 1.
-            compareSeam(set, parent, qp, aFirst ? p0 : p1, aFirst ? p1 : p0, child, qc, bFirst ? d0 : d1,
-                        bFirst ? d1 : d0, count);
+      for (std::size_t pc = 0; pc < pieces.size(); ++pc) {
+        const Piece& child = pieces[pc];
+        // Only pieces whose root rim is open can sit on a rim (not the foot, closed below: the tree's base).
+        const auto& root = child.rims[0].vertices;
+        if (quadsWithEdge(child, root[0], root[1]).size() != 1) {
+          continue;
+        }
+        for (std::uint32_t seeds = 0; seeds < 9; ++seeds) {
+          const Instance a{&parent, &tilings[pp], 7 + seeds / 3};
+          const Instance b{&child, &tilings[pc], 50 + seeds % 3};
+          for (int rot = 0; rot < kRimCorners; ++rot) {
+            for (int k = 0; k < kRimCorners; ++k) {
+              // Parent leaf corner k meets child root corner k − rot; both read from corner k to k + 1.
+              const auto& pr = parent.rims[rim].vertices;
+              const auto& cr = child.rims[0].vertices;
+              const std::uint32_t a0 = pr[static_cast<std::size_t>(k)];
+              const std::uint32_t a1 = pr[static_cast<std::size_t>((k + 1) % 6)];
+              const std::uint32_t b0 = cr[static_cast<std::size_t>((k - rot + 12) % 6)];
+              const std::uint32_t b1 = cr[static_cast<std::size_t>((k + 1 - rot + 12) % 6)];
+              const std::vector<std::size_t> qa = quadsWithEdge(parent, a0, a1);
+              const std::vector<std::size_t> qb = quadsWithEdge(child, b0, b1);
+              if (qa.size() != 1 || qb.size() != 1) {
+                ADD_FAILURE() << "rim edge not on exactly one quad";
+                continue;
+              }
+              compare(seamTexels(set, a, qa[0], a0, a1), seamTexels(set, b, qb[0], b0, b1), count);
+            }
           }
         }
       }
@@ -239,31 +267,36 @@ SeamCount countSeams(const BarkSet& set) {
   return count;
 }
 
-BarkSet synthesisedSet() {
+BarkSet synthesisedSet(int edgeColours) {
   texsynth::TileSettings settings;
   settings.tileSize = 32;
   settings.seed = 7;
   const std::vector<texsynth::Texture> photos{texsynth::proceduralBark(128, 3)};
-  return barkSetFromTiles(texsynth::barkTileSet(photos, 3, settings), "procedural");
+  return barkSetFromTiles(
+      texsynth::barkTileSet(photos, edgeColours == 1 ? 3 : 1, settings, nullptr, edgeColours), "procedural");
 }
 
 TEST(BarkTest, AdjacentQuadsMeetTexelForTexelOnEveryPieceAndAcrossEveryRim) {
-  const BarkSet set = synthesisedSet();
-  ASSERT_EQ(set.colour.size(), 9u);
-  ASSERT_EQ(set.normal.size(), 9u);
-  const SeamCount count = countSeams(set);
-  EXPECT_GT(count.edges, 1000u);
-  EXPECT_GT(count.comparisons, 10000u);
-  EXPECT_EQ(count.mismatches, 0u) << "of " << count.comparisons << " tile pairs on " << count.edges
-                                  << " edges";
-  // The tiles differ inside, or the set would be one repeated tile.
-  EXPECT_FALSE(set.colour[0] == set.colour[1]);
+  // One edge colour (the paper's one border) and two (Wang tiles: rims colour 0, interior edges by hash).
+  for (const int colours : {1, 2}) {
+    const BarkSet set = synthesisedSet(colours);
+    ASSERT_EQ(set.colour.size(), colours == 1 ? 9u : 48u);
+    ASSERT_EQ(set.normal.size(), set.colour.size());
+    const SeamCount count = countSeams(set);
+    EXPECT_GT(count.edges, 10000u);
+    EXPECT_EQ(count.mismatches, 0u) << colours << " colours: of " << count.edges << " edges";
+    // One border for all with one colour; with two, edges show both lines.
+    EXPECT_EQ(count.lines.size(), static_cast<std::size_t>(colours)) << colours << " colours";
+    EXPECT_FALSE(set.colour[0] == set.colour[1]);
+  }
 }
 
 TEST(BarkTest, TheSeamCheckFindsABrokenEdge) {
-  BarkSet set = synthesisedSet();
-  // One texel on tile 0's left edge (not a corner) changes: every seam that tile takes part in breaks.
-  set.colour[0].set(0, set.tileSize / 3, 0, 1.0f - set.colour[0].get(0, set.tileSize / 3, 0));
+  BarkSet set = synthesisedSet(2);
+  // One texel on every tile's left edge (not a corner) changes: seams through a left edge break.
+  for (Image& tile : set.colour) {
+    tile.set(0, set.tileSize / 3, 0, 1.0f - tile.get(0, set.tileSize / 3, 0));
+  }
   EXPECT_GT(countSeams(set).mismatches, 100u);
 }
 
@@ -281,7 +314,7 @@ TEST(BarkTest, SpeciesShareOneSetPerBarkSourceAndMissingPhotosFallBackToProcedur
   ASSERT_EQ(sets.size(), 1u);
   EXPECT_EQ(sets[0].name, "procedural");
   EXPECT_EQ(speciesSet, (std::vector<int>{0, 0, 0}));
-  EXPECT_EQ(sets[0].colour.size(), 6u);
+  EXPECT_EQ(sets[0].colour.size(), 96u) << "3 kinds x 16 edge colourings x 2 variants";
   sources.mode = "/nonexistent/tileset";
   EXPECT_THROW((void)barkSetsFor(forest, sources, speciesSet), Error);
 }

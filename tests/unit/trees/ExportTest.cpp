@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -400,6 +401,51 @@ TEST(TreeExport, AtlasesUvCallbackAndImpostor) {
   EXPECT_EQ(m.accessors.at(static_cast<std::size_t>(quad.primitives[0].indices)).count, 6u);
   EXPECT_EQ(quad.primitives[0].material, 1);
   EXPECT_EQ(m.nodes[0].extras.Get("MSFT_screencoverage").ArrayLen(), 3u);
+}
+
+// An atlas baked around a bounding sphere (sylva tree export --impostor): the quad is the sphere's square
+// through its centre (so the view shows at the tree's size) and the extras carry the sphere; a sphere without
+// a positive finite radius is refused.
+TEST(TreeExport, ImpostorQuadSpansTheAtlasSphere) {
+  const Fixture f("almond", 5);
+  const test::TempDir dir;
+  TreeExportOptions options;
+  options.levels = {1};
+  ImpostorAtlas impostor;
+  impostor.image = pattern(64, 64, 2);
+  impostor.viewsPerSide = 4;
+  impostor.layout = "hemi-octahedral";
+  impostor.sphere = glm::vec4(0.25f, 1.5f, -0.125f, 2.0f);
+  options.impostor = impostor;
+  exportTreeGltf(f.pieces, f.tree, f.species, dir / "almond.gltf", options);
+  const tinygltf::Model m = load(dir / "almond.gltf");
+  const tinygltf::Value& ids = m.nodes[0].extensions.at("MSFT_lod").Get("ids");
+  ASSERT_EQ(ids.ArrayLen(), 1u);
+  const auto& node = m.nodes.at(static_cast<std::size_t>(ids.Get(0).GetNumberAsInt()));
+  const tinygltf::Value& extras = node.extras.Get("impostor");
+  ASSERT_EQ(extras.Get("sphereM").ArrayLen(), 4u);
+  EXPECT_DOUBLE_EQ(extras.Get("sphereM").Get(3).GetNumberAsDouble(), 2.0);
+  const tinygltf::Primitive& quad = m.meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+  const int positions = quad.attributes.at("POSITION");
+  double lo[3] = {1e9, 1e9, 1e9};
+  double hi[3] = {-1e9, -1e9, -1e9};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::vector<double> p = element(m, positions, i);
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], p[static_cast<std::size_t>(c)]);
+      hi[c] = std::max(hi[c], p[static_cast<std::size_t>(c)]);
+    }
+  }
+  EXPECT_NEAR(lo[0], 0.25 - 2.0, 1e-6);
+  EXPECT_NEAR(hi[0], 0.25 + 2.0, 1e-6);
+  EXPECT_NEAR(lo[1], 1.5 - 2.0, 1e-6);
+  EXPECT_NEAR(hi[1], 1.5 + 2.0, 1e-6);
+  EXPECT_NEAR(lo[2], -0.125, 1e-6);
+  EXPECT_NEAR(hi[2], -0.125, 1e-6);
+
+  options.impostor->sphere = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
+  EXPECT_THROW(exportTreeGltf(f.pieces, f.tree, f.species, dir / "bad.gltf", options), Error);
+  EXPECT_FALSE(fs::exists(dir / "bad.gltf"));
 }
 
 TEST(TreeExport, ObjReadsBackThroughAssimp) {

@@ -121,13 +121,16 @@ TileSet wangTileSet(const Texture& source, int colourCount, int variantsPerClass
 enum BarkClass : int { kBarkPlain = 0, kBarkFork = 1, kBarkCrotch = 2 };
 
 /**
- * The trees' bark set: ONE symmetric colour on every edge and three classes (BarkClass) of
- * `variantsPerClass` tiles (1..64) each, so every tile has the same border. Interiors: class 0 from all
- * candidates, class 1 from the rougher half (luminance variance), class 2 from the roughest quarter, each
- * with its own seed stream. `photos` (1..16) share a channel count; the edge band comes from photos[0].
+ * The trees' bark set: `edgeColours` (K, 1..3) SYMMETRIC colours (all sharing the corner texel) and, for each
+ * of the three bark kinds (BarkClass), one class per assignment of the colours to the four edges — class
+ * kind · K⁴ + e0 + K·e1 + K²·e2 + K³·e3 — of `variantsPerClass` tiles (1..64). With K = 1 that is the paper's
+ * case: three classes whose tiles all share one border. With K > 1 any colouring of a mesh's edges finds its
+ * tiles, and borders vary (Cohen et al. 2003 with symmetric colours). Interiors: kind 0 from all candidates,
+ * kind 1 from the rougher half (luminance variance), kind 2 from the roughest quarter, each with its own seed
+ * stream. `photos` (1..16) share a channel count; the edge bands come from photos[0].
  */
 TileSet barkTileSet(const std::vector<Texture>& photos, int variantsPerClass, const TileSettings& settings,
-                    Progress* progress = nullptr);
+                    Progress* progress = nullptr, int edgeColours = 1);
 
 /**
  * A stochastic tiling of w × h tiles (1..4096 each), row-major with row 0 at the bottom (tile (x, y + 1) is

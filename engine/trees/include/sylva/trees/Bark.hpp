@@ -1,10 +1,12 @@
 #pragma once
 // Bark from tiles (docs/trees.md "Bark", seed 000 §5.1): every quad of every piece instance shows one tile of
-// a texture array, chosen per instance and per quad by a hash among the tiles of the quad's class. Tiles of
-// every class share one border (texsynth's symmetric edge colour), so any two quads meet seamlessly whatever
-// their tiles and orientations, across rims too. Each quad gets a rotation that puts the tile's y axis along
-// the branch (bark grooves follow the wood). CPU side here; shaders/trees/piece.tese and piece.frag are the
-// GPU twins of tileCoord() and chooseTile().
+// a texture array, chosen per instance and per quad. Tile edges carry symmetric edge colours (texsynth: a
+// palindromic line, the same on any side), so two quads meet seamlessly whatever their orientations when
+// their shared edge has one colour. Rim edges all have colour 0 (any of a rim's six rotations is valid);
+// every interior edge of a piece instance gets a colour by a hash of the instance and the edge (Wang tiles,
+// Cohen et al. 2003), and the quad shows a tile of its class with exactly its four edge colours. With one
+// colour this is the paper's case (one border for all tiles). Each quad gets a rotation that puts the tile's
+// y axis along the branch. CPU side here; shaders/trees/piece.tese and piece.frag are the GPU twins.
 
 #include <sylva/core/Image.hpp>
 #include <sylva/trees/Forest.hpp>
@@ -42,6 +44,31 @@ std::uint32_t instanceTileSeed(std::uint32_t rootJoint);
 /** The tile (layer within a bark set) of quad `quad`: first + hash(seed, quad) mod count; count > 0. */
 std::uint32_t chooseTile(std::uint32_t seed, std::uint32_t quad, std::uint32_t first, std::uint32_t count);
 
+/** An edge id of a piece that is a rim (boundary) edge: its colour is always 0. */
+constexpr std::uint8_t kRimEdge = 255;
+
+/**
+ * The tile layout of a piece's quads: rotation per quad (quadTileRotations) and, per quad, the ids of its
+ * four edges in quad-edge order (edge e runs from corner e to corner e + 1); edges shared by two quads have
+ * ids 0 … 254, rim edges kRimEdge.
+ */
+struct PieceTiling {
+  std::vector<std::uint8_t> rotation;
+  std::vector<std::array<std::uint8_t, 4>> edges;
+};
+/** Throws sylva::Error naming the piece when it has more than 255 interior edges. */
+PieceTiling pieceTiling(const Piece& piece);
+
+/** The colour (0 … colours − 1) of edge `edge` of the piece instance with tile seed `seed`. */
+std::uint32_t edgeColour(std::uint32_t seed, std::uint8_t edge, std::uint32_t colours);
+
+/**
+ * The edge colouring index of a quad's tile, e0 + K·e1 + K²·e2 + K³·e3 over the TILE's edges 0 … 3 (tile edge
+ * k is quad edge (rotation + k) mod 4), K = colours.
+ */
+std::uint32_t quadColouring(const PieceTiling& tiling, std::size_t quad, std::uint32_t seed,
+                            std::uint32_t colours);
+
 /**
  * The texel (column, row) a tile coordinate samples in a T × T tile: edge lines (x or y = 0 or 1) are the
  * tile's outermost texel rows and columns, which neighbouring tiles share.
@@ -51,11 +78,15 @@ glm::ivec2 tileTexel(glm::vec2 xy, int tileSize);
 /**
  * One bark set: tiles (T × T, RGB or RGBA 8-bit colour; optional tangent-space normal maps of the same size,
  * n = 2c − 1, x along the tile's x, y along its y) in class order: class c's tiles are
- * colour[classFirst[c] … classFirst[c] + classCount[c]).
+ * colour[classFirst[c] … classFirst[c] + classCount[c]), made of K⁴ blocks (K = edgeColours) of
+ * classCount[c] / K⁴ variants, block b holding the tiles whose edges are coloured b = e0 + K·e1 + K²·e2 +
+ * K³·e3.
  */
 struct BarkSet {
   std::string name;
   int tileSize = 0;
+  /** Symmetric edge colours K (1: the paper's one border for every tile). */
+  int edgeColours = 1;
   std::vector<Image> colour;
   std::vector<Image> normal;
   std::array<std::uint32_t, SYLVA_TREE_MAX_TILE_CLASSES> classFirst{};
@@ -65,13 +96,16 @@ struct BarkSet {
 /** Throws sylva::Error "<where>: …" for sets with missing classes, mixed sizes or out-of-range tiles. */
 void validate(const BarkSet& set, const std::string& where);
 
+/** K⁴: the edge colourings of a tile with K colours. */
+std::uint32_t colourings(int edgeColours);
+
 /**
- * The tile (index into set.colour) of quad `quad` of the piece instance with root joint `rootJoint` whose
- * class is `tileClass`: chooseTile() among the class's tiles; classes without tiles use class 0's, as the
- * renderer does.
+ * The tile (index into set.colour) of quad `quad` of `piece` in the piece instance with root joint
+ * `rootJoint`: in the quad's class (classes without tiles use class 0's, as the renderer does), the block of
+ * its edge colouring, the variant by chooseTile().
  */
-std::uint32_t barkTile(const BarkSet& set, std::uint32_t rootJoint, std::uint32_t quad,
-                       std::uint32_t tileClass);
+std::uint32_t barkTile(const BarkSet& set, const Piece& piece, const PieceTiling& tiling,
+                       std::uint32_t rootJoint, std::uint32_t quad);
 
 /**
  * A bark set from a texsynth tile set (texsynth::barkTileSet or a loaded tile-set directory): 8-bit colour
@@ -94,8 +128,10 @@ struct BarkSources {
   std::filesystem::path cacheDir;
   /** Tile construction (tile size, seed, …). */
   texsynth::TileSettings tiles = defaultBarkTiles();
-  /** Tiles per class. */
-  int variants = 4;
+  /** Symmetric edge colours of the tiles (1: one border for all; 2: Wang tiles, 16 colourings). */
+  int edgeColours = 2;
+  /** Tiles per class and edge colouring. */
+  int variants = 1;
   /** Photos are halved until their side is at most this many texels (bark scale and synthesis time). */
   int photoSide = 256;
 
@@ -133,7 +169,10 @@ BarkAtlas barkAtlas(const BarkSet& set);
  */
 std::array<glm::vec2, 4> barkAtlasUv(const BarkAtlas& atlas, std::uint32_t tile, int rotation);
 
-/** The packed quad table entry of every quad of `piece`: tile class | rotation << 8. */
-std::vector<std::uint32_t> quadTileTable(const Piece& piece);
+/**
+ * The quad table of `piece` as the renderer uploads it, per quad x: tile class | rotation << 8, y: its four
+ * edge ids (quad edge e in bits 8e … 8e + 7).
+ */
+std::vector<glm::uvec2> quadTileTable(const Piece& piece);
 
 } // namespace sylva::trees

@@ -25,7 +25,8 @@
 //   baseColorFactor); the impostor (its atlas, alpha mask, double sided).
 // - Impostor: a far LOD node holding one vertical quad through the trunk axis, sized to the tree's bounds and
 //   textured with the atlas's side view, to be turned towards the camera (`extras.impostor`: billboard
-//   "camera-facing", layout "octahedral" or "grid", viewsPerSide, the view the quad shows, the bounds).
+//   "camera-facing", layout "octahedral", "hemi-octahedral" or "grid", viewsPerSide, the view the quad
+//   shows, the bounds; with the atlas's framing sphere, the quad is that sphere's square and `sphereM`).
 // - Wind: scene extras `wind` (the species' Young's modulus, wood density and damping ratio, the
 //   JointWindSettings) and every bending joint's node extras `wind` (frequencyHz, dampingRatio,
 //   stiffnessNmPerRad, dampingNmsPerRad, inertiaKgM2, massKg) as buildJointWindRest() computes them.
@@ -36,6 +37,7 @@
 #include <sylva/trees/Tree.hpp>
 
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
 #include <cstddef>
@@ -67,6 +69,12 @@ struct ImpostorAtlas {
    * grid vertices of the upper hemisphere) or "grid" (yaw steps by rows).
    */
   std::string layout = "octahedral";
+  /**
+   * The bounding sphere the views were framed on, metres: centre relative to the tree's base (xyz) and
+   * radius (w), as ImpostorRenderer fits it. With it the quad is the square of side 2·radius through the
+   * centre, so the view shows at the tree's size; none: the quad spans the tree's bounds.
+   */
+  std::optional<glm::vec4> sphere;
 };
 
 /** What exportTreeGltf() and exportTreeObj() write. */

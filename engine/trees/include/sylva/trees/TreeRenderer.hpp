@@ -165,6 +165,7 @@ private:
   gl::Texture mBarkNormal{gl::NoCreate};
   std::uint32_t mBarkLayers = 0;
   int mBarkTileSize = 0;
+  int mEdgeColours = 1;
   bool mBarkNormals = false;
   std::array<std::uint32_t, SYLVA_TREE_MAX_TILE_CLASSES> mTileFirst{};
   std::array<std::uint32_t, SYLVA_TREE_MAX_TILE_CLASSES> mTileCount{};
