@@ -43,7 +43,8 @@ phase "asan: unit + gl"
 env -u SYLVA_REQUIRE_DISPLAY ctest --preset asan -j "$jobs"
 
 phase "build tsan (parallel CPU code)"
-scripts/build.sh tsan sylva_unit_core sylva_unit_terrain sylva_unit_folding sylva_unit_grass sylva_unit_trees
+scripts/build.sh tsan sylva_unit_core sylva_unit_terrain sylva_unit_folding sylva_unit_grass sylva_unit_trees \
+  sylva_unit_texsynth
 phase "tsan: parallel CPU code"
 ctest --preset tsan -j "$jobs"
 

@@ -460,9 +460,15 @@ std::vector<SpeciesMix> speciesMixes(const std::vector<std::string>& given) {
   return mixes;
 }
 
+/** The Bark combo's choices (--trees-bark values); a tile-set directory given on the command line comes last.
+ */
+constexpr const char* kBarkModes[] = {"auto", "procedural", "none"};
+constexpr const char* kBarkLabels[] = {"photos (auto)", "procedural", "flat colours (none)"};
+
 /**
  * The viewer's forest: built from the --trees options at start (or on the panel's first enable) and rebuilt
- * by the panel (species mix, count, seed, spacing); tessellation, draw distance, view and wind change live.
+ * by the panel (species mix, count, seed, spacing); tessellation, draw distance, view, wind, bark and foliage
+ * change live; the far field is re-baked by its Apply button.
  */
 struct ViewerTrees {
   /** The options the forest was built from; lod is the live level of detail. */
@@ -479,14 +485,34 @@ struct ViewerTrees {
   int pendingSeed = 0;
   float pendingSpacing = 0.0f;
   std::string buildError;
+  /** The last bark, foliage or far-field change's error (the scene keeps what it drew). */
+  std::string surfaceError;
   bool wind = true;
   /** Multiplies the shared wind's mean speed for the trees (gusts are a fraction of it). */
   float windStrength = 1.0f;
   int view = 0;
+  /** A tile-set directory given as --trees-bark (the combo's fourth choice), else empty. */
+  std::string barkDirectory;
+  /** Far field being edited; the scene changes only on Apply. */
+  bool pendingFar = false;
+  float pendingFarDistance = 150.0f;
+  float pendingFarBand = 25.0f;
+  int pendingFarCount = 0;
   /** Whether the panel's Trees section showed last frame (the visible counts are read only then). */
   bool panelOpen = false;
   /** Visible instances per piece type of this frame's cull (read after the draw while the section shows). */
   std::vector<std::uint32_t> visible;
+  /** Far trees the last impostor cull kept (read like `visible`; empty without a far field or when not
+   * drawn). */
+  std::optional<std::uint32_t> farVisible;
+
+  /** Starts the far-field editor at the flags' values. */
+  void resetPendingFar() {
+    pendingFar = flags.farDistance > 0.0f;
+    pendingFarDistance = pendingFar ? flags.farDistance : 150.0f;
+    pendingFarBand = flags.farBand;
+    pendingFarCount = flags.farCount;
+  }
 
   /** The scene to draw this frame, or null when the trees are off. */
   TreeScene* active() const { return enabled ? scene.get() : nullptr; }
@@ -526,19 +552,70 @@ void rebuildTrees(ViewerTrees& t, const terrain::TerrainScene& scene, const tree
   }
 }
 
-/** Sum of the GPU times of this frame's tree passes ("trees cull", "trees", "trees wind"), ms. */
+/**
+ * Sum of the GPU times of this frame's tree passes ("trees cull", "trees", "trees wind", "foliage bake",
+ * "foliage", "impostors cull", "impostors"), ms.
+ */
 double treesGpuMs(const render::GpuTimers& timers) {
   double ms = 0.0;
   for (const render::PassTiming& p : timers.lastFrame()) {
-    ms += p.name.rfind("trees", 0) == 0 ? p.gpuMs : 0.0;
+    const bool tree =
+        p.name.rfind("trees", 0) == 0 || p.name.rfind("foliage", 0) == 0 || p.name.rfind("impostors", 0) == 0;
+    ms += tree ? p.gpuMs : 0.0;
   }
   return ms;
 }
 
+/** "bark: N tile sets of T×T texels (M layers)" or "bark: flat colours", as the scene draws it now. */
+std::string barkStatus(const TreeScene& scene) {
+  const std::vector<trees::BarkSet>& sets = scene.barkSets();
+  if (sets.empty()) {
+    return "bark: flat colours";
+  }
+  std::size_t layers = 0;
+  for (const trees::BarkSet& set : sets) {
+    layers += set.colour.size();
+  }
+  return fmt::format("bark: {} tile set{} of {}x{} texels ({} layers)", sets.size(),
+                     sets.size() == 1 ? "" : "s", sets[0].tileSize, sets[0].tileSize, layers);
+}
+
+/**
+ * Re-bakes the far field after bark or foliage changed, so the impostors look like the trees they replace
+ * (nothing without a far field). Throws like applyFarField.
+ */
+void rebakeFarField(ViewerTrees& t, const terrain::TerrainScene& scene) {
+  if (t.scene && t.scene->impostors() != nullptr) {
+    t.flags.applyFarField(*t.scene, scene);
+  }
+}
+
+/** Bark from --trees-bark `mode`; on an error keeps the bark drawn and shows the message. */
+void applyBark(ViewerTrees& t, const terrain::TerrainScene& scene, const std::string& mode) {
+  const std::string before = t.flags.bark;
+  t.flags.bark = mode;
+  bool changed = false;
+  try {
+    if (t.scene) {
+      t.scene->setBark(t.flags.barkSources());
+      changed = true;
+      rebakeFarField(t, scene);
+    }
+    t.surfaceError.clear();
+  } catch (const Error& e) {
+    if (!changed) {
+      t.flags.bark = before; // the scene kept its bark: the combo shows it
+    }
+    t.surfaceError = e.what();
+    log::error("{}", e.what());
+  }
+}
+
 /**
  * The trees section of the panel: on/off (building the forest on the first enable), species mix (rebuilds at
- * once), count, seed and spacing (rebuilt by Rebuild), live tessellation, draw distance, wind and view, and
- * the forest's and the last cull's counts and GPU time.
+ * once), count, seed and spacing (rebuilt by Rebuild), live tessellation, draw distance, wind and view, bark
+ * and foliage (at once), the far field (applied by Apply), and the forest's, the foliage's, the impostors'
+ * and the last cull's counts, GPU time and memory.
  */
 void treesPanel(ViewerTrees& t, const terrain::TerrainScene& scene, const render::GpuTimers& timers) {
   t.panelOpen = ImGui::CollapsingHeader("Trees", t.enabled ? ImGuiTreeNodeFlags_DefaultOpen : 0);
@@ -622,8 +699,87 @@ void treesPanel(ViewerTrees& t, const terrain::TerrainScene& scene, const render
   ImGui::SliderFloat("strength", &t.windStrength, 0.0f, 4.0f, "%.2f", clamp);
   ImGui::EndDisabled();
   disabledTooltip("times the wind speed of the Grass section (direction and gusts from there too)");
-  const char* views[] = {"shaded", "piece types", "bones (root weights)", "LOD levels"};
-  ImGui::Combo("trees view", &t.view, views, 4);
+  const char* views[] = {"shaded", "piece types", "bones (root weights)", "LOD levels", "bark tiles (ids)"};
+  ImGui::Combo("trees view", &t.view, views, 5);
+  disabledTooltip("foliage and far impostors show in the shaded view only");
+
+  ImGui::Separator();
+  const int barkModes = t.barkDirectory.empty() ? 3 : 4;
+  int bark = 3;
+  for (int i = 0; i < 3; ++i) {
+    bark = t.flags.bark == kBarkModes[i] ? i : bark;
+  }
+  const std::string directoryLabel = "tile set: " + t.barkDirectory;
+  auto barkLabel = [&](int i) { return i < 3 ? kBarkLabels[i] : directoryLabel.c_str(); };
+  if (ImGui::BeginCombo("bark", barkLabel(bark))) {
+    for (int i = 0; i < barkModes; ++i) {
+      if (ImGui::Selectable(barkLabel(i), i == bark) && i != bark) {
+        applyBark(t, scene, i < 3 ? kBarkModes[i] : t.barkDirectory);
+      }
+    }
+    ImGui::EndCombo();
+  }
+  disabledTooltip("photos: each species' bark photos synthesised into tiles (procedural where missing); "
+                  "synthesis takes a while the first time, then comes from the cache");
+  if (t.scene) {
+    ImGui::TextUnformatted(barkStatus(*t.scene).c_str());
+  }
+  if (ImGui::Checkbox("foliage", &t.flags.foliage) && t.scene) {
+    try {
+      t.flags.applyFoliage(*t.scene);
+      rebakeFarField(t, scene);
+      t.surfaceError.clear();
+    } catch (const Error& e) {
+      t.flags.foliage = t.scene->foliage() != nullptr; // the checkbox shows what is drawn
+      t.surfaceError = e.what();
+      log::error("{}", e.what());
+    }
+  }
+  disabledTooltip("2.5D leaf impostors at the branch tips (with a far field, its impostors are re-baked)");
+
+  ImGui::Checkbox("far field (impostors)", &t.pendingFar);
+  ImGui::BeginDisabled(!t.pendingFar);
+  ImGui::SliderFloat("far distance (m)", &t.pendingFarDistance, 1.0f, 5000.0f, "%.0f", logarithmic);
+  disabledTooltip("trees farther than this become octahedral impostors");
+  ImGui::SliderFloat("band (m)", &t.pendingFarBand, 0.1f, 1000.0f, "%.1f", logarithmic);
+  disabledTooltip("over how many metres they dissolve into their impostors");
+  ImGui::InputInt("impostor-only trees", &t.pendingFarCount, 100, 1000);
+  t.pendingFarCount = std::clamp(t.pendingFarCount, 0, 2000000);
+  disabledTooltip("trees added around the forest out to the terrain's edge, drawn as impostors only");
+  ImGui::EndDisabled();
+  const bool farOn = t.flags.farDistance > 0.0f;
+  const bool farEdited =
+      t.pendingFar != farOn ||
+      (t.pendingFar && (t.pendingFarDistance != t.flags.farDistance || t.pendingFarBand != t.flags.farBand ||
+                        t.pendingFarCount != t.flags.farCount));
+  ImGui::BeginDisabled(!farEdited);
+  if (ImGui::Button("Apply##far")) {
+    const TreeFlags before = t.flags;
+    t.flags.farDistance = t.pendingFar ? t.pendingFarDistance : 0.0f;
+    if (t.pendingFar) {
+      t.flags.farBand = t.pendingFarBand;
+      t.flags.farCount = t.pendingFarCount;
+    }
+    try {
+      if (t.scene) {
+        t.flags.applyFarField(*t.scene, scene); // bakes the atlas: seconds on llvmpipe
+      }
+      t.surfaceError.clear();
+    } catch (const Error& e) {
+      t.flags = before; // setFarField replaces the impostors only when it succeeds
+      t.surfaceError = e.what();
+      log::error("{}", e.what());
+    }
+  }
+  ImGui::EndDisabled();
+  disabledTooltip("bakes every species' impostor atlas (a few seconds on a software renderer)");
+  if (farEdited) {
+    ImGui::SameLine();
+    if (ImGui::Button("Revert##far")) {
+      t.resetPendingFar();
+    }
+  }
+  errorText(t.surfaceError);
 
   if (t.scene) {
     ImGui::Separator();
@@ -646,7 +802,22 @@ void treesPanel(ViewerTrees& t, const terrain::TerrainScene& scene, const render
     if (t.scene->windOn()) {
       ImGui::Text("wind steps        %d this frame (%.0f Hz)", t.scene->lastSteps(), 1.0 / kTreeWindStep);
     }
-    ImGui::Text("GPU time          %.3f ms (cull, wind, draw)", treesGpuMs(timers));
+    if (const trees::FoliageRenderer* foliage = t.scene->foliage()) {
+      const trees::FoliageStats stats = foliage->stats();
+      ImGui::Text("foliage           %zu billboards, %d px cloud, %zu bakes", stats.anchors,
+                  stats.textureSize, stats.bakes);
+    } else {
+      ImGui::TextUnformatted("foliage           off"); // a line either way: the rows above stay in place
+    }
+    if (const trees::ImpostorRenderer* impostors = t.scene->impostors()) {
+      ImGui::Text("far trees         %zu (%d species baked)", impostors->treeCount(),
+                  impostors->speciesCount());
+      if (t.enabled && t.farVisible) {
+        ImGui::Text("  visible far     %u", *t.farVisible);
+      }
+      ImGui::Text("impostor memory   %.1f MB", static_cast<double>(impostors->gpuBytes()) / 1e6);
+    }
+    ImGui::Text("GPU time          %.3f ms (cull, wind, draw, foliage, impostors)", treesGpuMs(timers));
     ImGui::Text("GPU memory        %.1f MB", static_cast<double>(t.scene->gpuBytes()) / 1e6);
   }
 }
@@ -703,6 +874,9 @@ void runViewer(const ViewOptions& o) {
     woods.pendingSpacing = o.trees.forest.spacing;
     woods.wind = o.trees.wind;
     woods.view = static_cast<int>(o.trees.treeView());
+    const bool barkPreset = o.trees.bark == "auto" || o.trees.bark == "procedural" || o.trees.bark == "none";
+    woods.barkDirectory = barkPreset ? std::string() : o.trees.bark;
+    woods.resetPendingFar();
     if (woods.enabled) {
       buildTrees(woods, *v.terrain);
       if (o.camera.cameraPos.empty() && !grass.enabled) {
@@ -899,6 +1073,11 @@ void runViewer(const ViewOptions& o) {
       }
       if (showUi && woods.panelOpen && woods.active() != nullptr) {
         woods.visible = woods.active()->renderer().readVisibleCounts(); // synchronous: only while shown
+        const trees::ImpostorRenderer* impostors = woods.active()->impostors();
+        woods.farVisible.reset();
+        if (impostors != nullptr && woods.view == static_cast<int>(trees::TreeView::Shaded)) {
+          woods.farVisible = impostors->readVisibleCount(); // drawn in the shaded view only
+        }
       }
     } else {
       v.demo->render(camera, size.x, size.y, sceneTime, &timers, v.draw.wireframe);
