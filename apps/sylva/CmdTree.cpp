@@ -43,6 +43,15 @@
 namespace sylva::app {
 namespace {
 
+/** --species (required): a preset name or a species JSON file. */
+void addSpeciesOption(CLI::App& command, std::string& species) {
+  command
+      .add_option("--species", species,
+                  "A preset name (see 'sylva tree species') or a species JSON file (a path with '/' or "
+                  "ending in .json)")
+      ->required();
+}
+
 namespace fs = std::filesystem;
 
 std::string vec3(const glm::vec3& v) {
@@ -79,11 +88,7 @@ void registerGenerate(CLI::App& tree) {
     std::string out;
   };
   auto o = std::make_shared<Options>();
-  command
-      ->add_option("--species", o->species,
-                   "A preset name (see 'sylva tree species') or a species JSON file (a path with '/' or "
-                   "ending in .json)")
-      ->required();
+  addSpeciesOption(*command, o->species);
   command->add_option("--seed", o->seed, "Seed of the tree's random choices")
       ->check(unsignedInteger())
       ->capture_default_str();
@@ -403,11 +408,7 @@ void registerExport(CLI::App& tree) {
     bool straight = false;
   };
   auto o = std::make_shared<Options>();
-  command
-      ->add_option("--species", o->species,
-                   "A preset name (see 'sylva tree species') or a species JSON file (a path with '/' or "
-                   "ending in .json)")
-      ->required();
+  addSpeciesOption(*command, o->species);
   command->add_option("--seed", o->seed, "Seed of the tree's random choices (as 'sylva tree generate')")
       ->check(unsignedInteger())
       ->capture_default_str();

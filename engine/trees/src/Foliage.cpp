@@ -3,6 +3,8 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Random.hpp>
 
+#include "internal/AssimpMath.hpp"
+
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -52,16 +54,6 @@ glm::vec3 perpendicular(const glm::vec3& n) {
 
 float srgbToLinear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-glm::mat4 toGlm(const aiMatrix4x4& m) {
-  glm::mat4 out(1.0f);
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      out[c][r] = m[static_cast<unsigned>(r)][static_cast<unsigned>(c)];
-    }
-  }
-  return out;
 }
 
 } // namespace
@@ -234,7 +226,7 @@ LeafCloud loadLeafCloud(const fs::path& file, std::size_t maxTriangles) {
     if (++visited > 1000000) {
       fail("{}: more than 1,000,000 nodes", name);
     }
-    const glm::mat4 global = parent * toGlm(node->mTransformation);
+    const glm::mat4 global = parent * internal::toGlm(node->mTransformation);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(global)));
     for (unsigned k = 0; k < node->mNumMeshes; ++k) {
       const unsigned m = node->mMeshes[k];

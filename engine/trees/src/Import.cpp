@@ -6,6 +6,8 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 
+#include "internal/AssimpMath.hpp"
+
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -40,16 +42,6 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-glm::mat4 toGlm(const aiMatrix4x4& m) {
-  glm::mat4 out(1.0f);
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      out[c][r] = m[static_cast<unsigned>(r)][static_cast<unsigned>(c)];
-    }
-  }
-  return out;
 }
 
 std::string vec3Text(const glm::vec3& v) {
@@ -133,7 +125,7 @@ RawMesh readMesh(const aiScene& scene, const std::string& file, bool trianglePai
       if (node == nullptr) {
         continue;
       }
-      const glm::mat4 global = parent * toGlm(node->mTransformation);
+      const glm::mat4 global = parent * internal::toGlm(node->mTransformation);
       nodeFrames.emplace(node->mName.C_Str(), global);
       for (unsigned c = 0; c < node->mNumChildren; ++c) {
         open.emplace_back(node->mChildren[c], global);
@@ -148,7 +140,7 @@ RawMesh readMesh(const aiScene& scene, const std::string& file, bool trianglePai
     if (node == nullptr) {
       continue;
     }
-    const glm::mat4 global = parent * toGlm(node->mTransformation);
+    const glm::mat4 global = parent * internal::toGlm(node->mTransformation);
     // Children in order: push in reverse so the first child is read first.
     for (unsigned c = node->mNumChildren; c-- > 0;) {
       stack.emplace_back(node->mChildren[c], global);
@@ -270,8 +262,9 @@ RawMesh readMesh(const aiScene& scene, const std::string& file, bool trianglePai
         if (!group.frame) {
           // The bone's node in model space, else its bind pose (the inverse of the offset matrix).
           const auto node = nodeFrames.find(bone.mName.C_Str());
-          const glm::mat4 frame =
-              node != nodeFrames.end() ? node->second : global * glm::inverse(toGlm(bone.mOffsetMatrix));
+          const glm::mat4 frame = node != nodeFrames.end()
+                                      ? node->second
+                                      : global * glm::inverse(internal::toGlm(bone.mOffsetMatrix));
           bool ok = true;
           for (int c = 0; c < 4; ++c) {
             ok = ok && finite(glm::vec3(frame[c]));
