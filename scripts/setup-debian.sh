@@ -17,7 +17,7 @@ packages=(
   libbullet-dev
   # trees: artist-made pieces (glTF, OBJ, Collada) through Assimp; exported trees read back by tinygltf and
   # checked by the Khronos gltf-validator (Node; scripts/fetch-node-tools.sh)
-  libassimp-dev libtinygltf-dev nodejs npm
+  libassimp-dev libtinygltf-dev
   # OpenGL/EGL runtime: glvnd loaders + Mesa (llvmpipe) so headless rendering works without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests
@@ -29,6 +29,12 @@ packages=(
   # fuzzing: clang with libFuzzer and its sanitizer runtimes (the `fuzz` preset)
   clang libclang-rt-14-dev
 )
+
+# Node.js with npm for the glTF validator and the npm sample data: Debian's nodejs + npm, unless a Node.js that
+# brings its own npm (e.g. NodeSource's nodejs, which conflicts with Debian's npm package) is already there.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
