@@ -20,9 +20,6 @@ out vec2 teUv[];
 out float teRootWeight[];
 flat out uint teInstance[];
 flat out uint teQuadBase[];
-// The quad's tile class | rotation << 8 and edge ids (quad table), read once per patch here rather than per
-// tessellated vertex.
-patch out uvec2 teTile;
 
 float edgeLevel(vec3 a, vec3 b) {
   if (trees.tess.z > 0.0) {
@@ -42,8 +39,6 @@ void main() {
   teInstance[gl_InvocationID] = vcInstance[gl_InvocationID];
   teQuadBase[gl_InvocationID] = vcQuadBase[gl_InvocationID];
   if (gl_InvocationID == 0) {
-    uint type = (instances[vcInstance[0]].joints.z >> 8) & 255u;
-    teTile = quadTileEntry(type, vcQuadBase[0] + uint(gl_PrimitiveID));
     // GL quad edges: outer[0] is u = 0 (corners 0, 3), [1] v = 0 (0, 1), [2] u = 1 (1, 2), [3] v = 1 (2, 3).
     float l0 = edgeLevel(vcWorld[0], vcWorld[3]);
     float l1 = edgeLevel(vcWorld[0], vcWorld[1]);

@@ -14,7 +14,6 @@ in vec2 teUv[];
 in float teRootWeight[];
 flat in uint teInstance[];
 flat in uint teQuadBase[];
-patch in uvec2 teTile; // from the control shader: class | rotation << 8, edge ids
 
 out vec3 fWorld;
 out vec3 fNormal;
@@ -53,8 +52,9 @@ void main() {
   // The quad's stable id within its piece (gl_PrimitiveID restarts with every command and instance).
   fPatch = teQuadBase[0] + uint(gl_PrimitiveID);
   fLevel = gl_TessLevelInner[0];
-  fTile = tileCoord(vec2(u, v), (teTile.x >> 8) & 3u);
-  fTileClass = teTile.x;
-  fTileEdges = teTile.y;
+  uvec2 entry = quadTileEntry((instances[teInstance[0]].joints.z >> 8) & 255u, fPatch);
+  fTile = tileCoord(vec2(u, v), (entry.x >> 8) & 3u);
+  fTileClass = entry.x;
+  fTileEdges = entry.y;
   gl_Position = frame.viewProj * vec4(world, 1.0);
 }
