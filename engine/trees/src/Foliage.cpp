@@ -4,6 +4,7 @@
 #include <sylva/core/Random.hpp>
 
 #include "internal/AssimpMath.hpp"
+#include "internal/AssimpRead.hpp"
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -199,20 +200,11 @@ LeafCloud makeLeafCloud(const LeafCloudSettings& s) {
 
 LeafCloud loadLeafCloud(const fs::path& file, std::size_t maxTriangles) {
   const std::string name = file.filename().string();
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
-    fail("{}: {}", name, fs::exists(file, ec) ? "not a file" : "no such file");
-  }
   Assimp::Importer importer;
   importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_SortByPType);
-  if (scene == nullptr) {
-    std::string reason = importer.GetErrorString();
-    std::replace(reason.begin(), reason.end(), '\n', ' ');
-    std::replace(reason.begin(), reason.end(), '\r', ' ');
-    fail("{}: cannot read the file: {}", name, reason.empty() ? std::string("unknown error") : reason);
-  }
+  const aiScene* scene =
+      internal::readScene(importer, file, name, aiProcess_Triangulate | aiProcess_SortByPType);
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mRootNode == nullptr) {
     fail("{}: no triangles", name);
   }

@@ -7,6 +7,7 @@
 #include <sylva/core/Files.hpp>
 
 #include "internal/AssimpMath.hpp"
+#include "internal/AssimpRead.hpp"
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -673,20 +674,10 @@ bool isGltf(const fs::path& file) {
 
 Piece importPiece(const fs::path& file, const ImportOptions& options) {
   const std::string name = file.filename().string();
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
-    fail("{}: {}", name, fs::exists(file, ec) ? "not a file" : "no such file");
-  }
   Assimp::Importer importer;
   importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
   // Join identical vertices (files store one per face corner); never triangulate: pieces are quads.
-  const aiScene* scene = importer.ReadFile(file.string(), aiProcess_JoinIdenticalVertices);
-  if (scene == nullptr) {
-    std::string reason = importer.GetErrorString();
-    std::replace(reason.begin(), reason.end(), '\n', ' ');
-    std::replace(reason.begin(), reason.end(), '\r', ' ');
-    fail("{}: cannot read the file: {}", name, reason.empty() ? std::string("unknown error") : reason);
-  }
+  const aiScene* scene = internal::readScene(importer, file, name, aiProcess_JoinIdenticalVertices);
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mRootNode == nullptr) {
     fail("{}: no mesh in the file", name);
   }
