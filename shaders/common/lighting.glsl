@@ -1,15 +1,15 @@
-// Simple outdoor lighting: Lambert sun + hemispheric ambient + exponential distance fog. All inputs linear.
+// Simple outdoor lighting: Lambert sun (shadowed, shadows.glsl) + hemispheric ambient + distance haze (atmosphere.glsl). All inputs linear.
 #pragma once
+#include "atmosphere.glsl"
 #include "frame.glsl"
+#include "shadows.glsl"
 
 vec3 shadeOutdoor(vec3 albedo, vec3 normal, vec3 worldPos) {
   vec3 sun = normalize(frame.sunDirection.xyz);
-  float diffuse = max(dot(normal, sun), 0.0) * frame.sunDirection.w;
+  float diffuse = max(dot(normal, sun), 0.0) * frame.sunDirection.w * sunVisibility(worldPos, normal);
   float sky = 0.5 + 0.5 * normal.y;
   vec3 lit = albedo * (diffuse * vec3(1.0, 0.96, 0.88) + mix(vec3(0.18, 0.16, 0.14), vec3(0.32, 0.38, 0.48), sky));
-  float distance = length(worldPos - frame.cameraPos.xyz);
-  float fog = 1.0 - exp(-frame.fogColor.a * distance);
-  return mix(lit, frame.fogColor.rgb, clamp(fog, 0.0, 1.0));
+  return applyAtmosphere(lit, worldPos);
 }
 
 // Linear → sRGB for 8-bit output without an sRGB framebuffer.

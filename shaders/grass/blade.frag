@@ -51,7 +51,7 @@ void main() {
   // the tip, which keeps a sunlit field bright instead of a mass of dark edge-on strips.
   vec3 Nlit = normalize(mix(N, vec3(0.0, 1.0, 0.0), 0.35 + 0.25 * vAlong));
   vec3 L = normalize(frame.sunDirection.xyz);
-  float sun = frame.sunDirection.w;
+  float sun = frame.sunDirection.w * sunVisibility(vWorld, N);
   // Darker, greener base; lighter tips.
   vec3 albedo = vColour * mix(0.7, 1.12, vAlong);
   float diffuse = max(dot(Nlit, L), 0.0);
@@ -67,6 +67,5 @@ void main() {
   // Root occlusion: the field shades its own lower parts.
   float occlusion = mix(0.3, 1.0, smoothstep(0.0, 0.55, vAlong));
   vec3 lit = (albedo * (diffuse * sun * vec3(1.0, 0.96, 0.88) + ambient) + (translucent + specular) * sun) * occlusion;
-  float fog = 1.0 - exp(-frame.fogColor.a * length(toEye));
-  outColor = vec4(toSrgb(mix(lit, frame.fogColor.rgb, clamp(fog, 0.0, 1.0))), 1.0);
+  outColor = vec4(toSrgb(applyAtmosphere(lit, vWorld)), 1.0);
 }

@@ -38,7 +38,6 @@ void main() {
     lit = water * 0.6; // the side of the water body: no sky reflection
     fresnel = 0.0;
   }
-  float fog = clamp(1.0 - exp(-frame.fogColor.a * length(vWorldPos - frame.cameraPos.xyz)), 0.0, 1.0);
   float alpha = clamp(mix(0.55, 0.97, deep) + fresnel, 0.0, 1.0);
-  outColor = vec4(toSrgb(mix(lit, frame.fogColor.rgb, fog)), alpha);
+  outColor = vec4(toSrgb(applyAtmosphere(lit, vWorldPos)), alpha);
 }

@@ -39,6 +39,7 @@ void main() {
   // Never nearer than the quad itself (rounding), as depth_greater promises.
   gl_FragDepth = max(depth, gl_FragCoord.z);
   vec3 lit = fromSrgb(texel.rgb) / foliage.right.w * foliage.leafColours[fSpecies].rgb;
-  float fog = clamp(1.0 - exp(-frame.fogColor.a * distance(p, frame.cameraPos.xyz)), 0.0, 1.0);
-  outColour = vec4(toSrgb(mix(lit, frame.fogColor.rgb, fog)), 1.0);
+  // The bake lit the leaves by the sun; in a shadowed spot only the sky's share (about half) remains.
+  lit *= mix(0.5, 1.0, sunVisibility(p, -r));
+  outColour = vec4(toSrgb(applyAtmosphere(lit, p)), 1.0);
 }

@@ -14,6 +14,15 @@ void FrameUniformBuffer::update(const Camera& camera, int width, int height, dou
   mData.fogColor = glm::vec4(environment.fogColor, environment.fogDensity);
   mData.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height),
                              1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
+  mData.atmosphere = glm::vec4(static_cast<float>(environment.atmosphere), environment.turbidity,
+                               environment.exposure, 0.0f);
+  const ShadowFrame& shadows = environment.shadows;
+  mData.shadowParams =
+      glm::vec4(static_cast<float>(shadows.cascades), shadows.depthBias, shadows.texel, shadows.normalOffset);
+  mData.shadowSplits = shadows.splits;
+  for (int i = 0; i < 4; ++i) {
+    mData.shadowMatrices[i] = shadows.matrices[i];
+  }
   mBuffer.setSubData(0, sizeof(mData), &mData);
 }
 
