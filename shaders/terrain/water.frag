@@ -1,8 +1,8 @@
 #version 450 core
 // Still water at sea level: colour and opacity from the true water depth under each fragment (terrain heights
-// divided by the vertical exaggeration), Schlick Fresnel towards the sky colour, a sun glint, and the same
-// distance fog as the terrain. Drawn after the terrain with alpha blending and no depth writes; fragments over
-// absent samples (nodata) or dry ground are discarded.
+// divided by the vertical exaggeration), Schlick Fresnel towards the sky colour (the analytic sky in mode 1),
+// a sun glint, and the same distance haze as the terrain. Drawn after the terrain with alpha blending and no
+// depth writes; fragments over absent samples (nodata) or dry ground are discarded.
 #include "terrain.glsl"
 #include "../common/lighting.glsl"
 
@@ -30,7 +30,9 @@ void main() {
   vec3 toEye = normalize(frame.cameraPos.xyz - vWorldPos);
   float cosView = clamp(toEye.y, 0.0, 1.0);
   float fresnel = 0.02 + 0.6 * pow(1.0 - cosView, 5.0);
-  vec3 sky = mix(frame.fogColor.rgb, vec3(0.25, 0.42, 0.72), 0.5);
+  // Mode 1 (scenes): the analytic sky in the mirror direction (common/sky.glsl); mode 0: the old tint.
+  vec3 sky = frame.atmosphere.x > 0.5 ? frameSkyRadiance(reflect(-toEye, vec3(0.0, 1.0, 0.0)))
+                                      : mix(frame.fogColor.rgb, vec3(0.25, 0.42, 0.72), 0.5);
   vec3 sun = normalize(frame.sunDirection.xyz);
   float glint = pow(max(dot(reflect(-toEye, vec3(0.0, 1.0, 0.0)), sun), 0.0), 400.0) * frame.sunDirection.w;
   vec3 lit = mix(water * (0.35 + 0.65 * max(sun.y, 0.0)), sky, fresnel) + vec3(glint);
