@@ -18,8 +18,8 @@ struct FrameUniforms {
   // x: 0 = flat exponential fog towards fogColor (the standalone subsystems), 1 = analytic sky and aerial
   // perspective (scenes, shaders/common/atmosphere.glsl); y: sky turbidity (2..10); z: exposure; w: reserved
   vec4 atmosphere;
-  // x: sun shadow cascades in use (0 = no shadows); y: depth bias (shadow-map depth units); z: 1 / shadow-map
-  // size in texels; w: normal offset in world metres per shadow texel (shaders/common/shadows.glsl)
+  // x: sun shadow cascades in use (0 = no shadows); y: depth bias (metres towards the sun); z: 1 / shadow-map
+  // size in texels; w: normal offset in texels of the receiver's cascade (shaders/common/shadows.glsl)
   vec4 shadowParams;
   vec4 shadowSplits;        // far end of cascade i, metres along the view direction
   mat4 shadowMatrices[4];   // world → cascade i's shadow-map space [0,1]³

@@ -16,6 +16,10 @@ glm::mat4 Camera::view() const {
 }
 
 glm::mat4 Camera::projection(float aspect) const {
+  if (orthoHeight > 0.0f) {
+    const float w = orthoHeight * aspect;
+    return glm::ortho(-w, w, -orthoHeight, orthoHeight, nearPlane, farPlane);
+  }
   return glm::perspective(fovY, aspect, nearPlane, farPlane);
 }
 

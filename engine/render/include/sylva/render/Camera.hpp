@@ -10,8 +10,8 @@
 namespace sylva::render {
 
 /**
- * Perspective camera in world space (metres, y up, right-handed; looks along -z of its view space).
- * Value type.
+ * Camera in world space (metres, y up, right-handed; looks along -z of its view space): perspective by
+ * default, orthographic when orthoHeight > 0 (the sun's view of a shadow cascade). Value type.
  */
 struct Camera {
   glm::vec3 position{0.0f, 10.0f, 30.0f};
@@ -20,9 +20,14 @@ struct Camera {
   float fovY = glm::radians(60.0f); ///< vertical field of view, radians
   float nearPlane = 0.1f;           ///< metres
   float farPlane = 5000.0f;         ///< metres
+  /**
+   * 0 = perspective (fovY). > 0 = orthographic: the view spans ±orthoHeight metres vertically and
+   * ±orthoHeight·aspect horizontally around the view axis, between nearPlane and farPlane (fovY unused).
+   */
+  float orthoHeight = 0.0f;
 
   glm::mat4 view() const;
-  /** Projection for `aspect` = width / height. */
+  /** Projection for `aspect` = width / height (glm::perspective, or glm::ortho when orthoHeight > 0). */
   glm::mat4 projection(float aspect) const;
   glm::mat4 viewProjection(float aspect) const { return projection(aspect) * view(); }
   Frustum frustum(float aspect) const { return Frustum(viewProjection(aspect)); }

@@ -13,9 +13,9 @@ namespace sylva::render {
  */
 struct ShadowFrame {
   int cascades = 0;          ///< cascades in use, 0..4
-  float depthBias = 0.0f;    ///< subtracted from the receiver's shadow-map depth (0..1 depth units)
+  float depthBias = 0.0f;    ///< receivers move this many metres towards the sun before the compare
   float texel = 0.0f;        ///< 1 / shadow-map size in texels
-  float normalOffset = 0.0f; ///< receiver offset along its normal, world metres per shadow texel
+  float normalOffset = 0.0f; ///< receiver offset along its normal, in texels of its cascade
   glm::vec4 splits{0.0f};    ///< far end of each cascade, metres along the view direction
   glm::mat4 matrices[4]{};   ///< world → cascade shadow-map space [0,1]³
 };
