@@ -192,6 +192,9 @@ void TerrainFlags::add(CLI::App& command) {
   command.add_option("--lod-factor", quadtree.lodDistanceFactor, "Split when distance < factor x node size")
       ->check(finiteRange(terrain::kMinRestrictedLodFactor, 64.0))
       ->capture_default_str();
+  command.add_flag("--terrain-geomorph,!--no-terrain-geomorph", geomorph,
+                   "Geomorphing: terrain heights blend between LOD levels by distance, so patches do not pop "
+                   "when they split or merge (default: off)");
 }
 
 terrain::QuadtreeConfig TerrainFlags::configFor(const terrain::HeightField& field) const {
@@ -219,6 +222,7 @@ terrain::QuadtreeConfig TerrainFlags::configFor(const terrain::HeightField& fiel
 
 std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library& library) const {
   terrain::TerrainSceneOptions options;
+  options.geomorph = geomorph;
   if (!layers.empty()) {
     options.layers = terrain::loadSplatLayers(layers); // before loading: a bad rules file costs nothing
   }

@@ -42,9 +42,11 @@ struct TerrainFlags {
   float exaggeration = 1.0f;
   SeaLevelFlag seaLevel;
   terrain::QuadtreeConfig quadtree = defaultQuadtree();
+  /** --terrain-geomorph / --no-terrain-geomorph: TerrainSceneOptions::geomorph (default off). */
+  bool geomorph = false;
 
   /** Adds the source options (SourceOptions) and --layers, --exaggeration, --sea-level, --method, --tess,
-   * --roots, --max-depth, --lod-factor. */
+   * --roots, --max-depth, --lod-factor, --terrain-geomorph. */
   void add(CLI::App& command);
   /** Loads the heights and builds the scene (needs a GL context); errors name the file or option. */
   std::unique_ptr<terrain::TerrainScene> build(const shader::Library& library) const;

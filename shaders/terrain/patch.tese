@@ -6,7 +6,11 @@
 // with `invariant gl_Position`, the same clip position: no cracks, not even sub-pixel ones.
 #include "terrain.glsl"
 
+#ifdef SYLVA_TERRAIN_POINTS
+layout(quads, equal_spacing, ccw, point_mode) in; // TerrainDrawOptions::vertexPoints: one point per vertex
+#else
 layout(quads, equal_spacing, ccw) in;
+#endif
 patch in vec4 tcRect;  // x, z: min corner; y: size; w: minY (metres)
 patch in vec4 tcOuter; // outer levels, PatchEdge order
 patch in ivec4 tcGrid; // grid x, depth, grid z, skirt edge (-1: surface)
@@ -48,7 +52,6 @@ void main() {
     bool westEast = uv.x == 0.0 || uv.x == 1.0;
     xz.x = axisCoord(g.x, uv.x, size, northSouth, uv.y == 0.0 ? tcOuter[1] : tcOuter[3]);
     xz.y = axisCoord(g.y, uv.y, size, westEast, uv.x == 0.0 ? tcOuter[0] : tcOuter[2]);
-    y = terrainHeight(xz);
   } else {
     // Skirt under edge e: top vertices are that edge's surface vertices, bottom ones hang below the node.
     int e = tcGrid.w;
@@ -59,7 +62,11 @@ void main() {
     } else {
       xz = vec2(along, float(g.y + (e == 3 ? 1 : 0)) * size);
     }
-    y = uv.y == 0.0 ? terrainHeight(xz) : tcRect.w - terrain.spacing.w;
+  }
+  // One call site for surface and skirt tops: the (morphed) height is a function of xz alone.
+  y = terrainMorphedHeight(xz);
+  if (tcGrid.w >= 0 && uv.y != 0.0) {
+    y = tcRect.w - terrain.spacing.w;
   }
   teWorldPos = vec3(xz.x, y, xz.y);
   teLevel = tcGrid.y;

@@ -41,3 +41,49 @@ float terrainHeight(vec2 xz) {
 vec2 terrainUv(vec2 xz) {
   return (xz / terrain.spacing.xy + 0.5) / vec2(terrain.field.xy);
 }
+
+// Geomorphing (TerrainDrawOptions::geomorph; CPU reference: sylva::terrain::morphedHeight, Geomorph.cpp).
+// uMorphCamera: xyz = camera the selection was made for (world metres), w = 1 when on.
+// uMorphLod: x = root size (m), y = max depth, z = base tessellation level T, w = LOD distance factor F.
+uniform vec4 uMorphCamera;
+uniform vec4 uMorphLod;
+
+// The surface a depth-`depth` patch represents: bilinear over its vertex lattice, spacing root / (2^depth T).
+float latticeHeight(vec2 xz, int depth) {
+  if (depth >= int(uMorphLod.y)) {
+    return terrainHeight(xz);
+  }
+  float step = uMorphLod.x / (exp2(float(depth)) * uMorphLod.z);
+  vec2 q = xz / step;
+  vec2 c = floor(q);
+  vec2 f = q - c;
+  vec2 p0 = c * step;
+  vec2 p1 = (c + 1.0) * step;
+  float h00 = terrainHeight(p0);
+  float h10 = terrainHeight(vec2(p1.x, p0.y));
+  float h01 = terrainHeight(vec2(p0.x, p1.y));
+  float h11 = terrainHeight(p1);
+  float a = h00 + (h10 - h00) * f.x;
+  float b = h01 + (h11 - h01) * f.x;
+  return a + (b - a) * f.y;
+}
+
+// Height drawn at world xz: a function of xz and the camera only, so both patches sharing a vertex agree.
+// λ = log2(F·root / r) bounds the depth of any leaf at distance r from below; the height blends the surfaces of
+// depths ⌈λ⌉ and ⌈λ⌉ − 1, both representable by such a leaf, continuously in r (docs/terrain-lod.md).
+float terrainMorphedHeight(vec2 xz) {
+  float h = terrainHeight(xz);
+  if (uMorphCamera.w == 0.0) {
+    return h;
+  }
+  float r = max(length(uMorphCamera.xyz - vec3(xz.x, h, xz.y)), 1e-3);
+  float lambda = log2(uMorphLod.w * uMorphLod.x / r);
+  int n = clamp(int(ceil(min(lambda, 64.0))), 0, int(uMorphLod.y));
+  float t = n == 0 ? 0.0 : clamp(float(n) - lambda, 0.0, 1.0);
+  float fine = latticeHeight(xz, n);
+  if (t == 0.0) {
+    return fine;
+  }
+  float coarse = latticeHeight(xz, n - 1);
+  return fine + (coarse - fine) * t;
+}

@@ -156,6 +156,8 @@ void TerrainRenderer::reloadShaders(const shader::Library& library) {
       shader::compileProgram(library, {"terrain water", {"terrain/water.vert", "terrain/water.frag"}, {}});
   mWater = std::move(water);
   mSurface = std::move(surface);
+  mSurfacePoints = gl::Program(gl::NoCreate);
+  mLibrary = &library;
   mNormals = std::move(normals);
   mSplat = std::move(splat);
 }
@@ -241,8 +243,21 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
     mNormalMap.bind(2);
     mSplatMap.bind(3);
     mLayerAlbedo.bind(4);
-    mSurface.use();
+    if (options.vertexPoints && !mSurfacePoints) {
+      mSurfacePoints = shader::compileProgram(*mLibrary, {"terrain surface points",
+                                                          {"terrain/patch.vert", "terrain/patch.tesc",
+                                                           "terrain/patch.tese", "terrain/patch.frag"},
+                                                          {{"SYLVA_TERRAIN_POINTS", "1"}}});
+    }
+    gl::Program& surface = options.vertexPoints ? mSurfacePoints : mSurface;
+    surface.use();
     mVao.bind();
+    // Geomorphing follows the selection's camera and LOD distances (off: w = 0, the plain surface).
+    const QuadtreeConfig& lod = selection.config;
+    const bool morph = options.geomorph && lod.lodEnabled;
+    surface.setUniform("uMorphCamera", glm::vec4(selection.camera, morph ? 1.0f : 0.0f));
+    surface.setUniform("uMorphLod", glm::vec4(lod.rootSize, static_cast<float>(lod.maxDepth),
+                                              static_cast<float>(lod.patchTessLevel), lod.lodDistanceFactor));
     glPatchParameteri(GL_PATCH_VERTICES, 4);
     glPolygonMode(GL_FRONT_AND_BACK, options.wireframe ? GL_LINE : GL_FILL);
     const bool count = options.countVertices && mInvocations;
@@ -250,30 +265,30 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
       mInvocations.begin();
     }
     const auto surfaces = static_cast<GLsizei>(selection.nodes.size());
-    mSurface.setUniform("uNodeOffset", 0);
+    surface.setUniform("uNodeOffset", 0);
     if (options.groundTint && options.groundTint->texture != 0) {
       const GroundTint& tint = *options.groundTint;
       glBindTextureUnit(5, tint.texture);
-      mSurface.setUniform("uGroundTint", glm::vec4(tint.colour, std::clamp(tint.strength, 0.0f, 1.0f)));
-      mSurface.setUniform("uGroundTintMap",
-                          glm::vec4(1.0f / tint.spacing.x, 1.0f / tint.spacing.y,
-                                    static_cast<float>(tint.size.x), static_cast<float>(tint.size.y)));
+      surface.setUniform("uGroundTint", glm::vec4(tint.colour, std::clamp(tint.strength, 0.0f, 1.0f)));
+      surface.setUniform("uGroundTintMap",
+                         glm::vec4(1.0f / tint.spacing.x, 1.0f / tint.spacing.y,
+                                   static_cast<float>(tint.size.x), static_cast<float>(tint.size.y)));
     } else {
-      mSurface.setUniform("uGroundTint", glm::vec4(0.0f));
+      surface.setUniform("uGroundTint", glm::vec4(0.0f));
     }
     glDrawArraysInstanced(GL_PATCHES, 0, 4, surfaces);
     if (count) {
       mInvocations.end();
       mLastInvocations = static_cast<std::int64_t>(*mInvocations.result(true));
     }
-    if (options.skirts) {
+    if (options.skirts && !options.vertexPoints) {
       // Skirts lose depth ties against the surface they hang from (exactly shared edge points).
       if (!mCrackSamples) {
         mCrackSamples = gl::Query(GL_SAMPLES_PASSED);
       }
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(1.0f, 4.0f);
-      mSurface.setUniform("uNodeOffset", static_cast<int>(surfaces));
+      surface.setUniform("uNodeOffset", static_cast<int>(surfaces));
       mCrackSamples.begin();
       glDrawArraysInstanced(GL_PATCHES, 0, 4, static_cast<GLsizei>(nodes.size()) - surfaces);
       mCrackSamples.end();
@@ -281,7 +296,8 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
       mLastCrackSamples = static_cast<std::int64_t>(*mCrackSamples.result(true));
     }
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    if (options.waterLevel && options.view == TerrainView::Shaded && !options.wireframe) {
+    if (options.waterLevel && options.view == TerrainView::Shaded && !options.wireframe &&
+        !options.vertexPoints) {
       // Blended over the terrain, tested against its depth, writing none (the plane is a single quad).
       mWater.use();
       mWater.setUniform("uWaterLevel", *options.waterLevel);

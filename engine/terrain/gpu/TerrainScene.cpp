@@ -107,6 +107,7 @@ render::Environment TerrainScene::environment(const render::Camera& camera, floa
 TerrainDrawOptions TerrainScene::drawOptions(const render::Camera& camera, float fog) const {
   TerrainDrawOptions options;
   options.environment = environment(camera, fog);
+  options.geomorph = mOptions.geomorph;
   if (mOptions.seaLevel) {
     options.waterLevel = *mOptions.seaLevel * mOptions.exaggeration;
   }

@@ -293,6 +293,8 @@ void Quadtree::select(const glm::vec3& cameraPos, const Frustum* frustum, Quadtr
   out.nodes.clear();
   out.culled.clear();
   out.stats = QuadtreeStats{};
+  out.camera = cameraPos;
+  out.config = c;
   QuadtreeStats& stats = out.stats;
   mStack.clear();
   mTree.clear();

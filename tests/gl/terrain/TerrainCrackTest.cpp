@@ -4,7 +4,7 @@
 // then skirts under every interior patch edge inside a GL_SAMPLES_PASSED query: surface ∪ skirts is the
 // terrain's footprint, and a skirt sample passes the depth test only where the background would show through
 // the surface. Zero samples in every frame = no crack pixel. With crack removal disabled the same check must
-// find cracks, so it is known to work.
+// find cracks, so it is known to work. The same holds with geomorphing on (TerrainCracksGeomorph).
 #include <sylva/core/Random.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightSources.hpp>
@@ -53,7 +53,7 @@ public:
         mRenderer(library, mField, defaultSplatLayers(heightFieldInfo(mField).minHeight, mMax)) {}
 
   /** Crack samples of pose `index` with `method` at base level `tess`. */
-  std::int64_t cracks(CrackMethod method, int tess, int index) {
+  std::int64_t cracks(CrackMethod method, int tess, int index, bool geomorph = false) {
     QuadtreeConfig config = QuadtreeConfig::forRootCount(16, mField.extentX(), mField.extentZ());
     config.maxDepth = 5;
     config.patchTessLevel = tess;
@@ -69,6 +69,7 @@ public:
     mTarget.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     TerrainDrawOptions options;
     options.skirts = true;
+    options.geomorph = geomorph;
     mRenderer.draw(mSelection, camera, kWidth, kHeight, 0.0, nullptr, options);
     mLevelChanges = 0;
     for (const SelectedNode& n : mSelection.nodes) {
@@ -138,6 +139,51 @@ INSTANTIATE_TEST_SUITE_P(BothMethodsAllLevels, TerrainCracks, ::testing::ValuesI
                                info.param.tess);
                          });
 
+// The same proof with geomorphing on: morphed heights are a function of a vertex's lattice xz and the camera,
+// so shared edge vertices stay bit-identical (skirt tops use the same height). CI: the "ours" method at seven
+// levels over 20 poses; SYLVA_FULL=1: both methods, every level, all 200 poses.
+constexpr int kCiGeomorphPoses = 20;
+const int kGeomorphPoses = test::fullMode() ? kFullPoses : kCiGeomorphPoses;
+
+class TerrainCracksGeomorph : public TerrainCracks {};
+
+TEST_P(TerrainCracksGeomorph, NoBackgroundThroughTheMorphedSurfaceOnJacksboro) {
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
+  CrackRig rig(shaders());
+  long long levelChanges = 0;
+  for (int pose = 0; pose < kGeomorphPoses; ++pose) {
+    const std::int64_t cracks = rig.cracks(GetParam().method, GetParam().tess, pose, true);
+    levelChanges += rig.lastLevelChanges();
+    if (cracks != 0) {
+      saveImage(std::filesystem::path(SYLVA_BINARY_DIR) / "golden-out" /
+                    fmt::format("crack_geomorph_{}_t{}_pose{}.png", crackMethodName(GetParam().method),
+                                GetParam().tess, pose),
+                rig.target().readColor());
+    }
+    ASSERT_EQ(cracks, 0) << "pose " << pose << ": " << cracks << " crack pixels (image in golden-out/)";
+  }
+  EXPECT_GT(levelChanges, kGeomorphPoses);
+  RecordProperty("doubled_edges", std::to_string(levelChanges));
+}
+
+std::vector<CrackCase> geomorphCases() {
+  if (test::fullMode()) {
+    return allCases();
+  }
+  std::vector<CrackCase> cases;
+  for (int tess : {1, 2, 3, 5, 8, 16, 32}) {
+    cases.push_back({CrackMethod::RestrictedLevelMap, tess});
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Geomorph, TerrainCracksGeomorph, ::testing::ValuesIn(geomorphCases()),
+                         [](const ::testing::TestParamInfo<CrackCase>& info) {
+                           return fmt::format(
+                               "{}_t{:02}", info.param.method == CrackMethod::PaperSearch ? "paper" : "ours",
+                               info.param.tess);
+                         });
+
 using TerrainCrackCheck = test::GlTest;
 
 // Without stitching, T-junctions must show up as crack pixels at every level: the check is not vacuous.
@@ -153,6 +199,19 @@ TEST_F(TerrainCrackCheck, FindsCracksWhenStitchingIsDisabled) {
     EXPECT_GT(found, 0) << "no crack found at level " << tess << " in " << kPoses << " poses";
     RecordProperty(fmt::format("level{:02}_first_pose_with_cracks", tess), pose - 1);
     RecordProperty(fmt::format("level{:02}_crack_samples", tess), std::to_string(found));
+  }
+}
+
+// The geomorph crack check is not vacuous either: without stitching it finds the T-junctions.
+TEST_F(TerrainCrackCheck, FindsCracksWithGeomorphWhenStitchingIsDisabled) {
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
+  CrackRig rig(shaders());
+  for (int tess : {1, 4, 16}) {
+    std::int64_t found = 0;
+    for (int pose = 0; pose < kPoses && found == 0; ++pose) {
+      found = rig.cracks(CrackMethod::None, tess, pose, true);
+    }
+    EXPECT_GT(found, 0) << "no crack found at level " << tess << " with geomorphing";
   }
 }
 

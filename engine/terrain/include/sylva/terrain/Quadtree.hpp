@@ -179,6 +179,10 @@ struct QuadtreeSelection {
   std::vector<NodeId> culled;
   /** Counters. */
   QuadtreeStats stats;
+  /** Camera position the selection was made for (world metres); geomorphing morphs heights around it. */
+  glm::vec3 camera{0.0f};
+  /** The quadtree config (rootsX/Z resolved) the selection was made with: LOD distances for geomorphing. */
+  QuadtreeConfig config{};
 };
 
 /**

@@ -62,6 +62,20 @@ struct TerrainDrawOptions {
   float skirtDepth = 1000.0f;
   /** World metres per repeat of the layer textures. */
   float textureTiling = 24.0f;
+  /**
+   * Geomorphing: vertex heights blend continuously between the surfaces of two quadtree depths by distance
+   * to the selection's camera (morphedHeight, docs/terrain-lod.md "Geomorphing"), so patches that split or
+   * merge do not pop. Crack-free like the plain surface (the height is a function of world xz and the
+   * camera). Off by default: the plain bilinear surface, byte-identical to earlier images.
+   */
+  bool geomorph = false;
+  /**
+   * Draw every tessellated vertex as a 1-pixel point instead of triangles (no skirts, no water): with
+   * TerrainView::WorldPosition each covered pixel holds one vertex's exact world position, for tests. The
+   * point program is compiled on first use from the shader library last given to the constructor or
+   * reloadShaders(), which must still be alive then.
+   */
+  bool vertexPoints = false;
   /** Count tessellation-evaluation invocations (GL_ARB_pipeline_statistics_query) when available. */
   bool countVertices = false;
   render::Environment environment{};
@@ -140,6 +154,8 @@ private:
   float mMinHeight = 0.0f;
   float mMaxHeight = 0.0f;
   gl::Program mSurface{gl::NoCreate};
+  gl::Program mSurfacePoints{gl::NoCreate}; // point_mode variant, compiled on first use
+  const shader::Library* mLibrary = nullptr;
   gl::Program mNormals{gl::NoCreate};
   gl::Program mSplat{gl::NoCreate};
   gl::Program mWater{gl::NoCreate};

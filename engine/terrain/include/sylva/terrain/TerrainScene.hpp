@@ -38,6 +38,8 @@ struct TerrainSceneOptions {
   float exaggeration = 1.0f;
   /** Sea level in true metres: sets the default splat rules' coast line and draws water; nullopt = none. */
   std::optional<float> seaLevel;
+  /** Geomorphing in drawOptions() (TerrainDrawOptions::geomorph); off by default. */
+  bool geomorph = false;
 };
 
 /**
@@ -91,7 +93,13 @@ public:
   float exaggeration() const { return mOptions.exaggeration; }
   /** Sea level, true metres; nullopt when there is no water. */
   std::optional<float> seaLevel() const { return mOptions.seaLevel; }
-  /** Draw options for a shaded frame from `camera`: environment, water at the (exaggerated) sea level. */
+  /** Whether drawOptions() turns geomorphing on. */
+  bool geomorph() const { return mOptions.geomorph; }
+  void setGeomorph(bool on) { mOptions.geomorph = on; }
+  /**
+   * Draw options for a shaded frame from `camera`: environment, water at the (exaggerated) sea level,
+   * geomorphing as in the scene options.
+   */
   TerrainDrawOptions drawOptions(const render::Camera& camera, float fog = 0.5f) const;
   /** CPU time of the last update() (selection + neighbour levels), milliseconds. */
   double lastUpdateMs() const { return mLastUpdateMs; }
