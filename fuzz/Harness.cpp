@@ -9,6 +9,9 @@
 #include <sylva/folding/Flow.hpp>
 #include <sylva/folding/Renderer.hpp>
 #include <sylva/folding/Synthesis.hpp>
+#include <sylva/scene/CameraPath.hpp>
+#include <sylva/scene/SceneFile.hpp>
+#include <sylva/scene/Sequence.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/shader/Preprocessor.hpp>
 #include <sylva/terrain/HeightSources.hpp>
@@ -26,6 +29,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -434,6 +438,45 @@ void texsynthTileset(std::span<const std::uint8_t> bytes) {
   }
 }
 
+/**
+ * Scene files (data/scenes, docs/scenes.md): strict parsing through parseScene with a fake path whose
+ * directory does not exist, so referenced files are "file not found" (a clean rejection) and nothing is
+ * written; a scene that parses has every camera evaluated. The same bytes also go through the --frames and
+ * --shard parsers.
+ */
+void sceneFile(std::span<const std::uint8_t> bytes) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  std::optional<scene::SceneDesc> desc;
+  try {
+    desc = scene::parseScene(text, "/nonexistent-sylva-fuzz/scene.json");
+  } catch (const Error&) {
+  }
+  if (desc) {
+    const scene::GroundHeight flat = [](float, float) { return 0.0f; };
+    for (const auto& [name, camera] : desc->cameras) {
+      const std::vector<scene::WorldCameraKey> keys = scene::resolveKeys(camera, flat);
+      const double first = keys.front().time;
+      const double last = keys.back().time;
+      for (double t : {first - 1.0, first, 0.5 * (first + last), last, last + 1.0}) {
+        const scene::CameraSample s = scene::evaluate(keys, t, camera.loop);
+        if (!std::isfinite(s.position.x + s.position.y + s.position.z + s.fov)) {
+          throw std::logic_error("scene.json: camera '" + name + "' evaluates to a non-finite value");
+        }
+      }
+    }
+    (void)desc->sun.direction();
+  }
+  if (bytes.size() <= 4096) {
+    expectCleanRejection([&] {
+      const scene::FrameRange range = scene::parseFrames(text);
+      if (range.count() <= 10000) {
+        (void)scene::framesOf(range, scene::parseShard("1/3"));
+      }
+    });
+    expectCleanRejection([&] { (void)scene::parseShard(text); });
+  }
+}
+
 } // namespace
 
 const std::vector<Target>& targets() {
@@ -459,6 +502,8 @@ const std::vector<Target>& targets() {
        leafModel},
       {"texsynth_tileset", "tile-set descriptions (tileset.json, texsynth): strict parsing and a round trip",
        texsynthTileset},
+      {"scene_file", "scene files (data/scenes): strict parsing, camera paths, --frames and --shard",
+       sceneFile},
 #ifdef SYLVA_FUZZ_HAVE_CLI
       {"cli", "the sylva command line's option parsing and validation (commands not run)", runCliArguments},
 #endif

@@ -1,0 +1,215 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+/**
+ * The scene file (docs/scenes.md): one versioned JSON document that composes terrain, grass, forests,
+ * folding-textured water, physics bodies, sun, sky, fog, wind, shadows, cameras and the output sequence.
+ *
+ * All positions are world metres: x east, y up, z south; the terrain covers [0, extentX] × [0, extentZ] with
+ * its minimum corner at the origin. Angles are degrees in JSON (and in these structs). Paths held here are
+ * already resolved (absolute, against the scene file's directory) and were checked to exist when loaded.
+ */
+namespace sylva::scene {
+
+/** The version this Sylva writes and reads ("sylva_scene": 1). Files with a higher number are refused. */
+inline constexpr int kSceneVersion = 1;
+
+/** Limits enforced by the loader (absurd counts are errors, not out-of-memory kills). */
+inline constexpr int kMaxForestCount = 1'000'000;  ///< trees per forest
+inline constexpr int kMaxBodies = 10'000;          ///< bodies + all drops' counts together
+inline constexpr int kMaxFrames = 1'000'000;       ///< output frame numbers are in [0, kMaxFrames)
+inline constexpr int kMaxImageSide = 16384;        ///< output width / height, pixels
+inline constexpr float kMaxGrassDensity = 1000.0f; ///< grass density multiplier
+
+/** A point whose y is either absolute (world metres) or, with `aboveGround`, measured up from the terrain. */
+struct Vec3Ground {
+  glm::vec3 p{0.0f};        ///< world metres; y absolute or above the terrain surface
+  bool aboveGround = false; ///< JSON "above_ground": y is height above the terrain at (x, z)
+};
+
+/** The terrain: a DEM file or a procedural field, and its LOD settings. */
+struct TerrainDesc {
+  std::string dem;               ///< resolved absolute path of a height file; empty: procedural
+  std::uint64_t seed = 1;        ///< procedural seed
+  int size = 513;                ///< procedural samples per side (2^k + 1 preferred), [17, 8193]
+  float spacing = 2.0f;          ///< metres between samples (procedural; overrides a DEM's spacing when set)
+  bool spacingSet = false;       ///< whether "spacing" was given in the file (a DEM keeps its own otherwise)
+  float relief = 120.0f;         ///< procedural height range, metres
+  float exaggeration = 1.0f;     ///< vertical scale applied to the heights
+  std::optional<float> seaLevel; ///< metres (data heights); below it the terrain reads as sea floor
+  int tessLevel = 16;            ///< tessellation level per patch edge, [1, 64]
+  float lodFactor = 2.0f;        ///< CDLOD distance factor (> 1)
+  int maxDepth = -1;             ///< quadtree depth limit; -1: automatic
+  bool geomorph = true;          ///< morph vertices across LOD boundaries
+};
+
+/** One grass layer: blades on the terrain where the splat layer / paint map allow. */
+struct GrassLayer {
+  std::vector<std::string> blades; ///< resolved blade-model files; empty: the procedural blade
+  float density = 1.0f;            ///< multiplier on the blade renderer's base density, [0, kMaxGrassDensity]
+  float coverage = 1.0f;           ///< fraction of cells that hold grass, [0, 1]
+  std::string layer = "grass";     ///< terrain splat layer that carries this grass
+  std::string paint;               ///< resolved density-map PNG over the terrain extent; empty: none
+  float maxSlope = 35.0f;          ///< degrees; steeper ground has no grass
+  std::uint64_t seed = 1;          ///< placement seed
+  bool simulate = false;           ///< blade physics simulation on (else wind-only animation)
+  float distance = 60.0f;          ///< draw distance, metres
+};
+
+/** One forest: a species mix placed by rules evaluated from the terrain. */
+struct ForestDesc {
+  std::map<std::string, float> species;  ///< preset name (e.g. "oak") or resolved species file → weight > 0
+  int count = 100;                       ///< trees to place, [0, kMaxForestCount]
+  std::uint64_t seed = 1;                ///< placement and growth seed
+  float spacing = 4.0f;                  ///< minimum distance between trunks, metres
+  float maxSlope = 30.0f;                ///< degrees
+  std::optional<float> minHeight;        ///< metres (world heights, after exaggeration)
+  std::optional<float> maxHeight;        ///< metres
+  std::string densityMap;                ///< resolved PNG over the terrain extent (white dense); empty: none
+  float clusterSize = 60.0f;             ///< metres; scale of the clustering noise
+  float bare = 0.35f;                    ///< fraction of the noise field left without trees, [0, 1)
+  std::optional<glm::vec2> regionCentre; ///< (x, z) metres; with regionRadius, limits placement to a disc
+  float regionRadius = 0.0f;             ///< metres; 0: no region limit
+  std::string bark = "auto";             ///< "auto", "none" or a bark tile-set name/file
+  bool foliage = true;                   ///< draw leaves
+  float farDistance = 0.0f;              ///< metres beyond which trees become far-field impostors; 0: off
+  float farBand = 25.0f;                 ///< cross-fade band width at farDistance, metres
+  int farCount = 0;                      ///< extra far-field-only trees, [0, kMaxForestCount]
+};
+
+/** A water plane at a level; its shore band can use a folding texture (wave swash). */
+struct WaterDesc {
+  float level = 0.0f;  ///< metres, data heights (before exaggeration)
+  std::string folding; ///< resolved folding project (.json); empty: plain water
+  float band = 6.0f;   ///< shore band width, metres of horizontal distance
+  float tile = 12.0f;  ///< folding-texture tile size, metres
+};
+
+/** One rigid body. */
+struct BodyDesc {
+  enum class Shape { Ball, Box };
+  Shape shape = Shape::Ball;
+  Vec3Ground position;         ///< centre, world metres
+  glm::vec3 velocity{0.0f};    ///< metres per second
+  float radius = 0.35f;        ///< metres (ball)
+  glm::vec3 halfExtents{0.3f}; ///< metres (box)
+  float mass = 30.0f;          ///< kg
+};
+
+/** A drop of `count` balls at random positions inside a disc, `height` metres above the terrain. */
+struct BodyDrop {
+  glm::vec2 centre{0.0f}; ///< (x, z) metres
+  float radius = 2.0f;    ///< disc radius, metres
+  int count = 8;          ///< balls
+  std::uint64_t seed = 1;
+  float height = 1.0f; ///< metres above the terrain
+};
+
+/** The sun. */
+struct SunDesc {
+  float azimuth = 135.0f; ///< degrees clockwise from north (-z) seen from above: 90 east (+x), 180 south (+z)
+  float elevation = 35.0f; ///< degrees above the horizon, [-90, 90]
+  float intensity = 1.1f;  ///< radiance multiplier
+  /** Unit vector from the ground towards the sun, world space (x east, y up, z south). */
+  glm::vec3 direction() const;
+};
+
+/** The analytic sky (atmosphere mode 1). */
+struct SkyDesc {
+  bool enabled = true;    ///< false: no analytic sky, plain fog colour (atmosphere mode 0)
+  float turbidity = 3.0f; ///< [1.7, 10]
+  float exposure = 1.0f;  ///< > 0
+  bool flare = true;      ///< sun disc glare
+};
+
+/** Aerial perspective. */
+struct FogDesc {
+  float density = 0.0012f; ///< extinction per metre, ≥ 0
+};
+
+/** The one wind field shared by grass and trees. */
+struct WindDesc {
+  float speed = 3.0f;      ///< metres per second
+  float direction = 30.0f; ///< degrees clockwise from north, the direction the wind blows TOWARDS
+  float gusts = 0.8f;      ///< gust strength, [0, 4]
+  std::uint64_t seed = 5;
+};
+
+/** Cascaded sun shadows. */
+struct ShadowDesc {
+  int cascades = 3;        ///< [0, 4]; 0: no shadows
+  int size = 2048;         ///< shadow-map side, texels, [64, 8192]
+  float distance = 300.0f; ///< metres covered by the cascades
+  float lambda = 0.7f;     ///< practical split: 0 uniform, 1 logarithmic
+};
+
+/** A camera key. */
+struct CameraKey {
+  double time = 0.0; ///< seconds; strictly increasing along a path
+  Vec3Ground position;
+  Vec3Ground target;
+  float fov = 50.0f; ///< vertical field of view, degrees, (0, 179)
+};
+
+/** A camera: one key is a still camera; more keys form a centripetal Catmull-Rom path (CameraPath.hpp). */
+struct CameraDesc {
+  std::vector<CameraKey> keys; ///< at least one, sorted by time
+  bool loop = false;           ///< wrap time around the path's duration
+};
+
+/** The default frame sequence `sylva render` writes. */
+struct OutputDesc {
+  std::string camera = "main"; ///< a key of SceneDesc::cameras
+  int width = 1280;            ///< pixels, [1, kMaxImageSide]
+  int height = 720;            ///< pixels
+  double fps = 24.0;           ///< frames per second of the fixed clock: frame f is at time f / fps
+  int firstFrame = 0;          ///< first frame number, inclusive
+  int lastFrame = 0;           ///< last frame number, inclusive
+};
+
+/** A whole scene, validated. */
+struct SceneDesc {
+  std::string path; ///< the scene file (as given to loadScene / parseScene)
+  std::string name; ///< "name" in the file; default: the file's stem
+  TerrainDesc terrain;
+  std::vector<GrassLayer> grass;
+  std::vector<ForestDesc> forests;
+  std::vector<WaterDesc> water;
+  std::vector<BodyDesc> bodies;
+  std::vector<BodyDrop> drops;
+  SunDesc sun;
+  SkyDesc sky;
+  FogDesc fog;
+  WindDesc wind;
+  ShadowDesc shadows;
+  std::map<std::string, CameraDesc> cameras; ///< at least the output camera
+  OutputDesc output;
+};
+
+/**
+ * Reads and validates a scene file; throws sylva::Error with one line "<file>: <json/path>: <what>", e.g.
+ * "meadow.json: /forests/0/count: 2000000 is more than 1000000". Syntax errors read "<file>:<line>:<col>:
+ * <what>". Relative paths in the file resolve against the file's directory; referenced files must exist.
+ */
+SceneDesc loadScene(const std::filesystem::path& file);
+
+/**
+ * Like loadScene, for JSON text already in memory; `fileForErrorsAndPaths` names the file in errors and its
+ * directory resolves relative paths (it need not exist).
+ */
+SceneDesc parseScene(std::string_view json, const std::filesystem::path& fileForErrorsAndPaths);
+
+/** The closest of `candidates` to `key` by edit distance, or "" when none is plausibly a typo of it. */
+std::string closestKey(std::string_view key, const std::vector<std::string>& candidates);
+
+} // namespace sylva::scene

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <sylva/core/Image.hpp>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+/**
+ * Frame-sequence planning for `sylva render scene.json --frames A-B --shard i/n --out DIR` (docs/scenes.md):
+ * frame N is a pure function of (scene, N), so a range splits over independent runs without coordination and
+ * a killed run resumes by skipping frames already written. Frames are written to a temporary name and
+ * renamed, so a frame_NNNNN.png that exists is always complete.
+ */
+namespace sylva::scene {
+
+/** A set of frame numbers: sorted, non-overlapping inclusive intervals. */
+struct FrameRange {
+  std::vector<std::pair<int, int>> spans; ///< [first, last] pairs, sorted by first, disjoint
+  /** Number of frames in all spans. */
+  long long count() const;
+  /** The frames in order. */
+  std::vector<int> frames() const;
+};
+
+/** Shard `index` of `count` (0 ≤ index < count ≤ 4096). */
+struct Shard {
+  int index = 0;
+  int count = 1;
+};
+
+/**
+ * Parses "--frames": "N", "A-B" or a comma-separated list of those ("0-9,20-29"), frame numbers in [0, 1e6).
+ * Errors (sylva::Error, one line starting "--frames: "): malformed text, B < A, a range that overlaps another
+ * ("--frames: 10-20 overlaps 0-15"), more than 1e6 frames in total.
+ */
+FrameRange parseFrames(std::string_view text);
+
+/** Parses "--shard i/n"; errors start "--shard: " (malformed, n outside [1, 4096], i outside [0, n)). */
+Shard parseShard(std::string_view text);
+
+/**
+ * The frames of `range` that `shard` renders: the k-th frame of the range (k counted from 0 over all spans in
+ * order) belongs to shard k % n. The shards of any n partition the range: every frame exactly once.
+ */
+std::vector<int> framesOf(const FrameRange& range, const Shard& shard);
+
+/** "frame_00042.png": the number zero-padded to at least five digits. Frame must be ≥ 0. */
+std::string frameName(int frame);
+
+/**
+ * Whether `path` exists and decodes completely as a PNG of width × height pixels (any channel layout). A
+ * missing, truncated, corrupt or differently sized file gives false; never throws for file content.
+ */
+bool frameComplete(const std::filesystem::path& path, int width, int height);
+
+/**
+ * Writes `image` as a PNG to "<path>.tmp-<pid>" and renames it onto `path`, so `path` never holds a partial
+ * frame. Parent directories are created. Throws sylva::Error naming the file on failure (the temporary is
+ * removed).
+ */
+void writeFrameAtomically(const std::filesystem::path& path, const Image& image);
+
+/**
+ * Removes temporaries left in `dir` by killed runs ("frame_*.png.tmp-<pid>" whose process is no longer
+ * running, or any such file when `all`); returns how many were removed. A missing dir removes nothing.
+ */
+int removeStaleTemporaries(const std::filesystem::path& dir, bool all = false);
+
+} // namespace sylva::scene
