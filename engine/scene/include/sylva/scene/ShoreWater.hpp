@@ -1,0 +1,106 @@
+#pragma once
+
+#include <sylva/folding/Synthesis.hpp>
+#include <sylva/folding/gpu/FoldRenderer.hpp>
+#include <sylva/gl/Framebuffer.hpp>
+#include <sylva/gl/Program.hpp>
+#include <sylva/gl/Texture.hpp>
+#include <sylva/gl/VertexArray.hpp>
+#include <sylva/render/Camera.hpp>
+#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/scene/Shore.hpp>
+#include <sylva/shader/Library.hpp>
+#include <sylva/terrain/HeightField.hpp>
+
+#include <memory>
+
+namespace sylva::scene {
+
+/** What the shore water's fragment shader writes. */
+enum class ShoreWaterView : int {
+  Shaded = 0, ///< water, Fresnel, glint and the swash band, alpha-blended
+  Band = 1,   ///< shoreBand(depth) in every channel, opaque (debug and tests; dry ground still discarded)
+};
+
+/**
+ * The scene's water (docs/scenes-water.md): a surface at ShoreSettings::level over the terrain's footprint
+ * with depth colour, Fresnel towards the sky colour and a sun glint, and in the shore band (shoreBand) a
+ * folding texture animating the swash, laid with its advance direction up the slope (swashCoords). The
+ * folding project is loaded and synthesised on the CPU at construction (like `sylva fold render`); update()
+ * renders its frame for the scene time into a small RGBA8 texture with folding::gpu::FoldRenderer.
+ * Deterministic: the same time gives the same pixels. Needs a current GL 4.5 context for every call,
+ * including construction and destruction.
+ */
+class ShoreWater {
+public:
+  /** Largest side, texels, of the swash texture (the project image is scaled down to fit, never up). */
+  static constexpr int kMaxSwashSide = 512;
+  /** Largest number of mesh cells per axis (the mesh takes every n-th height sample beyond it). */
+  static constexpr int kMaxCells = 512;
+
+  /**
+   * `field`: the drawn heights (world metres, already multiplied by `verticalScale`, the same field the
+   * TerrainRenderer draws); `settings.folding`: a sylva-fold project path (as given, relative to the working
+   * directory). Throws sylva::Error for invalid settings (validate), a field under 2×2 samples, a scale that
+   * is not finite and > 0, or a project that does not load or synthesise (the message names the file).
+   */
+  ShoreWater(const shader::Library& library, const terrain::HeightField& field, float verticalScale,
+             ShoreSettings settings);
+  ~ShoreWater();
+  ShoreWater(const ShoreWater&) = delete;
+  ShoreWater& operator=(const ShoreWater&) = delete;
+
+  /** Recompiles the water program (viewer hot reload); keeps the old one and throws on error. */
+  void reloadShaders(const shader::Library& library);
+
+  /**
+   * Renders the folding frame for scene time `time` seconds (swashTime: one project cycle per
+   * settings.period) into swashTexture() and regenerates its mips. Restores the draw framebuffer binding and
+   * viewport.
+   */
+  void update(double time);
+
+  /**
+   * Draws the water into the bound framebuffer (viewport `width`×`height` pixels), after the terrain:
+   * blended, depth-tested against it, no depth writes; fills and binds the frame uniforms
+   * (render::FrameUniformBuffer) for `camera`, `time` and `environment`. Call update() first for the swash to
+   * move.
+   */
+  void draw(const render::Camera& camera, int width, int height, double time,
+            const render::Environment& environment);
+
+  void setView(ShoreWaterView view) { mView = view; }
+  ShoreWaterView view() const { return mView; }
+  const ShoreSettings& settings() const { return mSettings; }
+  /** The project's longest profile period, seconds (what settings.period 0 plays). */
+  double projectPeriod() const { return mProjectPeriod; }
+  /** The swash texture (RGBA8, row 0 of the folding image at the top, i.e. at t = 1). */
+  const gl::Texture& swashTexture() const { return mSwash; }
+  /** Height / width of the swash frame (the project image's crop). */
+  float swashAspect() const { return mAspect; }
+
+private:
+  ShoreSettings mSettings;
+  float mVerticalScale = 1.0f;
+  int mFieldWidth = 0;
+  int mFieldHeight = 0;
+  float mSpacingX = 1.0f;
+  float mSpacingZ = 1.0f;
+  int mStride = 1;
+  int mCellsX = 1;
+  int mCellsZ = 1;
+  double mProjectPeriod = 1.0;
+  float mAspect = 1.0f;
+  float mWaterlineV = 0.5f; ///< settings.waterline in the frame's v (the crop)
+  folding::Rect mRegion;    ///< the project image's atlas rectangle
+  ShoreWaterView mView = ShoreWaterView::Shaded;
+  std::unique_ptr<folding::gpu::FoldRenderer> mFold;
+  gl::Program mProgram{gl::NoCreate};
+  gl::Texture mHeights{gl::NoCreate};
+  gl::Texture mSwash{gl::NoCreate};
+  gl::Framebuffer mSwashTarget;
+  gl::VertexArray mVao;
+  render::FrameUniformBuffer mFrame;
+};
+
+} // namespace sylva::scene

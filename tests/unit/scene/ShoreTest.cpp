@@ -1,0 +1,187 @@
+// The shore rule: depth from the height field and level, the band weight's shape, the slope, the swash
+// texture coordinates (rows along depth contours, advance up the slope, tiling in metres) and the swash
+// clock.
+#include <sylva/core/Error.hpp>
+#include <sylva/scene/Shore.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace sylva::scene {
+namespace {
+
+/** A plane h = a·x + b·z + c on a w×h grid of `spacing` metres, times `scale`. */
+terrain::HeightField plane(float a, float b, float c, int w = 33, int h = 33, float spacing = 2.0f,
+                           float scale = 1.0f) {
+  terrain::HeightField field(w, h, spacing, spacing);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      field.at(i, j) =
+          scale * (a * static_cast<float>(i) * spacing + b * static_cast<float>(j) * spacing + c);
+    }
+  }
+  return field;
+}
+
+TEST(Shore, DepthIsLevelMinusHeightInTrueMetres) {
+  const terrain::HeightField field = plane(0.1f, 0.0f, -2.0f, 33, 33, 2.0f, 3.0f); // exaggerated 3×
+  // h(true) = 0.1·x − 2; level 0 → depth 2 − 0.1·x; the shoreline at x = 20.
+  EXPECT_NEAR(waterDepth(field, 3.0f, 0.0f, 0.0f, 10.0f), 2.0f, 1e-5f);
+  EXPECT_NEAR(waterDepth(field, 3.0f, 0.0f, 20.0f, 10.0f), 0.0f, 1e-5f);
+  EXPECT_NEAR(waterDepth(field, 3.0f, 0.0f, 31.0f, 7.5f), -1.1f, 1e-5f);
+  // A level in world (exaggerated) metres: 3 m world = 1 m true.
+  EXPECT_NEAR(waterDepth(field, 3.0f, 3.0f, 20.0f, 10.0f), 1.0f, 1e-5f);
+  terrain::HeightField holes = field;
+  holes.at(5, 5) = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(waterDepth(holes, 3.0f, 0.0f, 10.0f, 10.0f)));
+}
+
+TEST(Shore, BandIsOneAtTheWaterlineAndFadesBothWays) {
+  ShoreSettings s;
+  s.band = 6.0f;
+  s.wet = 0.5f;
+  EXPECT_FLOAT_EQ(shoreBand(0.0f, s), 1.0f);
+  EXPECT_FLOAT_EQ(shoreBand(3.0f, s), 0.5f);
+  EXPECT_FLOAT_EQ(shoreBand(6.0f, s), 0.0f);
+  EXPECT_FLOAT_EQ(shoreBand(60.0f, s), 0.0f);
+  EXPECT_FLOAT_EQ(shoreBand(-0.25f, s), 0.5f);
+  EXPECT_FLOAT_EQ(shoreBand(-0.5f, s), 0.0f);
+  EXPECT_FLOAT_EQ(shoreBand(-5.0f, s), 0.0f);
+  EXPECT_FLOAT_EQ(shoreBand(std::numeric_limits<float>::quiet_NaN(), s), 0.0f);
+  // Monotonic away from the waterline on both sides.
+  float previous = 1.0f;
+  for (float d = 0.1f; d <= 7.0f; d += 0.1f) {
+    EXPECT_LE(shoreBand(d, s), previous);
+    previous = shoreBand(d, s);
+  }
+  previous = 1.0f;
+  for (float d = 0.01f; d <= 0.6f; d += 0.01f) {
+    EXPECT_LE(shoreBand(-d, s), previous);
+    previous = shoreBand(-d, s);
+  }
+}
+
+TEST(Shore, GradientOfAPlaneIsItsTrueSlope) {
+  const terrain::HeightField field = plane(0.08f, -0.03f, 1.0f, 17, 17, 2.0f, 2.0f);
+  for (const glm::vec2 p : {glm::vec2(5.3f, 7.1f), glm::vec2(0.0f, 0.0f), glm::vec2(32.0f, 32.0f)}) {
+    const glm::vec2 g = shoreGradient(field, 2.0f, p.x, p.y);
+    EXPECT_NEAR(g.x, 0.08f, 1e-5f);
+    EXPECT_NEAR(g.y, -0.03f, 1e-5f);
+  }
+  // A bump: the gradient points towards the top from every side.
+  terrain::HeightField bump(17, 17, 1.0f, 1.0f, 0.0f);
+  for (int j = 0; j < 17; ++j) {
+    for (int i = 0; i < 17; ++i) {
+      bump.at(i, j) = -0.05f * static_cast<float>((i - 8) * (i - 8) + (j - 8) * (j - 8));
+    }
+  }
+  EXPECT_GT(shoreGradient(bump, 1.0f, 4.0f, 8.0f).x, 0.0f);
+  EXPECT_LT(shoreGradient(bump, 1.0f, 12.0f, 8.0f).x, 0.0f);
+  EXPECT_GT(shoreGradient(bump, 1.0f, 8.0f, 3.0f).y, 0.0f);
+  EXPECT_NEAR(shoreGradient(bump, 1.0f, 8.0f, 3.0f).x, 0.0f, 1e-6f);
+}
+
+TEST(Shore, SwashRowsFollowDepthAndAdvanceUphill) {
+  ShoreSettings s;
+  s.tile = 10.0f;
+  s.waterline = 0.4f;
+  const float aspect = 0.5f;     // the frame is twice as wide as high: v spans 5 m
+  const glm::vec2 g(0.1f, 0.0f); // uphill towards +x (east)
+  // On the waterline: v is the image's resting water edge.
+  SwashCoords c = swashCoords({3.0f, 4.0f}, 0.0f, g, s, aspect);
+  EXPECT_NEAR(c.uv[0].y, 0.4f, 1e-6f);
+  EXPECT_NEAR(c.uv[1].y, 0.4f, 1e-6f);
+  EXPECT_FLOAT_EQ(c.mix, 0.0f); // exactly along direction 0: one sample
+  // 0.1 m above the water at slope 0.1 is 1 m uphill: v grows by 1 / 5 (down the image, where the water
+  // runs).
+  c = swashCoords({13.0f, 4.0f}, -0.1f, g, s, aspect);
+  EXPECT_NEAR(c.uv[0].y, 0.6f, 1e-6f);
+  // 0.25 m deep is 2.5 m towards the water: v shrinks.
+  c = swashCoords({0.0f, 4.0f}, 0.25f, g, s, aspect);
+  EXPECT_NEAR(c.uv[0].y, 0.4f - 0.5f, 1e-6f);
+  // u runs along the shore, the image's right to the right of a viewer looking down with uphill at the
+  // image's bottom: for a beach rising to the east that is north (−z). It tiles every 10 m.
+  const SwashCoords a = swashCoords({3.0f, 4.0f}, 0.0f, g, s, aspect);
+  const SwashCoords b = swashCoords({3.0f, 14.0f}, 0.0f, g, s, aspect);
+  EXPECT_NEAR(b.uv[0].x - a.uv[0].x, -1.0f, 1e-5f);
+  const SwashCoords moved = swashCoords({8.0f, 4.0f}, 0.0f, g, s, aspect);
+  EXPECT_NEAR(moved.uv[0].x, a.uv[0].x, 1e-6f); // moving uphill does not change u
+}
+
+TEST(Shore, SwashAdvanceTurnsWithTheSlope) {
+  ShoreSettings s;
+  s.tile = 12.0f;
+  // For each of the 8 axis directions, u is constant uphill and changes by 1 per tile across it.
+  for (int k = 0; k < kSwashDirections; ++k) {
+    const float a = static_cast<float>(k) * 2.0f * std::numbers::pi_v<float> / kSwashDirections;
+    const glm::vec2 up(std::cos(a), std::sin(a));
+    const glm::vec2 across(std::sin(a), -std::cos(a));
+    const glm::vec2 p(5.0f, -3.0f);
+    const SwashCoords c0 = swashCoords(p, 0.0f, 0.2f * up, s, 1.0f);
+    const SwashCoords c1 = swashCoords(p + 7.0f * up, 0.0f, 0.2f * up, s, 1.0f);
+    const SwashCoords c2 = swashCoords(p + 12.0f * across, 0.0f, 0.2f * up, s, 1.0f);
+    const int i = c0.mix < 0.5f ? 0 : 1;
+    EXPECT_TRUE(c0.mix < 1e-4f || c0.mix > 1.0f - 1e-4f) << k;
+    EXPECT_NEAR(c1.uv[i].x, c0.uv[i].x, 1e-4f) << k;
+    EXPECT_NEAR(c2.uv[i].x - c0.uv[i].x, 1.0f, 1e-4f) << k;
+  }
+  // Between two directions both are read; the blend is continuous across sector ends.
+  const auto at = [&](float angle) {
+    const glm::vec2 g = 0.1f * glm::vec2(std::cos(angle), std::sin(angle));
+    const SwashCoords c = swashCoords({40.0f, 25.0f}, 0.0f, g, s, 1.0f);
+    return (1.0f - c.mix) * c.uv[0].x + c.mix * c.uv[1].x;
+  };
+  const float step = 2.0f * std::numbers::pi_v<float> / kSwashDirections;
+  for (int k = -3; k < 4; ++k) {
+    const float edge = static_cast<float>(k) * step;
+    EXPECT_NEAR(at(edge - 1e-4f), at(edge + 1e-4f), 2e-3f) << k;
+  }
+  const glm::vec2 half = 0.1f * glm::vec2(std::cos(0.5f * step), std::sin(0.5f * step));
+  EXPECT_FLOAT_EQ(swashCoords({1.0f, 2.0f}, 0.0f, half, s, 1.0f).mix, 0.5f);
+}
+
+TEST(Shore, FlatGroundUsesTheMinimumSlope) {
+  ShoreSettings s;
+  s.tile = 10.0f;
+  s.waterline = 0.5f;
+  const SwashCoords c = swashCoords({0.0f, 0.0f}, -0.02f, {0.0f, 0.0f}, s, 1.0f);
+  EXPECT_NEAR(c.uv[0].y, 0.5f + (0.02f / kMinShoreSlope) / 10.0f, 1e-6f);
+  EXPECT_TRUE(std::isfinite(c.uv[0].x));
+}
+
+TEST(Shore, SwashTimeLoopsOneProjectCyclePerPeriod) {
+  EXPECT_DOUBLE_EQ(swashTime(0.0, 8.0, 4.0), 0.0);
+  EXPECT_DOUBLE_EQ(swashTime(2.0, 8.0, 4.0), 1.0);
+  EXPECT_DOUBLE_EQ(swashTime(10.0, 8.0, 4.0), 1.0);
+  EXPECT_DOUBLE_EQ(swashTime(5.0, 0.0, 4.0), 1.0); // 0 = the project's own period
+  EXPECT_NEAR(swashTime(1e6 + 1.0, 4.0, 4.0), 1.0, 1e-6);
+  EXPECT_THROW(swashTime(1.0, -1.0, 4.0), Error);
+  EXPECT_THROW(swashTime(1.0, 2.0, 0.0), Error);
+}
+
+TEST(Shore, ValidateNamesTheField) {
+  ShoreSettings s;
+  EXPECT_NO_THROW(validate(s));
+  s.band = 0.0f;
+  try {
+    validate(s);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("band"), std::string::npos);
+  }
+  s = {};
+  s.tile = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(validate(s), Error);
+  s = {};
+  s.waterline = 1.5f;
+  EXPECT_THROW(validate(s), Error);
+  s = {};
+  s.folding.clear();
+  EXPECT_THROW(validate(s), Error);
+}
+
+} // namespace
+} // namespace sylva::scene
