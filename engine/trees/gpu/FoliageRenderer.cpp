@@ -27,8 +27,10 @@ public:
     mCull = glIsEnabled(GL_CULL_FACE);
     glGetBooleanv(GL_DEPTH_WRITEMASK, &mDepthMask);
     glGetIntegerv(GL_DEPTH_FUNC, &mDepthFunc);
+    glGetBooleanv(GL_COLOR_WRITEMASK, mColourMask);
   }
   ~SavedState() {
+    glColorMask(mColourMask[0], mColourMask[1], mColourMask[2], mColourMask[3]);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(mFramebuffer));
     glViewport(mViewport[0], mViewport[1], mViewport[2], mViewport[3]);
     set(GL_DEPTH_TEST, mDepthTest);
@@ -55,6 +57,7 @@ private:
   GLboolean mCull = GL_FALSE;
   GLboolean mDepthMask = GL_TRUE;
   GLint mDepthFunc = GL_LESS;
+  GLboolean mColourMask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
 };
 
 } // namespace
@@ -181,6 +184,9 @@ bool FoliageRenderer::bake(const render::Camera& camera, const render::Environme
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE); // leaves are two-sided
+    // A bake can run inside a depth-only pass (a shadow cascade turns colour writes off): the cloud texture must
+    // be written whatever the caller's mask, or it keeps an older view's leaves.
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     mTarget.clearColor(0, glm::vec4(0.0f));
     mTarget.clearDepth(1.0f);
     mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TREE_FOLIAGE_UNIFORM_BINDING);

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <unordered_map>
@@ -67,7 +68,58 @@ void validate(const ForestSettings& s, const std::string& where) {
       !(std::isfinite(s.bare) && s.bare >= 0.0f && s.bare < 1.0f)) {
     fail("{}.clusterSize/bare: cluster size must be > 0 metres and bare in [0, 1)", where);
   }
+  if (!s.speciesWeights.empty()) {
+    if (s.speciesWeights.size() != s.species.size()) {
+      fail("{}.speciesWeights: {} weights for {} species", where, s.speciesWeights.size(), s.species.size());
+    }
+    for (float w : s.speciesWeights) {
+      if (!(std::isfinite(w) && w > 0.0f)) {
+        fail("{}.speciesWeights: each weight must be a finite number > 0, got {}", where, w);
+      }
+    }
+  }
+  if (!s.densityMap.empty() &&
+      (s.densityWidth < 1 || s.densityHeight < 1 ||
+       s.densityMap.size() != static_cast<std::size_t>(s.densityWidth) * s.densityHeight)) {
+    fail("{}.densityMap: {} values for a {}×{} map", where, s.densityMap.size(), s.densityWidth,
+         s.densityHeight);
+  }
 }
+
+namespace {
+
+/** Index i with probability weights[i] / Σ weights, for `u` uniform in [0, 1). */
+std::uint32_t weightedPick(const std::vector<float>& weights, float u) {
+  float total = 0.0f;
+  for (float w : weights) {
+    total += w;
+  }
+  float at = u * total;
+  for (std::size_t i = 0; i + 1 < weights.size(); ++i) {
+    if (at < weights[i]) {
+      return static_cast<std::uint32_t>(i);
+    }
+    at -= weights[i];
+  }
+  return static_cast<std::uint32_t>(weights.size() - 1);
+}
+
+/** Bilinear value of the density map at normalised footprint coordinates (u, v) in [0, 1]. */
+float densityAt(const ForestSettings& s, float u, float v) {
+  const float x = std::clamp(u, 0.0f, 1.0f) * static_cast<float>(s.densityWidth - 1);
+  const float y = std::clamp(v, 0.0f, 1.0f) * static_cast<float>(s.densityHeight - 1);
+  const int x0 = std::min(static_cast<int>(x), s.densityWidth - 1);
+  const int y0 = std::min(static_cast<int>(y), s.densityHeight - 1);
+  const int x1 = std::min(x0 + 1, s.densityWidth - 1);
+  const int y1 = std::min(y0 + 1, s.densityHeight - 1);
+  const float fx = x - static_cast<float>(x0);
+  const float fy = y - static_cast<float>(y0);
+  auto at = [&](int i, int j) { return s.densityMap[static_cast<std::size_t>(j) * s.densityWidth + i]; };
+  return (at(x0, y0) * (1.0f - fx) + at(x1, y0) * fx) * (1.0f - fy) +
+         (at(x0, y1) * (1.0f - fx) + at(x1, y1) * fx) * fy;
+}
+
+} // namespace
 
 Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& settings) {
   validate(settings, "forest");
@@ -94,7 +146,13 @@ Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& se
                      glm::vec2(terrain.extentX(), terrain.extentZ()));
     }
     const float yaw = rng.uniform(0.0f, 2.0f * std::numbers::pi_v<float>);
-    const std::uint32_t pick = rng.below(static_cast<std::uint32_t>(forest.species.size()));
+    const std::uint32_t pick = settings.speciesWeights.empty()
+                                   ? rng.below(static_cast<std::uint32_t>(forest.species.size()))
+                                   : weightedPick(settings.speciesWeights, rng.uniform());
+    if (!settings.densityMap.empty() &&
+        rng.uniform() >= densityAt(settings, p.x / terrain.extentX(), p.y / terrain.extentZ())) {
+      continue;
+    }
     const float h = terrain::heightAt(terrain, p.x, p.y) * settings.verticalScale;
     if (std::isnan(h) || (!std::isnan(settings.minHeight) && h < settings.minHeight) ||
         (!std::isnan(settings.maxHeight) && h > settings.maxHeight)) {

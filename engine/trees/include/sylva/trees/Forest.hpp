@@ -66,6 +66,16 @@ struct ForestSettings {
   float regionRadius = 0.0f;
   /** Heights of the terrain field are multiplied by this to get drawn heights (terrain exaggeration). */
   float verticalScale = 1.0f;
+  /** Relative weight of each species (same order as `species`, each > 0); empty: every species equally. */
+  std::vector<float> speciesWeights;
+  /**
+   * Density map over the terrain's footprint: `densityWidth` × `densityHeight` values in [0, 1], row 0 at
+   * z = 0 (north), stretched over [0, extentX] × [0, extentZ]; a candidate at p survives with the map's
+   * bilinear value there. Empty: no map.
+   */
+  std::vector<float> densityMap;
+  int densityWidth = 0;
+  int densityHeight = 0;
 };
 
 /** Throws sylva::Error "<where>.<field>: …" for bad settings (counts ≤ 1,000,000, finite positive sizes). */
