@@ -22,6 +22,8 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # tests and benchmarks: GoogleTest, Google Benchmark, reference GLSL compiler, virtual display for window tests
   libgtest-dev libgmock-dev libbenchmark-dev glslang-tools xvfb xauth
+  # scene sequences as MP4 (`sylva render SCENE.json --mp4`)
+  ffmpeg
   # the folding editor's end-to-end test: real X input and screenshots
   xdotool imagemagick x11-utils
   # web preview parity: headless Chromium (WebGL 2 on SwiftShader)

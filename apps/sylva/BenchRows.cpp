@@ -1,11 +1,24 @@
 #include "BenchRows.hpp"
 
+#include <unistd.h>
+
+#include <cstdint>
+#include <fstream>
+
 #include <fmt/format.h>
 
 #include <cmath>
 #include <cstdio>
 
 namespace sylva::app {
+
+std::uint64_t residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t size = 0;
+  std::uint64_t resident = 0;
+  statm >> size >> resident;
+  return resident * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+}
 
 std::vector<double> timeRuns(int warmup, int runs, const std::function<void()>& fn) {
   std::vector<double> seconds;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -25,6 +26,18 @@ struct BenchRow {
   unsigned threads;
   std::string note;
 };
+
+/** Resident set size of this process in bytes (Linux /proc/self/statm), 0 if unknown. */
+std::uint64_t residentBytes();
+
+/**
+ * `bench scene`: the scene file's output camera over `frames` frames after `warmup` (simulations stepping at
+ * the file's fps), per-pass CPU, GPU and wall times, frames per second against the llvmpipe target (≥ 5 fps
+ * at 1280×720), GPU memory the subsystems report and the process's resident memory; needs a current GL
+ * context.
+ */
+void benchScene(const std::string& file, int frames, int warmup, int width, int height,
+                nlohmann::json& report);
 
 /** Seconds of each of `runs` calls of `fn` after `warmup` unmeasured calls. */
 std::vector<double> timeRuns(int warmup, int runs, const std::function<void()>& fn);

@@ -14,6 +14,7 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/terrain/TerrainPopping.hpp>
 
 #ifdef SYLVA_HAVE_FOLDING
 #include <folding/FoldingCase.hpp>
@@ -53,6 +54,7 @@ struct BenchOptions {
   std::string out;
   std::string area = "demo";
   double maxGrowthPercent = 1.0;
+  std::string sceneFile = "data/scenes/meadow.json";
 };
 
 /** Samples of one measured run: per-pass CPU/GPU milliseconds, wall time per frame, extra per-frame series.
@@ -186,6 +188,79 @@ struct TerrainRig {
   }
 };
 
+/**
+ * Terrain LOD popping (the grass issue's measure, docs/grass.md "Popping"): a camera 40 m above the ground
+ * walks across the field in 0.1 m steps, looking almost level; for the first 16 steps in which a patch
+ * changes level (selections without culling differ), the fraction of pixels that change by more than 5 % in
+ * a channel is measured with the selection re-made for the moved camera ("across" LOD boundaries) and with
+ * the first camera's selection kept ("inside" one band: no patch changes level, parallax alone), geomorphing
+ * off and on, for the quadtree `config`. Prints the figures and returns them (mean % pixels per step).
+ */
+nlohmann::json benchTerrainPopping(const terrain::QuadtreeConfig& config, TerrainRig& rig) {
+  terrain::TerrainScene& scene = *rig.scene;
+  const terrain::HeightField& field = scene.field();
+  terrain::Quadtree quadtree(config, field);
+  const glm::vec3 forward = glm::normalize(glm::vec3(0.8f, 0.0f, 0.6f));
+  const glm::vec2 start(0.2f * field.extentX(), 0.2f * field.extentZ());
+  const float span = std::hypot(field.extentX(), field.extentZ());
+  const glm::vec4 clear(0.62f, 0.72f, 0.85f, 1.0f);
+  terrain::CameraStepChange off;
+  terrain::CameraStepChange on;
+  int steps = 0;
+  constexpr int kWanted = 16;
+  constexpr float kStep = 0.1f;
+  for (int i = 0; i < 100000 && steps < kWanted; ++i) {
+    const glm::vec2 xz = start + glm::vec2(forward.x, forward.z) * (0.5f * static_cast<float>(i));
+    if (xz.x > 0.9f * field.extentX() || xz.y > 0.9f * field.extentZ()) {
+      break;
+    }
+    render::Camera from = rig.base;
+    from.position = {xz.x, terrain::heightAt(field, xz.x, xz.y) + 40.0f, xz.y};
+    from.target = from.position + glm::vec3(forward.x, -0.12f, forward.z);
+    from.nearPlane = 0.5f;
+    from.farPlane = span;
+    render::Camera to = from;
+    to.position += forward * kStep;
+    to.target += forward * kStep;
+    if (terrain::changedLeaves(quadtree.select(from.position, nullptr),
+                               quadtree.select(to.position, nullptr)) == 0) {
+      continue;
+    }
+    terrain::TerrainDrawOptions draw = scene.drawOptions(from);
+    draw.geomorph = false;
+    const terrain::CameraStepChange a =
+        terrain::measureCameraStep(scene.renderer(), quadtree, rig.target, from, to, draw, clear);
+    draw.geomorph = true;
+    const terrain::CameraStepChange b =
+        terrain::measureCameraStep(scene.renderer(), quadtree, rig.target, from, to, draw, clear);
+    off.across += a.across;
+    off.inside += a.inside;
+    on.across += b.across;
+    on.inside += b.inside;
+    off.leavesChanged += a.leavesChanged;
+    ++steps;
+  }
+  const double n = std::max(steps, 1);
+  const double acrossOff = 100.0 * off.across / n;
+  const double insideOff = 100.0 * off.inside / n;
+  const double acrossOn = 100.0 * on.across / n;
+  const double insideOn = 100.0 * on.inside / n;
+  std::printf(
+      "  popping at base level %d: %d steps of %.1f m with a level change (%d leaves changed), %% pixels "
+      "changed > 5 %%\n",
+      config.patchTessLevel, steps, kStep, off.leavesChanged);
+  std::printf("    geomorph off: across LOD boundaries %.4f, inside one band %.4f\n", acrossOff, insideOff);
+  std::printf("    geomorph on:  across LOD boundaries %.4f, inside one band %.4f\n", acrossOn, insideOn);
+  return {{"tess", config.patchTessLevel},
+          {"max_depth", config.maxDepth},
+          {"steps", steps},
+          {"step_m", kStep},
+          {"leaves_changed", off.leavesChanged},
+          {"unit", "% pixels changed by > 5 % in a channel, mean per step"},
+          {"geomorph_off", {{"across", acrossOff}, {"inside", insideOff}}},
+          {"geomorph_on", {{"across", acrossOn}, {"inside", insideOn}}}};
+}
+
 void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
   TerrainRig rig(o);
   render::RenderTarget& target = rig.target;
@@ -205,6 +280,7 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
   struct Entry {
     std::string roots;
     terrain::QuadtreeConfig config;
+    bool geomorph = false;
   };
   std::vector<Entry> entries;
   for (const Table8Row& row : kTable8) {
@@ -224,14 +300,19 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
     config.method = parseCrackMethod(method);
     entries.push_back({"demo", config});
   }
+  // The demo configuration once more with geomorphing (method "ours+m"): its cost.
+  entries.push_back({"demo", o.terrain.configFor(field), true});
   for (const Entry& entry : entries) {
     {
       const terrain::QuadtreeConfig& config = entry.config;
-      const std::string method = config.method == terrain::CrackMethod::PaperSearch ? "paper" : "ours";
+      const std::string method =
+          std::string(config.method == terrain::CrackMethod::PaperSearch ? "paper" : "ours") +
+          (entry.geomorph ? "+m" : "");
       terrain::Quadtree quadtree(config, field);
       terrain::QuadtreeSelection selection;
       terrain::TerrainDrawOptions draw;
       draw.countVertices = true;
+      draw.geomorph = entry.geomorph;
       draw.environment = scene->environment(rig.base);
       const Samples s = measure(o, [&](render::GpuTimers& timers, int i, Samples& out) {
         // A slow orbit around the centre: the selection changes every frame, as in a fly-through.
@@ -264,6 +345,7 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
                       {"tess", config.patchTessLevel},
                       {"terrain_pass_wall_ms", pass.toJson()},
                       {"method", method},
+                      {"geomorph", entry.geomorph},
                       {"max_depth", config.maxDepth},
                       {"nodes", nodes.toJson()},
                       {"processed_vertices", vertices.toJson()},
@@ -274,15 +356,11 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
     }
   }
   report["rows"] = rows;
-}
-
-/** Resident set size of this process in bytes (Linux /proc/self/statm), 0 if unknown. */
-std::uint64_t residentBytes() {
-  std::ifstream statm("/proc/self/statm");
-  std::uint64_t size = 0;
-  std::uint64_t resident = 0;
-  statm >> size >> resident;
-  return resident * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  // Popping with the demo configuration, and with base level 4 (coarser patches, so level changes show more).
+  TerrainFlags coarse = o.terrain;
+  coarse.quadtree.patchTessLevel = 4;
+  report["popping"] = {benchTerrainPopping(o.terrain.configFor(field), rig),
+                       benchTerrainPopping(coarse.configFor(field), rig)};
 }
 
 /**
@@ -608,21 +686,6 @@ grass::FieldSettings paperFieldSettings() {
   return fs;
 }
 
-/** Fraction of pixels whose colour changes by more than `threshold` (0..1) in any channel between a and b. */
-double changedFraction(const Image& a, const Image& b, float threshold) {
-  std::size_t changed = 0;
-  for (int y = 0; y < a.height(); ++y) {
-    for (int x = 0; x < a.width(); ++x) {
-      bool differs = false;
-      for (int c = 0; c < 3; ++c) {
-        differs = differs || std::abs(a.get(x, y, c) - b.get(x, y, c)) > threshold;
-      }
-      changed += differs ? 1 : 0;
-    }
-  }
-  return static_cast<double>(changed) / (static_cast<double>(a.width()) * a.height());
-}
-
 /**
  * `bench grass`: the paper's field (14,926 tiles of 2 m, 64 blades each: 955,264 blades in one draw, seen
  * whole), the demo's ground view, memory against the paper's 24 MB patch, and LOD popping: pixels that change
@@ -735,8 +798,8 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   };
   grass::CullSettings hard = base;
   hard.lodFade = 0.0f;
-  const double faded = changedFraction(still(base), still(shifted(base, 0.25f)), 0.05f);
-  const double popped = changedFraction(still(hard), still(shifted(hard, 0.25f)), 0.05f);
+  const double faded = terrain::changedPixelFraction(still(base), still(shifted(base, 0.25f)), 0.05f);
+  const double popped = terrain::changedPixelFraction(still(hard), still(shifted(hard, 0.25f)), 0.05f);
   // The draw distance moved by 1 m: blades dissolving into the ground tint over the far fade, or cut.
   const auto nearer = [](grass::CullSettings s) {
     s.maxDistance -= 1.0f;
@@ -744,8 +807,8 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   };
   grass::CullSettings cut = base;
   cut.farFade = 0.0f;
-  const double farFaded = changedFraction(still(base), still(nearer(base)), 0.05f);
-  const double farCut = changedFraction(still(cut), still(nearer(cut)), 0.05f);
+  const double farFaded = terrain::changedPixelFraction(still(base), still(nearer(base)), 0.05f);
+  const double farCut = terrain::changedPixelFraction(still(cut), still(nearer(cut)), 0.05f);
   // The same 0.25 m step of the camera, across the boundaries and with one level everywhere (no boundary).
   const auto step = [&](const grass::CullSettings& settings) {
     demoGrass.setCullSettings(settings);
@@ -761,7 +824,7 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
     target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
     drawTerrainWithGrass(*demo, &demoGrass, moved, o.width, o.height, 1.0, demo->drawOptions(moved),
                          demoOptions);
-    return changedFraction(a, target.readColor(), 0.05f);
+    return terrain::changedPixelFraction(a, target.readColor(), 0.05f);
   };
   grass::CullSettings single = base;
   single.lodDistances = {base.maxDistance - base.farFade - 2.0f * base.lodFade,
@@ -929,8 +992,10 @@ void registerBench(CLI::App& app) {
           "in one draw, patch memory, culling, LOD popping) or grass-sim (the paper's Table 1 workloads "
           "on the CPU and GPU solvers, and 500,000 blades with 1,024 bodies) or trees (the paper's Fig. 16 "
           "workloads instanced and per piece, tessellation cost, foliage, 1,000 animated + 100,000 impostor "
-          "trees, generation, wind on joints, bark tile sets)")
-      ->check(CLI::IsMember({"demo", "terrain", "soak", "fold", "capture", "grass", "grass-sim", "trees"}))
+          "trees, generation, wind on joints, bark tile sets) or scene (a scene file's frames, --scene: "
+          "per-pass CPU, GPU and wall times, frames per second, memory)")
+      ->check(CLI::IsMember(
+          {"demo", "terrain", "soak", "fold", "capture", "grass", "grass-sim", "trees", "scene"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -947,6 +1012,9 @@ void registerBench(CLI::App& app) {
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
   command->add_option("-o,--out", o->out, "JSON report path (default: out/bench-<area>.json)");
+  command->add_option("--scene", o->sceneFile, "scene: the scene file to measure")
+      ->check(CLI::ExistingFile)
+      ->capture_default_str();
   command
       ->add_option("--max-growth", o->maxGrowthPercent,
                    "soak: largest allowed growth of resident memory after warm-up, in percent")
@@ -987,6 +1055,13 @@ void registerBench(CLI::App& app) {
     } else if (o->area == "trees") {
       report = header(*o, "trees", *context);
       benchTrees(o->frames, o->width, o->height, report);
+    } else if (o->area == "scene") {
+#ifdef SYLVA_HAVE_SCENE
+      report = header(*o, "scene", *context);
+      benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, report);
+#else
+      fail("bench scene: this sylva was built without the scene module");
+#endif
     } else if (o->area == "soak") {
       benchSoak(*o, *context, report);
     } else {

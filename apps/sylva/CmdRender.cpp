@@ -8,6 +8,7 @@
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/RenderTarget.hpp>
 
+#include "CmdScene.hpp"
 #include "GrassFlags.hpp"
 #include "GrassSim.hpp"
 #include "TerrainFlags.hpp"
@@ -19,8 +20,9 @@
 namespace sylva::app {
 
 void registerRender(CLI::App& app) {
-  auto* command =
-      app.add_subcommand("render", "Render a scene (terrain by default) headless into a PNG image");
+  auto* command = app.add_subcommand(
+      "render", "Render a scene headless into PNG images: a scene file (docs/scenes.md: a still, "
+                "or a resumable frame sequence with --frames), or terrain with --grass/--trees");
   struct Options {
     ContextFlags context;
     std::string scene = "terrain";
@@ -29,7 +31,11 @@ void registerRender(CLI::App& app) {
     GrassFlags grass;
     SimulationFlags simulation;
     TreeFlags trees;
-    int frames = 1;
+    std::string frames;
+    SceneRenderOptions sceneFile;
+    CLI::Option* outOption = nullptr;
+    CLI::Option* widthOption = nullptr;
+    CLI::Option* heightOption = nullptr;
     double fps = 30.0;
     std::string gif;
     std::string view = "shaded";
@@ -43,6 +49,13 @@ void registerRender(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   o->context.add(*command);
+  command
+      ->add_option(
+          "file", o->sceneFile.file,
+          "A scene file (data/scenes/*.json): renders its output camera; with --frames A-B a numbered "
+          "PNG sequence into --out DIR (resumable, --shard i/n, --gif/--mp4)")
+      ->check(CLI::ExistingFile);
+  addSceneRenderOptions(*command, o->sceneFile);
   command->add_option("--scene", o->scene, "terrain, or demo (the small built-in pipeline test scene)")
       ->check(CLI::IsMember({"terrain", "demo"}))
       ->capture_default_str();
@@ -51,12 +64,11 @@ void registerRender(CLI::App& app) {
   o->grass.add(*command);
   o->simulation.add(*command);
   o->trees.add(*command);
-  command
-      ->add_option(
-          "--frames", o->frames,
-          "Frames to render from --time on at --fps (the scene moves: wind, physics); -o gets the last")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
+  command->add_option(
+      "--frames", o->frames,
+      "Scene file: frame numbers A-B (or A-B,C-D) of its fixed clock, written to --out DIR as "
+      "frame_NNNNN.png. Otherwise: a count N of frames from --time on at --fps (wind, physics "
+      "move); -o gets the last (default 1)");
   command->add_option("--fps", o->fps, "Frames per second of --frames")
       ->check(finiteRange(1.0, 240.0))
       ->capture_default_str();
@@ -64,13 +76,20 @@ void registerRender(CLI::App& app) {
   command->add_option("--view", o->view, "Terrain view: shaded, lod (LOD colours), normals or splat")
       ->check(CLI::IsMember({"shaded", "lod", "normals", "splat"}))
       ->capture_default_str();
-  command->add_option("-o,--out", o->out, "Output PNG path (directories are created)")->capture_default_str();
-  command->add_option("--width", o->width, "Image width in pixels")
-      ->check(CLI::Range(16, 16384))
-      ->capture_default_str();
-  command->add_option("--height", o->height, "Image height in pixels")
-      ->check(CLI::Range(16, 16384))
-      ->capture_default_str();
+  o->outOption =
+      command
+          ->add_option("-o,--out", o->out,
+                       "Output PNG path, or with a scene file and --frames the sequence's directory "
+                       "(default out/<scene name>); directories are created")
+          ->capture_default_str();
+  o->widthOption =
+      command->add_option("--width", o->width, "Image width in pixels (scene file: its output's)")
+          ->check(CLI::Range(16, 16384))
+          ->capture_default_str();
+  o->heightOption =
+      command->add_option("--height", o->height, "Image height in pixels (scene file: its output's)")
+          ->check(CLI::Range(16, 16384))
+          ->capture_default_str();
   command->add_option("--time", o->time, "Scene time in seconds (fixed clock: same time, same image)")
       ->check(finiteRange(-1.0e6, 1.0e6))
       ->capture_default_str();
@@ -83,6 +102,30 @@ void registerRender(CLI::App& app) {
                    "Read shaders from this directory instead of the embedded copies")
       ->check(CLI::ExistingDirectory);
   command->callback([o] {
+    if (!o->sceneFile.file.empty()) {
+      SceneRenderOptions scene = o->sceneFile;
+      scene.frames = o->frames;
+      scene.gif = o->gif;
+      scene.out = o->outOption->count() > 0 ? o->out : std::string();
+      scene.context = o->context.options();
+      scene.shaderDir = o->shaderDir;
+      scene.width = o->widthOption->count() > 0 ? o->width : 0;
+      scene.height = o->heightOption->count() > 0 ? o->height : 0;
+      renderSceneFile(scene);
+      return;
+    }
+    if (!o->sceneFile.mp4.empty() || !o->sceneFile.camera.empty() || o->sceneFile.shard != "0/1") {
+      fail("--mp4, --camera and --shard need a scene file (sylva render SCENE.json ...)");
+    }
+    int frameCount = 1;
+    if (!o->frames.empty()) {
+      char* end = nullptr;
+      const long n = std::strtol(o->frames.c_str(), &end, 10);
+      if (*end != '\0' || n < 1 || n > 100000) {
+        fail("--frames {}: without a scene file, a count of frames in [1, 100000]", o->frames);
+      }
+      frameCount = static_cast<int>(n);
+    }
     o->camera.check();
     if (o->grass.enabled) {
       o->grass.check();
@@ -157,8 +200,8 @@ void registerRender(CLI::App& app) {
       grassOptions.view = o->grass.grassView();
       grassOptions.wind = o->grass.wind();
       std::vector<Image> frames;
-      Progress progress("render", static_cast<std::size_t>(o->frames));
-      for (int f = 0; f < o->frames; ++f) {
+      Progress progress("render", static_cast<std::size_t>(frameCount));
+      for (int f = 0; f < frameCount; ++f) {
         const double time = o->time + f / o->fps;
         if (simulation) {
           simulation->advance(time - o->time, grassOptions.wind);
@@ -178,7 +221,7 @@ void registerRender(CLI::App& app) {
         if (simulation) {
           simulation->drawBodies(camera, o->width, o->height, time, options.environment);
         }
-        if (o->frames > 1) {
+        if (frameCount > 1) {
           frames.push_back(target.readColor());
         }
         progress.advance(1);

@@ -77,6 +77,10 @@ void GrassSimScene::spawnBalls(glm::vec2 centre, float radius, int count, std::u
   }
 }
 
+void GrassSimScene::addBody(const physics::BodySpec& spec, const std::string& where) {
+  mWorld->addBody(spec, where);
+}
+
 void GrassSimScene::spawnBall(const glm::vec3& position, const glm::vec3& velocity, float radius,
                               float mass) {
   physics::BodySpec b;

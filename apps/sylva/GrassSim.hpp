@@ -43,6 +43,8 @@ public:
 
   /** Drops `count` seeded balls over a disc of `radius` metres around world (x, z) `centre`. */
   void spawnBalls(glm::vec2 centre, float radius, int count, std::uint64_t seed, float drop = 1.0f);
+  /** Adds a body (`where` names it in errors). */
+  void addBody(const physics::BodySpec& spec, const std::string& where);
   /** Adds one ball (world metres, m/s, kg). */
   void spawnBall(const glm::vec3& position, const glm::vec3& velocity, float radius = 0.35f,
                  float mass = 30.0f);

@@ -356,6 +356,14 @@ void TreeScene::setWind(bool on) {
   mRenderer->useFrames(on ? &mWind->frames() : nullptr);
 }
 
+void TreeScene::resetWind() {
+  mClock.reset();
+  if (mWind) {
+    mWind = std::make_unique<trees::JointWindGpu>(mShaders, forestWindRest(*mForest));
+    mRenderer->useFrames(mWindOn ? &mWind->frames() : nullptr);
+  }
+}
+
 void TreeScene::advance(double time, const wind::WindSettings& wind, int maxSteps,
                         render::GpuTimers* timers) {
   mSteps = 0;

@@ -109,6 +109,8 @@ public:
 
   /** Turns the wind on (building the springs on first use; they go on from their last state) or off. */
   void setWind(bool on);
+  /** Puts the springs back at rest; the next advance() starts kTreeWindWarmup seconds before its time. */
+  void resetWind();
   /** Whether the trees are drawn in the wind (else in their rest pose). */
   bool windOn() const { return mWindOn; }
 

@@ -41,6 +41,23 @@ void Progress::advance(std::size_t n) {
   print(false);
 }
 
+std::string Progress::eta(long long elapsedNs) const {
+  const std::size_t done = mDone.load();
+  if (done == 0 || done >= mTotal) {
+    return "      "; // keeps the line's length while nothing can be estimated
+  }
+  const double left =
+      static_cast<double>(elapsedNs) * 1e-9 * static_cast<double>(mTotal - done) / static_cast<double>(done);
+  char text[48];
+  if (left < 120.0) {
+    std::snprintf(text, sizeof(text), ", ETA %.0fs ", left);
+  } else {
+    std::snprintf(text, sizeof(text), ", ETA %dm%02ds ", static_cast<int>(left) / 60,
+                  static_cast<int>(left) % 60);
+  }
+  return text;
+}
+
 void Progress::print(bool final) {
   const auto now = std::chrono::steady_clock::now();
   const long long ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - mStart).count();
@@ -59,8 +76,8 @@ void Progress::print(bool final) {
       }
     } else if (quarter > printed && quarter < 4 &&
                mQuartersPrinted.compare_exchange_strong(printed, quarter)) {
-      std::fprintf(stderr, "%s: %zu%% (%zu/%zu) %.1fs\n", mLabel.c_str(), quarter * 25, mDone.load(), mTotal,
-                   static_cast<double>(ns) * 1e-9);
+      std::fprintf(stderr, "%s: %zu%% (%zu/%zu) %.1fs%s\n", mLabel.c_str(), quarter * 25, mDone.load(),
+                   mTotal, static_cast<double>(ns) * 1e-9, eta(ns).c_str());
     }
     return;
   }
@@ -72,8 +89,9 @@ void Progress::print(bool final) {
     return;
   }
   const double fraction = mTotal == 0 ? 1.0 : static_cast<double>(mDone) / static_cast<double>(mTotal);
-  std::fprintf(stderr, "\r%s: %5.1f%% (%zu/%zu) %.1fs%s", mLabel.c_str(), 100.0 * fraction, mDone.load(),
-               mTotal, static_cast<double>(ns) * 1e-9, final ? (cancelled() ? " cancelled\n" : "\n") : "");
+  std::fprintf(stderr, "\r%s: %5.1f%% (%zu/%zu) %.1fs%s%s", mLabel.c_str(), 100.0 * fraction, mDone.load(),
+               mTotal, static_cast<double>(ns) * 1e-9, final ? "" : eta(ns).c_str(),
+               final ? (cancelled() ? " cancelled\n" : "\n") : "");
   std::fflush(stderr);
 }
 

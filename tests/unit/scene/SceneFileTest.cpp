@@ -74,13 +74,13 @@ TEST(SceneFile, MeadowHasEveryPart) {
   for (const ForestDesc& f : s.forests) {
     trees += f.count;
   }
-  EXPECT_LE(trees, 200);
+  EXPECT_LE(trees, 300); // a frame stays a few seconds on llvmpipe
   EXPECT_FALSE(s.drops.empty());
   ASSERT_TRUE(s.cameras.contains("main"));
   ASSERT_TRUE(s.cameras.contains("flyover"));
   EXPECT_EQ(s.cameras.at("main").keys.size(), 1u);
   EXPECT_NEAR(s.cameras.at("flyover").keys.back().time - s.cameras.at("flyover").keys.front().time, 5.0, 1.0);
-  EXPECT_NEAR(s.sun.elevation, 35.0f, 5.0f);
+  EXPECT_NEAR(s.sun.elevation, 16.0f, 6.0f); // a low late-afternoon sun: long shadows, the flare in view
 }
 
 TEST(SceneFile, JacksboroUsesTheRealDem) {
@@ -90,7 +90,8 @@ TEST(SceneFile, JacksboroUsesTheRealDem) {
   EXPECT_TRUE(fs::exists(s.terrain.dem));
   ASSERT_FALSE(s.forests.empty());
   EXPECT_TRUE(s.forests[0].minHeight.has_value());
-  EXPECT_GT(s.cameras.at(s.output.camera).keys.size(), 1u);
+  ASSERT_TRUE(s.cameras.contains("ridge"));
+  EXPECT_GT(s.cameras.at("ridge").keys.size(), 1u);
 }
 
 TEST(SceneFile, DefaultsWhenKeysAreAbsent) {

@@ -9,9 +9,10 @@ namespace sylva {
 
 /**
  * Progress of long work (preprocessing, synthesis, batch renders). Prints a single updating line to stderr
- * when it is a terminal (at most 10 times a second); otherwise (logs, CI) a line at 25, 50 and 75 % and one
- * when the step ends, for steps that run longer than a second. cancel() may be called from
- * another thread (e.g. a SIGINT handler); the worker checks cancelled() and stops.
+ * when it is a terminal (at most 10 times a second, with the time left estimated from the rate so far);
+ * otherwise (logs, CI) a line at 25, 50 and 75 % and one when the step ends, for steps that run longer than a
+ * second. cancel() may be called from another thread (e.g. a SIGINT handler); the worker checks cancelled()
+ * and stops.
  */
 class Progress {
 public:
@@ -39,6 +40,8 @@ public:
 private:
   static bool cancelAllRequested() noexcept;
   void print(bool final);
+  /** ", ETA 12s" from the rate so far (blank before the first unit and after the last). */
+  std::string eta(long long elapsedNs) const;
 
   std::string mLabel;
   std::size_t mTotal;

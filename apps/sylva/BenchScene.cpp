@@ -1,0 +1,104 @@
+// `sylva bench scene [--scene FILE]`: a scene file's frames with every pass timed (docs/scenes.md
+// "Performance").
+#include "BenchRows.hpp"
+#include "SceneWorld.hpp"
+
+#include <sylva/core/Log.hpp>
+#include <sylva/core/Progress.hpp>
+#include <sylva/gl/ContextInfo.hpp>
+#include <sylva/render/RenderTarget.hpp>
+#include <sylva/scene/SceneFile.hpp>
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <map>
+
+namespace sylva::app {
+
+void benchScene(const std::string& file, int frames, int warmup, int width, int height,
+                nlohmann::json& report) {
+  const auto buildStart = std::chrono::steady_clock::now();
+  const std::uint64_t rssBefore = residentBytes();
+  shader::Library library;
+  SceneWorld world(library, scene::loadScene(file));
+  const scene::SceneDesc& desc = world.desc();
+  render::RenderTarget target(width, height);
+  glFinish();
+  const double buildS = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+  render::GpuTimers timers(3, true); // synchronous: every pass finished before its end, wall times recorded
+  std::map<std::string, std::vector<double>> cpu;
+  std::map<std::string, std::vector<double>> gpu;
+  std::map<std::string, std::vector<double>> wall;
+  std::vector<std::string> order;
+  std::vector<double> frameMs;
+  Progress progress(fmt::format("bench scene {}", desc.name), static_cast<std::size_t>(warmup + frames));
+  for (int i = 0; i < warmup + frames; ++i) {
+    const int frame = desc.output.firstFrame + i;
+    const auto start = std::chrono::steady_clock::now();
+    timers.beginFrame();
+    timers.begin("simulation");
+    world.advanceToFrame(frame);
+    timers.end();
+    const double time = world.frameTime(frame);
+    const render::Camera camera = world.camera(desc.output.camera, time, target.aspect());
+    target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    world.draw(camera, width, height, time, &target.depth(), &timers);
+    timers.endFrame();
+    glFinish();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (i >= warmup) {
+      frameMs.push_back(ms);
+      for (const render::PassTiming& t : timers.lastFrame()) {
+        if (!cpu.contains(t.name)) {
+          order.push_back(t.name);
+        }
+        cpu[t.name].push_back(t.cpuMs);
+        gpu[t.name].push_back(t.gpuMs);
+        wall[t.name].push_back(t.wallMs);
+      }
+    }
+    progress.advance(1);
+  }
+  const std::uint64_t rss = residentBytes();
+  const render::Stats frame = render::Stats::of(frameMs);
+  const double fps = 1000.0 / frame.median;
+  const gl::ContextInfo info = gl::queryContextInfo();
+  const bool llvmpipe = info.renderer.find("llvmpipe") != std::string::npos;
+  std::vector<BenchRow> rows;
+  rows.push_back({fmt::format("{} {}×{}: frames per second (median frame)", desc.name, width, height), fps,
+                  "fps", llvmpipe ? 5.0 : 120.0, false, 0,
+                  llvmpipe ? "llvmpipe target (scene spec)" : "NVIDIA target is 120 fps at 1920×1080"});
+  rows.push_back({"frame time (median; wall, every pass finished)", frame.median, "ms",
+                  llvmpipe ? 200.0 : 8.33, true, 0,
+                  fmt::format("p10 {:.1f}, p90 {:.1f}", frame.p10, frame.p90)});
+  nlohmann::json passes = nlohmann::json::array();
+  for (const std::string& name : order) {
+    const render::Stats w = render::Stats::of(wall[name]);
+    const render::Stats c = render::Stats::of(cpu[name]);
+    const render::Stats g = render::Stats::of(gpu[name]);
+    rows.push_back({"pass " + name + " (wall)", w.median, "ms", std::nan(""), true, 0,
+                    fmt::format("cpu {:.2f} ms, gpu timestamps {:.2f} ms", c.median, g.median)});
+    passes.push_back(
+        {{"pass", name}, {"wall_ms", w.toJson()}, {"cpu_ms", c.toJson()}, {"gpu_ms", g.toJson()}});
+  }
+  rows.push_back({"GPU memory the subsystems report", static_cast<double>(world.gpuBytes()) / 1e6, "MB",
+                  std::nan(""), true, 0, "shadow maps, trees (pieces, bark, foliage, impostors)"});
+  rows.push_back({"process resident memory after the run", static_cast<double>(rss) / 1e6, "MB", std::nan(""),
+                  true, 0,
+                  fmt::format("{:.0f} MB before building the scene; llvmpipe keeps GPU memory here too",
+                              static_cast<double>(rssBefore) / 1e6)});
+  rows.push_back({"scene build (load, synthesis, uploads)", buildS, "s", std::nan(""), true, 0,
+                  fmt::format("{} trees, {} bodies", world.treeCount(), world.bodies())});
+  report["scene"] = file;
+  report["passes"] = passes;
+  report["frame_ms"] = frame.toJson();
+  report["fps"] = fps;
+  report["gpu_bytes"] = world.gpuBytes();
+  report["resident_bytes"] = rss;
+  report["rows"] = printBenchRows(rows);
+}
+
+} // namespace sylva::app

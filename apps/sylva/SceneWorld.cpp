@@ -1,0 +1,420 @@
+#include "SceneWorld.hpp"
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/core/Log.hpp>
+#include <sylva/physics/World.hpp>
+#include <sylva/scene/ShoreWater.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/trees/Forest.hpp>
+#include <sylva/trees/Species.hpp>
+
+#include "GrassFlags.hpp"
+#include "GrassSim.hpp"
+#include "TerrainFlags.hpp"
+#include "TreeFlags.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::app {
+namespace {
+
+std::string number(double v) {
+  return fmt::format("{}", v);
+}
+
+/** The terrain through the same options and builder as `sylva render --dem/--seed`. */
+std::unique_ptr<terrain::TerrainScene> buildTerrain(const shader::Library& library,
+                                                    const scene::SceneDesc& s) {
+  const scene::TerrainDesc& t = s.terrain;
+  TerrainFlags flags;
+  CLI::App app;
+  flags.add(app);
+  std::vector<std::string> args;
+  if (!t.dem.empty()) {
+    args = {"--dem", t.dem};
+    if (t.spacingSet) {
+      args.insert(args.end(), {"--spacing", number(t.spacing)});
+    }
+  } else {
+    args = {"--seed",    std::to_string(t.seed), "--size",         std::to_string(t.size),
+            "--spacing", number(t.spacing),      "--height-scale", number(t.relief)};
+  }
+  args.insert(args.end(), {"--exaggeration", number(t.exaggeration), "--tess", std::to_string(t.tessLevel),
+                           "--lod-factor", number(t.lodFactor), "--sea-level",
+                           t.seaLevel ? number(*t.seaLevel) : std::string("none")});
+  if (t.maxDepth >= 0) {
+    args.insert(args.end(), {"--max-depth", std::to_string(t.maxDepth)});
+  }
+  std::reverse(args.begin(), args.end());
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    fail("{}: /terrain: {}", s.path, e.what());
+  }
+  return flags.build(library);
+}
+
+/** A density or paint map as values in [0, 1] (the red channel, or luminance for grey images). */
+std::vector<float> mapValues(const std::string& path, int& width, int& height) {
+  const Image image = loadImage(path);
+  width = image.width();
+  height = image.height();
+  std::vector<float> values(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      values[static_cast<std::size_t>(y) * width + x] = image.get(x, y, 0);
+    }
+  }
+  return values;
+}
+
+} // namespace
+
+SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
+    : mLibrary(library), mDesc(std::move(desc)) {
+  const float a = glm::radians(mDesc.wind.direction);
+  mWind.direction = {std::sin(a), -std::cos(a)}; // clockwise from north (−z), the way it blows
+  mWind.speed = mDesc.wind.speed;
+  mWind.gustStrength = mDesc.wind.gusts;
+  mWind.seed = mDesc.wind.seed;
+
+  mTerrain = buildTerrain(library, mDesc);
+  log::info("scene {}: terrain {}×{} samples, {:.0f}×{:.0f} m", mDesc.name, mTerrain->field().width(),
+            mTerrain->field().height(), mTerrain->field().extentX(), mTerrain->field().extentZ());
+
+  for (std::size_t i = 0; i < mDesc.grass.size(); ++i) {
+    const scene::GrassLayer& layer = mDesc.grass[i];
+    GrassFlags g;
+    g.enabled = true;
+    if (!layer.blades.empty()) {
+      g.types.clear();
+      for (const std::string& b : layer.blades) {
+        g.types += (g.types.empty() ? "" : ",") + b;
+      }
+    }
+    g.field.density.base = std::clamp(layer.density, 0.0f, 1.0f);
+    g.field.density.coverage = layer.coverage;
+    g.field.patch.seed = layer.seed;
+    g.paint = layer.paint;
+    g.layer = layer.layer;
+    g.cull.maxDistance = layer.distance;
+    // LOD bands scale with the draw distance (the defaults 12 and 35 m suit 60 m), so every distance is
+    // valid.
+    g.lod = fmt::format("{:.3g},{:.3g}", 0.2f * layer.distance, 0.55f * layer.distance);
+    g.check();
+    auto field = g.buildField(*mTerrain);
+    mGrass.push_back(std::make_unique<grass::GrassRenderer>(library, field, g.cullSettings()));
+    if (layer.simulate) {
+      if (mSimulatedGrass >= 0) {
+        fail("{}: /grass/{}/simulate: only one grass layer can be simulated (layer {} already is)",
+             mDesc.path, i, mSimulatedGrass);
+      }
+      mSimulatedGrass = static_cast<int>(i);
+    }
+  }
+  if ((!mDesc.bodies.empty() || !mDesc.drops.empty()) && mSimulatedGrass < 0) {
+    fail("{}: /bodies: bodies need a grass layer with \"simulate\": true (the physics world moves the grass)",
+         mDesc.path);
+  }
+
+  const float e = mTerrain->exaggeration();
+  for (std::size_t i = 0; i < mDesc.forests.size(); ++i) {
+    const scene::ForestDesc& f = mDesc.forests[i];
+    const std::string where = fmt::format("{}: /forests/{}", mDesc.path, i);
+    TreeFlags flags;
+    flags.enabled = true;
+    trees::ForestSettings& s = flags.forest;
+    s.species.clear();
+    for (const auto& [name, weight] : f.species) {
+      try {
+        (void)trees::resolveSpecies(name);
+      } catch (const Error& error) {
+        fail("{}/species/{}: {}", where, name, error.what());
+      }
+      s.species.push_back(name);
+      s.speciesWeights.push_back(weight);
+    }
+    s.count = f.count;
+    s.seed = f.seed;
+    s.spacing = f.spacing;
+    s.maxSlope = f.maxSlope;
+    s.clusterSize = f.clusterSize;
+    s.bare = f.bare;
+    s.verticalScale = 1.0f; // the terrain scene's field is already exaggerated
+    if (f.minHeight) {
+      s.minHeight = *f.minHeight;
+    } else if (mTerrain->seaLevel()) {
+      s.minHeight = (*mTerrain->seaLevel() + 0.5f) * e;
+    }
+    if (f.maxHeight) {
+      s.maxHeight = *f.maxHeight;
+    }
+    if (f.regionCentre) {
+      s.regionCentre = *f.regionCentre;
+      s.regionRadius = f.regionRadius;
+    }
+    if (!f.densityMap.empty()) {
+      s.densityMap = mapValues(f.densityMap, s.densityWidth, s.densityHeight);
+    }
+    flags.bark = f.bark;
+    flags.foliage = f.foliage;
+    flags.farDistance = f.farDistance;
+    flags.farBand = f.farBand;
+    flags.farCount = f.farCount;
+    try {
+      flags.check();
+    } catch (const Error& error) {
+      fail("{}: {}", where, error.what());
+    }
+    auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), s));
+    auto scene = std::make_unique<TreeScene>(library, forest, true);
+    scene->setBark(flags.barkSources());
+    flags.applyFoliage(*scene);
+    flags.applyFarField(*scene, *mTerrain);
+    log::info("scene {}: forest {}: {} trees", mDesc.name, i, forest->trees.size());
+    mForests.push_back(std::move(scene));
+  }
+
+  for (const scene::WaterDesc& w : mDesc.water) {
+    scene::ShoreSettings settings;
+    settings.level = w.level * e;
+    settings.band = w.band;
+    settings.tile = w.tile;
+    settings.folding = w.folding;
+    mWater.push_back(std::make_unique<scene::ShoreWater>(library, mTerrain->field(), e, settings));
+  }
+
+  const scene::GroundHeight ground = [this](float x, float z) {
+    const float h = groundHeight(x, z);
+    return std::isnan(h) ? 0.0f : h;
+  };
+  for (const auto& [name, camera] : mDesc.cameras) {
+    mCameras[name] = scene::resolveKeys(camera, ground);
+  }
+
+  mPasses = std::make_unique<scene::ScenePasses>(library, mDesc);
+  mPasses->set(
+      scene::Pass::Terrain,
+      [this](const scene::PassInput& in) {
+        const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
+        if (in.timers != nullptr) {
+          in.timers->begin("lod (cpu)");
+        }
+        mTerrain->update(in.camera, aspect);
+        if (in.timers != nullptr) {
+          in.timers->end();
+        }
+        terrain::TerrainDrawOptions options = mTerrain->drawOptions(in.camera);
+        options.environment = in.environment;
+        options.waterLevel.reset(); // the scene's water pass draws the lakes
+        options.geomorph = mDesc.terrain.geomorph;
+        if (!mGrass.empty()) {
+          options.groundTint = mGrass.front()->groundTint();
+        }
+        mTerrain->draw(in.camera, in.width, in.height, in.time, in.timers, options);
+      },
+      [this](const scene::PassInput& in) {
+        // Patches chosen for the viewer (as fine as those the shadows fall on), culled by the cascade.
+        mTerrain->setFrozenFrustum(in.camera.frustum(1.0f));
+        mTerrain->update(*in.viewer, 1.0f);
+        mTerrain->setFrozenFrustum(std::nullopt);
+        terrain::TerrainDrawOptions options = mTerrain->drawOptions(in.camera);
+        options.environment = in.environment;
+        options.waterLevel.reset();
+        options.geomorph = mDesc.terrain.geomorph;
+        options.view =
+            terrain::TerrainView::WorldPosition; // the cheapest fragment work: depth is all we keep
+        mTerrain->draw(in.camera, in.width, in.height, in.time, nullptr, options);
+      });
+  if (!mForests.empty()) {
+    auto drawTrees = [this](const scene::PassInput& in) {
+      trees::TreeDrawOptions options;
+      options.environment = in.environment;
+      // Shadow draws: the distance rule measured from the sun camera (outside the casters) gives the coarsest
+      // pieces, which is what a shadow map of this resolution can show.
+      const trees::TreeLod lod;
+      for (auto& forest : mForests) {
+        forest->draw(in.camera, in.width, in.height, in.time, lod, options, in.timers);
+      }
+    };
+    mPasses->set(scene::Pass::Trees, drawTrees, drawTrees);
+  }
+  if (!mGrass.empty()) {
+    mPasses->set(scene::Pass::Grass, [this](const scene::PassInput& in) {
+      const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
+      grass::GrassDrawOptions options;
+      options.environment = in.environment;
+      options.wind = mWind;
+      for (auto& g : mGrass) {
+        g->cull(in.camera, aspect, in.timers);
+        g->draw(in.camera, in.width, in.height, in.time, in.timers, options);
+      }
+    });
+  }
+  if (mSimulatedGrass >= 0) {
+    mPasses->set(scene::Pass::Bodies, [this](const scene::PassInput& in) {
+      if (in.timers != nullptr) {
+        in.timers->begin(scene::passName(scene::Pass::Bodies));
+      }
+      mSimulation->drawBodies(in.camera, in.width, in.height, in.time, in.environment);
+      if (in.timers != nullptr) {
+        in.timers->end();
+      }
+    });
+  }
+  if (!mWater.empty()) {
+    mPasses->set(scene::Pass::Water, [this](const scene::PassInput& in) {
+      if (in.timers != nullptr) {
+        in.timers->begin(scene::passName(scene::Pass::Water));
+      }
+      for (auto& w : mWater) {
+        w->update(in.time);
+        w->draw(in.camera, in.width, in.height, in.time, in.environment);
+      }
+      if (in.timers != nullptr) {
+        in.timers->end();
+      }
+    });
+  }
+  buildSimulation();
+}
+
+SceneWorld::~SceneWorld() = default;
+
+float SceneWorld::groundHeight(float x, float z) const {
+  return terrain::heightAt(mTerrain->field(), x,
+                           z); // the scene's field holds the drawn (exaggerated) heights
+}
+
+void SceneWorld::buildSimulation() {
+  mSimulation.reset();
+  if (mSimulatedGrass >= 0) {
+    SimulationFlags flags;
+    flags.physics = "balls";
+    grass::GrassRenderer& g = *mGrass[static_cast<std::size_t>(mSimulatedGrass)];
+    mSimulation = std::make_unique<GrassSimScene>(mLibrary, *mTerrain, g, g.fieldPointer(), flags);
+    for (std::size_t i = 0; i < mDesc.bodies.size(); ++i) {
+      const scene::BodyDesc& b = mDesc.bodies[i];
+      physics::BodySpec spec;
+      spec.shape = b.shape == scene::BodyDesc::Shape::Ball ? physics::Shape::Sphere : physics::Shape::Box;
+      spec.size = b.shape == scene::BodyDesc::Shape::Ball ? glm::vec3(b.radius) : b.halfExtents;
+      spec.position = b.position.p;
+      if (b.position.aboveGround) {
+        spec.position.y += groundHeight(spec.position.x, spec.position.z);
+      }
+      spec.velocity = b.velocity;
+      spec.mass = b.mass;
+      mSimulation->addBody(spec, fmt::format("{}: /bodies/{}", mDesc.path, i));
+    }
+    for (const scene::BodyDrop& d : mDesc.drops) {
+      mSimulation->spawnBalls(d.centre, d.radius, d.count, d.seed, d.height);
+    }
+  }
+  for (auto& forest : mForests) {
+    forest->resetWind();
+  }
+  mFrame = -1;
+  mTime = 0.0;
+}
+
+void SceneWorld::stepTo(double time) {
+  if (mSimulation) {
+    mSimulation->advance(time, mWind);
+  }
+  for (auto& forest : mForests) {
+    forest->advance(time, mWind, 1 << 20);
+  }
+  mTime = time;
+}
+
+void SceneWorld::advanceToFrame(int frame) {
+  if (frame < mFrame) {
+    buildSimulation();
+  }
+  for (int f = std::max(mFrame + 1, 0); f <= frame; ++f) {
+    stepTo(frameTime(f));
+  }
+  mFrame = std::max(mFrame, frame);
+}
+
+void SceneWorld::advanceTo(double time) {
+  if (time < mTime) {
+    buildSimulation();
+  }
+  stepTo(time);
+  mFrame = -1;
+}
+
+render::Camera SceneWorld::camera(const std::string& name, double time, float aspect) const {
+  const auto it = mCameras.find(name);
+  if (it == mCameras.end()) {
+    std::string names;
+    for (const auto& [n, keys] : mCameras) {
+      names += (names.empty() ? "" : ", ") + n;
+    }
+    fail("{}: no camera '{}' (the file has: {})", mDesc.path, name, names);
+  }
+  const auto c = mDesc.cameras.find(name);
+  const scene::CameraSample s = scene::evaluate(it->second, time, c->second.loop);
+  render::Camera camera;
+  camera.position = s.position;
+  camera.target = s.target;
+  camera.fovY = glm::radians(s.fov);
+  (void)aspect;
+  render::fitClipPlanes(camera, mTerrain->bounds());
+  return camera;
+}
+
+void SceneWorld::draw(const render::Camera& camera, int width, int height, double time,
+                      const gl::Texture* depth, render::GpuTimers* timers) {
+  Aabb casters = mTerrain->bounds();
+  for (auto& forest : mForests) {
+    casters.min = glm::min(casters.min, forest->bounds().min);
+    casters.max = glm::max(casters.max, forest->bounds().max);
+  }
+  mPasses->render(camera, width, height, time, casters, depth, timers);
+}
+
+bool SceneWorld::spawnBall(const glm::vec3& position, const glm::vec3& velocity) {
+  if (!mSimulation) {
+    return false;
+  }
+  mSimulation->spawnBall(position, velocity);
+  return true;
+}
+
+std::size_t SceneWorld::bodies() const {
+  return mSimulation ? mSimulation->bodies() : 0;
+}
+
+std::size_t SceneWorld::treeCount() const {
+  std::size_t n = 0;
+  for (const auto& forest : mForests) {
+    n += forest->forest().trees.size();
+  }
+  return n;
+}
+
+std::size_t SceneWorld::gpuBytes() const {
+  std::size_t bytes = mPasses->gpuBytes();
+  for (const auto& forest : mForests) {
+    bytes += forest->gpuBytes();
+  }
+  return bytes;
+}
+
+void SceneWorld::reloadShaders(const shader::Library& library) {
+  mPasses->reloadShaders(library);
+  for (auto& forest : mForests) {
+    forest->reloadShaders(library);
+  }
+  if (mSimulation) {
+    mSimulation->reloadShaders(library);
+  }
+}
+
+} // namespace sylva::app

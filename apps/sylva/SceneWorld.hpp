@@ -1,0 +1,104 @@
+#pragma once
+// A scene file made drawable (`sylva render scene.json`, `sylva view scene.json`, `sylva bench scene`): the
+// subsystems the file names, built with the same builders as the per-subsystem flags, composed frame by frame
+// in the scene module's pass order (scene::ScenePasses). docs/scenes.md.
+
+#include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/render/Camera.hpp>
+#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/GpuTimers.hpp>
+#include <sylva/scene/CameraPath.hpp>
+#include <sylva/scene/SceneFile.hpp>
+#include <sylva/scene/ScenePasses.hpp>
+#include <sylva/shader/Library.hpp>
+#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/wind/Wind.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sylva::scene {
+class ShoreWater;
+}
+
+namespace sylva::app {
+
+class TreeScene;
+class GrassSimScene;
+
+/**
+ * Every subsystem of one scene file, on the GPU, with its simulations. Frame f of a sequence is a pure
+ * function of (scene, f): simulations (physics, simulated grass, the trees' joint springs) are stepped
+ * through the times of every frame from 0 to f at the scene's fps, whatever frames were drawn before
+ * (advanceToFrame). Needs a current GL context; not thread-safe.
+ */
+class SceneWorld {
+public:
+  SceneWorld(const shader::Library& library, scene::SceneDesc desc);
+  ~SceneWorld();
+  SceneWorld(const SceneWorld&) = delete;
+  SceneWorld& operator=(const SceneWorld&) = delete;
+
+  const scene::SceneDesc& desc() const { return mDesc; }
+  /** Seconds of frame `frame` on the scene's fixed clock (frame / fps). */
+  double frameTime(int frame) const { return static_cast<double>(frame) / mDesc.output.fps; }
+
+  /** The camera `name` (a key of the file's cameras) at scene time `time`, for `aspect` = width / height. */
+  render::Camera camera(const std::string& name, double time, float aspect) const;
+
+  /**
+   * Brings every simulation to frame `frame`'s time by stepping through each earlier frame's time in order
+   * (restarting from frame 0 when `frame` is before the current one). Deterministic: the same calls give the
+   * same state in every process, so shards and resumed runs draw identical frames.
+   */
+  void advanceToFrame(int frame);
+  /** Interactive use (viewer): advances the simulations to `time` seconds directly (not frame-exact). */
+  void advanceTo(double time);
+
+  /**
+   * Draws one frame for `camera` into the bound framebuffer (`width` × `height`), all passes in order;
+   * `depth` is that framebuffer's depth attachment (the sun flare's occlusion test; null: no flare).
+   */
+  void draw(const render::Camera& camera, int width, int height, double time, const gl::Texture* depth,
+            render::GpuTimers* timers);
+
+  /** The frame environment (sun, sky, fog) the passes share; shadows are filled per frame. */
+  const render::Environment& environment() const { return mPasses->environment(); }
+  scene::ScenePasses& passes() { return *mPasses; }
+  const wind::WindSettings& wind() const { return mWind; }
+  terrain::TerrainScene& terrain() { return *mTerrain; }
+  /** Drawn terrain height at world (x, z) (exaggerated metres); NaN outside or over nodata. */
+  float groundHeight(float x, float z) const;
+
+  /** Adds a ball at `position` with `velocity` (needs a simulated grass layer: the physics world lives
+   * there). */
+  bool spawnBall(const glm::vec3& position, const glm::vec3& velocity);
+  /** Bodies in the physics world. */
+  std::size_t bodies() const;
+  /** Trees in every forest. */
+  std::size_t treeCount() const;
+  /** Bytes of GPU memory the scene's subsystems hold (those that report it). */
+  std::size_t gpuBytes() const;
+  void reloadShaders(const shader::Library& library);
+
+private:
+  void buildSimulation();
+  void stepTo(double time);
+
+  const shader::Library& mLibrary;
+  scene::SceneDesc mDesc;
+  wind::WindSettings mWind;
+  std::unique_ptr<terrain::TerrainScene> mTerrain;
+  std::vector<std::unique_ptr<grass::GrassRenderer>> mGrass;
+  int mSimulatedGrass = -1;
+  std::unique_ptr<GrassSimScene> mSimulation;
+  std::vector<std::unique_ptr<TreeScene>> mForests;
+  std::vector<std::unique_ptr<scene::ShoreWater>> mWater;
+  std::unique_ptr<scene::ScenePasses> mPasses;
+  std::map<std::string, std::vector<scene::WorldCameraKey>> mCameras;
+  int mFrame = -1;
+  double mTime = 0.0;
+};
+
+} // namespace sylva::app

@@ -1,0 +1,167 @@
+#include <sylva/scene/ScenePasses.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/render/ShadowMaps.hpp>
+#include <sylva/render/Shadows.hpp>
+#include <sylva/render/Sky.hpp>
+#include <sylva/render/SkyRenderer.hpp>
+
+#include <epoxy/gl.h>
+
+#include <cmath>
+
+namespace sylva::scene {
+
+const char* passName(Pass pass) {
+  switch (pass) {
+  case Pass::Shadows:
+    return "shadows";
+  case Pass::Terrain:
+    return "terrain";
+  case Pass::Trees:
+    return "trees";
+  case Pass::Grass:
+    return "grass";
+  case Pass::Bodies:
+    return "bodies";
+  case Pass::Water:
+    return "water";
+  case Pass::Sky:
+    return "sky";
+  case Pass::Flare:
+    return "flare";
+  case Pass::Count:
+    break;
+  }
+  return "?";
+}
+
+render::Environment sceneEnvironment(const SceneDesc& scene) {
+  render::Environment e;
+  e.sunDirection = scene.sun.direction();
+  e.sunIntensity = scene.sun.intensity;
+  e.fogDensity = scene.fog.density;
+  e.atmosphere = render::Atmosphere::Sky;
+  e.turbidity = scene.sky.turbidity;
+  e.exposure = scene.sky.exposure;
+  // The standalone fog colour: the sky at the horizon, looking away from the sun (what a flat fog would
+  // pick).
+  const glm::vec3 away = glm::normalize(glm::vec3(-e.sunDirection.x, 0.0f, -e.sunDirection.z) + 1e-6f);
+  e.fogColor = render::skyRadiance(away, e.sunDirection, render::skyParamsFrom(e));
+  return e;
+}
+
+ScenePasses::ScenePasses(const shader::Library& library, const SceneDesc& scene)
+    : mScene(scene), mBase(sceneEnvironment(scene)), mEnvironment(mBase) {
+  mEnabled.fill(true);
+  if (scene.shadows.cascades > 0) {
+    mShadowMaps = std::make_unique<render::ShadowMaps>(scene.shadows.size, scene.shadows.cascades);
+  }
+  mSky = std::make_unique<render::SkyRenderer>(library);
+  mEnabled[static_cast<int>(Pass::Flare)] = scene.sky.flare;
+}
+
+ScenePasses::~ScenePasses() = default;
+
+void ScenePasses::set(Pass pass, PassDraw draw, PassDraw shadow) {
+  if (pass == Pass::Shadows || pass == Pass::Sky || pass == Pass::Flare || pass == Pass::Count) {
+    fail("scene: the {} pass belongs to the scene module", passName(pass));
+  }
+  mEntries[static_cast<int>(pass)] = {std::move(draw), std::move(shadow)};
+}
+
+bool ScenePasses::present(Pass pass) const {
+  if (pass == Pass::Shadows) {
+    return mShadowMaps != nullptr;
+  }
+  if (pass == Pass::Sky || pass == Pass::Flare) {
+    return true;
+  }
+  return static_cast<bool>(mEntries[static_cast<int>(pass)].draw);
+}
+
+void ScenePasses::renderShadows(const render::Camera& camera, float aspect, double time, const Aabb& casters,
+                                render::GpuTimers* timers) {
+  render::ShadowSettings settings;
+  settings.cascades = mScene.shadows.cascades;
+  settings.size = mScene.shadows.size;
+  settings.distance = mScene.shadows.distance;
+  settings.lambda = mScene.shadows.lambda;
+  const render::ShadowCascades cascades =
+      render::fitCascades(camera, aspect, mBase.sunDirection, settings, casters);
+  if (timers != nullptr) {
+    timers->begin(passName(Pass::Shadows));
+  }
+  render::Environment casterEnvironment = mBase; // casters draw unshadowed (their colour is not kept)
+  for (int i = 0; i < static_cast<int>(cascades.cascades.size()); ++i) {
+    const render::ShadowCascade& c = cascades.cascades[static_cast<std::size_t>(i)];
+    mShadowMaps->begin(i);
+    const PassInput input{
+        c.camera, mShadowMaps->size(), mShadowMaps->size(), time, casterEnvironment, nullptr, &camera, true};
+    for (const Entry& e : mEntries) {
+      if (e.shadow) {
+        e.shadow(input);
+      }
+    }
+    mShadowMaps->end();
+  }
+  if (timers != nullptr) {
+    timers->end();
+  }
+  mEnvironment.shadows = render::toFrame(cascades, settings);
+  mShadowMaps->bind();
+}
+
+void ScenePasses::render(const render::Camera& camera, int width, int height, double time,
+                         const Aabb& casters, const gl::Texture* depth, render::GpuTimers* timers) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
+  mEnvironment = mBase;
+  if (mShadowMaps && enabled(Pass::Shadows) && casters.max.x > casters.min.x) {
+    renderShadows(camera, aspect, time, casters, timers);
+  } else {
+    render::ShadowMaps::unbind();
+  }
+  const PassInput input{camera, width, height, time, mEnvironment, timers, &camera, false};
+  for (Pass pass : {Pass::Terrain, Pass::Trees, Pass::Grass, Pass::Bodies, Pass::Water}) {
+    const Entry& e = mEntries[static_cast<int>(pass)];
+    if (e.draw && enabled(pass)) {
+      e.draw(input);
+    }
+  }
+  if (enabled(Pass::Sky)) {
+    if (timers != nullptr) {
+      timers->begin(passName(Pass::Sky));
+    }
+    mFrame.update(camera, width, height, time, mEnvironment);
+    mFrame.bind();
+    mSky->drawSky();
+    if (timers != nullptr) {
+      timers->end();
+    }
+  }
+  if (enabled(Pass::Flare) && depth != nullptr) {
+    if (timers != nullptr) {
+      timers->begin(passName(Pass::Flare));
+    }
+    mFrame.update(camera, width, height, time, mEnvironment);
+    mFrame.bind();
+    mSky->drawFlare(*depth);
+    if (timers != nullptr) {
+      timers->end();
+    }
+  }
+  render::ShadowMaps::unbind();
+}
+
+std::size_t ScenePasses::gpuBytes() const {
+  if (!mShadowMaps) {
+    return 0;
+  }
+  return static_cast<std::size_t>(mShadowMaps->size()) * mShadowMaps->size() * mShadowMaps->cascades() * 4;
+}
+
+void ScenePasses::reloadShaders(const shader::Library& library) {
+  mSky = std::make_unique<render::SkyRenderer>(library);
+}
+
+} // namespace sylva::scene
