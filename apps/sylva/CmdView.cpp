@@ -17,6 +17,7 @@
 #include "GrassSim.hpp"
 #include "TerrainFlags.hpp"
 #include "TreeFlags.hpp"
+#include "ViewScene.hpp"
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
@@ -33,6 +34,7 @@ namespace sylva::app {
 namespace {
 
 struct ViewOptions {
+  std::string file; ///< a scene file (runSceneViewer); empty: --scene
   std::string scene = "terrain";
   TerrainFlags terrain;
   CameraFlags camera;
@@ -1139,10 +1141,17 @@ void runViewer(const ViewOptions& o) {
 } // namespace
 
 void registerView(CLI::App& app) {
-  auto* command = app.add_subcommand("view", "Open the interactive viewer (orbit: drag/right-drag/wheel; F: "
-                                             "fly with WASD/QE; G: walk on the ground; "
-                                             "B: throw a ball into the grass; F5: reload shaders)");
+  auto* command =
+      app.add_subcommand("view", "Open the interactive viewer on a scene file (docs/scenes.md) or "
+                                 "--scene (orbit: drag/right-drag/wheel; F: "
+                                 "fly with WASD/QE; G: walk on the ground; "
+                                 "B: throw a ball into the grass; F5: reload shaders)");
   auto o = std::make_shared<ViewOptions>();
+  command
+      ->add_option("file", o->file,
+                   "A scene file (data/scenes/*.json): starts at its output camera; a checkbox per pass "
+                   "(keys 1-8), its cameras, Space pauses, per-pass timings")
+      ->check(CLI::ExistingFile);
   command->add_option("--scene", o->scene, "terrain, or demo (the small built-in pipeline test scene)")
       ->check(CLI::IsMember({"terrain", "demo"}))
       ->capture_default_str();
@@ -1164,6 +1173,22 @@ void registerView(CLI::App& app) {
   addScriptedWindowOptions(*command, o->frames, o->screenshot, o->fixedStep);
   command->add_flag("--no-ui", o->noUi, "Start with the ImGui panel hidden");
   command->callback([o] {
+    if (!o->file.empty()) {
+      if (o->grass.enabled || o->trees.enabled || o->simulation.enabled()) {
+        fail("--grass, --trees and --physics: a scene file says what it holds ({})", o->file);
+      }
+      SceneViewOptions scene;
+      scene.file = o->file;
+      scene.width = o->width;
+      scene.height = o->height;
+      scene.shaderDir = o->shaderDir;
+      scene.frames = o->frames;
+      scene.screenshot = o->screenshot;
+      scene.fixedStep = o->fixedStep;
+      scene.noUi = o->noUi;
+      runSceneViewer(scene);
+      return;
+    }
     o->camera.check();
     // Checked even without --grass: the panel can turn the field on with these settings.
     o->grass.check();

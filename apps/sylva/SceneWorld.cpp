@@ -409,6 +409,13 @@ std::size_t SceneWorld::gpuBytes() const {
 
 void SceneWorld::reloadShaders(const shader::Library& library) {
   mPasses->reloadShaders(library);
+  mTerrain->renderer().reloadShaders(library);
+  for (auto& g : mGrass) {
+    g->reloadShaders(library);
+  }
+  for (auto& w : mWater) {
+    w->reloadShaders(library);
+  }
   for (auto& forest : mForests) {
     forest->reloadShaders(library);
   }
