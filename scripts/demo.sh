@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Quick start, command 1: installs what is missing, builds, and renders the demo images headless into out/:
+#   out/scene.png         the scene data/scenes/meadow.json: terrain, grass, trees, lake, bodies, sky, shadows
+#   out/scene.gif         its 5 s fly-over (120 frames, out/scene-flyover/frame_*.png, resumable)
 #   out/terrain.png       the procedural demo landscape, shaded (multi-textured, lit, fogged)
 #   out/terrain-lod.png   the same view in wireframe with quadtree LOD colours
 #   out/jacksboro.png     a real DEM (Jacksboro fault, Tennessee) fetched from a Debian package
@@ -17,6 +19,10 @@ scripts/fetch-sample-data.sh
 scripts/build.sh release sylva
 sylva=./build/release/bin/sylva
 mkdir -p out
+# The scene (docs/scenes.md): terrain, grass, trees, the folding-textured lake, bodies, sky and shadows together.
+"$sylva" render data/scenes/meadow.json --out out/scene.png
+"$sylva" render data/scenes/meadow.json --camera flyover --frames 0-119 --width 384 --height 216 \
+  --out out/scene-flyover --gif out/scene.gif
 "$sylva" render --out out/terrain.png
 "$sylva" render --view lod --wireframe --out out/terrain-lod.png
 "$sylva" render --dem data/external/jacksboro_fault_dem.npz --out out/jacksboro.png

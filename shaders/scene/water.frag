@@ -1,5 +1,5 @@
 #version 450 core
-// The shore pass's water (docs/scenes-water.md; CPU twin: engine/scene/src/Shore.cpp). Under water: colour and
+// The shore pass's water (docs/scenes.md "Water with a folding-textured shore"; CPU twin: engine/scene/src/Shore.cpp). Under water: colour and
 // opacity from the true depth, Schlick Fresnel towards the sky colour and a sun glint, like the terrain's still
 // water. In the shore band (1 at the waterline, fading over uBand metres of depth and uWet metres above the
 // water) the animated folding frame (uSwash) is laid over it with its advance direction up the slope: where the

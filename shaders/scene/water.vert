@@ -1,5 +1,5 @@
 #version 450 core
-// Attribute-less water surface of the shore pass (docs/scenes-water.md): uCells.x × uCells.y grid cells over the
+// Attribute-less water surface of the shore pass (docs/scenes.md "Water with a folding-textured shore"): uCells.x × uCells.y grid cells over the
 // terrain's footprint, 6 vertices per cell, each vertex on a height-field sample (every uStride-th). The surface
 // lies at uLevel over water and is draped uLift above the ground on the wet strip (up to uWetTop), so the swash
 // can run up the beach over the terrain that hides a flat plane; beyond the strip it stays at uWetTop, under the

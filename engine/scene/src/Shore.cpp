@@ -1,4 +1,4 @@
-// The shore rule (docs/scenes-water.md): water depth, band weight, slope and swash texture coordinates. The
+// The shore rule (docs/scenes.md "Water with a folding-textured shore"): water depth, band weight, slope and swash texture coordinates. The
 // water shader (shaders/scene/water.frag) evaluates the same expressions in float.
 #include <sylva/scene/Shore.hpp>
 

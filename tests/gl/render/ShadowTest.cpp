@@ -377,7 +377,7 @@ TEST_F(ShadowGpu, SmallCameraStepsDoNotMoveShadowTexels) {
   EXPECT_GT(swumWorst, 0.05f) << "the probe must see sub-texel shifts";
 }
 
-// The documentation's picture (docs/scenes-shadows.md): a ridged procedural landscape under a low sun,
+// The documentation's picture (docs/scenes.md "Sun shadows"): a ridged procedural landscape under a low sun,
 // without (top) and with (bottom) cascaded shadows. Runs only with SYLVA_SHADOW_PICTURE=<output.png>.
 TEST_F(ShadowGpu, DocumentationPicture) {
   const char* output = std::getenv("SYLVA_SHADOW_PICTURE");

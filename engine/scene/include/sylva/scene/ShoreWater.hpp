@@ -23,7 +23,7 @@ enum class ShoreWaterView : int {
 };
 
 /**
- * The scene's water (docs/scenes-water.md): a surface at ShoreSettings::level over the terrain's footprint
+ * The scene's water (docs/scenes.md "Water with a folding-textured shore"): a surface at ShoreSettings::level over the terrain's footprint
  * with depth colour, Fresnel towards the sky colour and a sun glint, and in the shore band (shoreBand) a
  * folding texture animating the swash, laid with its advance direction up the slope (swashCoords). The
  * folding project is loaded and synthesised on the CPU at construction (like `sylva fold render`); update()
