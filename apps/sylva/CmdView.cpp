@@ -1092,22 +1092,7 @@ void runViewer(const ViewOptions& o) {
       std::vector<float> plot(frameTimes.begin(), frameTimes.end());
       ImGui::PlotLines("##frametimes", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, 50.0f,
                        ImVec2(260, 40));
-      if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingFixedFit)) { // pass names in full
-        ImGui::TableSetupColumn("pass");
-        ImGui::TableSetupColumn("CPU ms");
-        ImGui::TableSetupColumn("GPU ms");
-        ImGui::TableHeadersRow();
-        for (const render::PassTiming& t : timers.lastFrame()) {
-          ImGui::TableNextRow();
-          ImGui::TableNextColumn();
-          ImGui::TextUnformatted(t.name.c_str());
-          ImGui::TableNextColumn();
-          ImGui::Text("%.3f", t.cpuMs);
-          ImGui::TableNextColumn();
-          ImGui::Text("%.3f", t.gpuMs);
-        }
-        ImGui::EndTable();
-      }
+      passTimingTable(timers);
       if (v.terrain) {
         terrainPanel(v, camera, aspect);
         grassPanel(grass, *v.terrain);

@@ -102,7 +102,10 @@ std::string throwBall(SceneWorld& world, const render::Camera& camera) {
 }
 
 /** The per-pass CPU and GPU times of the last measured frame (GPU: "-" until its query has come back). */
-void timingTable(const render::GpuTimers& timers) {
+
+} // namespace
+
+void passTimingTable(const render::GpuTimers& timers) {
   if (!ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingFixedFit)) {
     return;
   }
@@ -125,8 +128,6 @@ void timingTable(const render::GpuTimers& timers) {
   }
   ImGui::EndTable();
 }
-
-} // namespace
 
 void runSceneViewer(const SceneViewOptions& o) {
   const auto startup = std::chrono::steady_clock::now();
@@ -352,7 +353,7 @@ void runSceneViewer(const SceneViewOptions& o) {
       std::vector<float> plot(frameTimes.begin(), frameTimes.end());
       ImGui::PlotLines("##frametimes", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, 50.0f,
                        ImVec2(220, 36));
-      timingTable(timers);
+      passTimingTable(timers);
       ImGui::End();
       ui.end();
       timers.end();

@@ -1,6 +1,8 @@
 #pragma once
 // `sylva view SCENE.json`: a scene file in the interactive viewer (docs/scenes.md "Viewer").
 
+#include <sylva/render/GpuTimers.hpp>
+
 #include <string>
 
 namespace sylva::app {
@@ -25,5 +27,9 @@ struct SceneViewOptions {
  * tests) and blitted to the window. Throws sylva::Error with one line naming the file/field.
  */
 void runSceneViewer(const SceneViewOptions& options);
+
+/** The per-pass CPU and GPU milliseconds of `timers`' last complete frame as an ImGui table (both viewers).
+ */
+void passTimingTable(const render::GpuTimers& timers);
 
 } // namespace sylva::app
