@@ -28,16 +28,14 @@ export SYLVA_IMAGE_EDITOR="sh -c 'sleep 0.5; cp \"$work/mirrored.png\" \"\$1\"' 
 "$exe" --log-level info fold edit --width 1280 --height 720 --fixed-step 0.04 --paused-at 1.0 --autosave 0 >"$work/log" 2>&1 &
 pid=$!
 find_window 'Sylva fold editor'
-sleep 3
 
 # 1. Open an image: Ctrl+N, replace the prompt's text with the path, Enter.
 at 640 360
 key ctrl+n
 key ctrl+a
 xdotool type --delay 30 "$work/beach.png"
-sleep 0.5
+frames 2
 key Return
-sleep 2
 # 2. A rectangle zone over the surf.
 at 520 320
 key r
@@ -48,16 +46,13 @@ drag 420 420 430 470
 drag 640 410 650 470
 # 4. Synthesise and save.
 key ctrl+Return
-sleep 1
 key ctrl+s
-sleep 1
 # 5. The screenshot, with the pointer parked over the tool panel (no hover effects on the canvas).
 at 120 650
-sleep 2
-import -window root "$work/shot.png"
+screenshot "$work/shot.png"
 # 6. Edit the image "externally": the editor must notice the new pixels and reload them.
 key ctrl+e
-sleep 3
+wait_log "$work/log" "reloaded .*beach.png"
 e2e_quit "$name" "$work/log"
 
 failed=0

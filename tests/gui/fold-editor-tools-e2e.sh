@@ -23,7 +23,6 @@ export XDG_CONFIG_HOME="$work/config"
   --fixed-step 0.04 --paused-at 1.0 --autosave 0 >"$work/log" 2>&1 &
 pid=$!
 find_window 'Sylva fold editor'
-sleep 3
 
 at 520 320
 key p

@@ -45,42 +45,14 @@ pid=$!
 find_window 'Sylva viewer'
 
 # A frame of this scene takes from a fraction of a second to several on llvmpipe (other builds share the
-# cores), so every step waits for frames, not for a time: the viewer logs a debug line per frame shown.
-shown() {
-  grep -c "scene viewer: frame .* shown" "$work/log" || true
-}
-# frames N: waits until N more frames have been shown (at most 120 s).
-frames() {
-  local until=$(($(shown) + $1)) i
-  for i in $(seq 1200); do
-    [ "$(shown)" -ge "$until" ] && return 0
-    if ! kill -0 "$pid" 2>/dev/null; then
-      echo "$name: the viewer exited early; log:" >&2
-      grep -v "scene viewer: frame" "$work/log" >&2
-      exit 1
-    fi
-    sleep 0.1
-  done
-  echo "$name: no new frame for 120 s" >&2
-  exit 1
-}
-# The scene is built after the window opens: wait for the first frame. The pointer rests over the scene from
-# then on (away from the panels: no tooltips, and keys go to the window under it). It is not moved again: a
-# `mousemove --sync` to where the pointer already is waits for a motion that never comes.
-frames 1
+# cores), so every step waits for frames shown (tests/gui/xdo.sh), not for a time. The scene is built after the
+# window opens, and find_window has waited for the first frame. The pointer rests over the scene from then on
+# (away from the panels: no tooltips, and keys go to the window under it).
 at 700 300
 
 # shot NAME: a screenshot of the whole screen as $work/NAME.png once two frames have shown the last action.
 shot() {
-  frames 2
-  import -window root "$work/$1.png"
-}
-# tap KEY: a key press and release over the scene. Keys go through GLFW's event queue: none is missed, and the
-# next frame to start handles them (so `shot`, which waits for two frames, sees them).
-tap() {
-  xdotool keydown "$1"
-  sleep 0.2
-  xdotool keyup "$1"
+  screenshot "$work/$1.png"
 }
 # differing CROP A B: how many pixels of CROP differ by more than 6% between screenshots A and B.
 differing() {
@@ -116,18 +88,18 @@ expect_same() {
   fi
 }
 # 1. Paused (frames repeat), shadows off (frames are several times faster).
-tap space
-tap 1
+key space
+key 1
 shot start
 if ! grep -q "pass shadows off" "$work/log"; then
   echo "$name: key 1 did not turn the shadows off" >&2
   failed=1
 fi
 # 2. Grass off with key 4, then on again.
-tap 4
+key 4
 shot nograss
 expect_changed "$ground_crop" start nograss 5000 "grass off (key 4)"
-tap 4
+key 4
 shot grass
 expect_same "$ground_crop" start grass 200 "grass on again (key 4)"
 if [ "$(grep -c "pass grass o[nf]" "$work/log" || true)" -ne 2 ]; then
@@ -135,11 +107,11 @@ if [ "$(grep -c "pass grass o[nf]" "$work/log" || true)" -ne 2 ]; then
   failed=1
 fi
 # 3. Walk: the eyes drop from 2.5 m to 1.8 m above the ground.
-tap g
+key g
 shot walk
 expect_changed "$view_crop" grass walk 2000 "walk (G)"
 # 4. A ball thrown from the eye fills the middle of the view.
-tap b
+key b
 shot ball
 expect_changed "$view_crop" walk ball 5000 "throw a ball (B)"
 if ! grep -q "ball thrown at" "$work/log"; then
@@ -148,9 +120,7 @@ if ! grep -q "ball thrown at" "$work/log"; then
 fi
 
 # 5. Esc over the scene quits.
-xdotool keydown Escape
-sleep 0.3
-xdotool keyup Escape
+quit_key Escape
 status=0
 if ! timeout 30 tail --pid="$pid" -f /dev/null; then
   echo "$name: the viewer did not quit on Esc" >&2

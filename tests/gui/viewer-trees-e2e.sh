@@ -48,14 +48,13 @@ export XDG_CACHE_HOME="$work/cache"
   --fixed-step 0.04 >"$work/log" 2>&1 &
 pid=$!
 find_window 'Sylva viewer'
-sleep 3
 
 # shot NAME: a screenshot of the whole screen as $work/NAME.png, with the pointer parked over the scene (no
-# tooltips), after a few frames have shown the last action.
+# tooltips), once two frames have shown the last action (tests/gui/xdo.sh waits for frames shown, not for a
+# time: a frame can take seconds while other tests share the cores).
 shot() {
   at 900 650
-  sleep 1.2
-  import -window root "$work/$1.png"
+  screenshot "$work/$1.png"
 }
 # differing CROP A B: how many pixels of CROP differ by more than 6% between screenshots A and B.
 differing() {
@@ -96,29 +95,15 @@ expect_same() {
 # and ImGui keeps the scroll offset when the content grows.
 bottom() {
   at 250 400
-  for _ in $(seq 15); do
-    xdotool click 5
-    sleep 0.03
-  done
-  sleep 0.4
+  xdotool click --repeat 15 --delay 20 5
+  frames 2
 }
 
-# press X Y: a left click at window coordinates that ImGui 1.86 cannot miss: it reads the pointer and the
-# button once a frame (no event queue), so the pointer rests there and the button stays down for a few frames.
-press() {
-  at "$1" "$2"
-  sleep 0.4
-  xdotool mousedown 1
-  sleep 0.4
-  xdotool mouseup 1
-  sleep 0.6
-}
-# pick CX CY IX IY: opens the combo at window coordinates CX CY and clicks its item at IX IY (after the popup
-# has had time to show: a click before would fall through to the widget under it).
+# pick CX CY IX IY: opens the combo at window coordinates CX CY and clicks its item at IX IY (press, in
+# tests/gui/xdo.sh, returns once two frames have shown the open popup).
 pick() {
   bottom
   press "$1" "$2"
-  sleep 0.5
   press "$3" "$4"
 }
 
@@ -147,9 +132,7 @@ expect_changed "$trunk_crop" shaded flat 1000 "bark: flat colours"
 
 # 5. Esc over the scene quits.
 at 900 600
-xdotool keydown Escape
-sleep 0.3
-xdotool keyup Escape
+quit_key Escape
 status=0
 if ! timeout 30 tail --pid="$pid" -f /dev/null; then
   echo "$name: the viewer did not quit on Esc" >&2

@@ -1,6 +1,7 @@
 #include <sylva/platform/GlfwWindow.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/gl/Debug.hpp>
@@ -77,6 +78,9 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool vis
     fail("cannot open a {}x{} OpenGL 4.5 core window: {}", width, height, gLastGlfwError);
   }
   ++gWindowCount;
+  if (const char* frameFile = std::getenv("SYLVA_FRAME_FILE"); frameFile != nullptr && *frameFile != '\0') {
+    mFrameFile = frameFile;
+  }
   glfwSetWindowUserPointer(mWindow, this);
   glfwMakeContextCurrent(mWindow);
   glfwSetScrollCallback(mWindow, [](GLFWwindow* w, double, double dy) {
@@ -111,6 +115,11 @@ std::string GlfwWindow::description() const {
 
 void GlfwWindow::swapBuffers() {
   glfwSwapBuffers(mWindow);
+  ++mFramesShown;
+  if (!mFrameFile.empty()) {
+    // Written whole and renamed into place, so a reader never sees a partial number.
+    writeTextFile(mFrameFile, fmt::format("{}\n", mFramesShown));
+  }
 }
 
 bool GlfwWindow::pollEvents() {

@@ -2,6 +2,7 @@
 
 #include <sylva/platform/GlContext.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -34,7 +35,14 @@ public:
 
   void makeCurrent() override;
   std::string description() const override;
+  /**
+   * Shows the frame. When the environment variable SYLVA_FRAME_FILE names a file, the number of frames shown
+   * so far is written there after each swap (atomically): GUI tests wait for drawn frames through it instead
+   * of sleeping for a fixed time.
+   */
   void swapBuffers() override;
+  /** Frames shown (swapBuffers calls) since the window opened. */
+  std::uint64_t framesShown() const { return mFramesShown; }
   bool headless() const override { return false; }
 
   /** Processes events; returns false once the user asked to close the window. */
@@ -54,6 +62,8 @@ private:
   GLFWwindow* mWindow = nullptr;
   InputState mInput;
   std::function<void(int, int)> mKeyCallback;
+  std::uint64_t mFramesShown = 0;
+  std::string mFrameFile;
 };
 
 /** True when GLFW can connect to a display (DISPLAY or WAYLAND_DISPLAY set and reachable). */
