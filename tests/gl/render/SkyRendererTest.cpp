@@ -24,11 +24,11 @@ namespace {
 
 using SkyRendererTest = test::GlTest;
 
-const glm::vec3 kSun = glm::normalize(glm::vec3(0.75f, 0.5f, -0.3f));
+const glm::vec3 kSkySun = glm::normalize(glm::vec3(0.75f, 0.5f, -0.3f));
 
 Environment skyEnvironment() {
   Environment env;
-  env.sunDirection = kSun;
+  env.sunDirection = kSkySun;
   env.atmosphere = Atmosphere::Sky;
   env.turbidity = 3.0f;
   env.exposure = 1.0f;
@@ -40,7 +40,7 @@ Environment skyEnvironment() {
 Camera cameraNearSun(float fovDegrees, float yawOffset, float pitch) {
   Camera camera;
   camera.position = glm::vec3(3.0f, 12.0f, -7.0f);
-  const float yaw = std::atan2(kSun.z, kSun.x) + yawOffset;
+  const float yaw = std::atan2(kSkySun.z, kSkySun.x) + yawOffset;
   camera.target = camera.position + glm::vec3(std::cos(yaw) * std::cos(pitch), std::sin(pitch),
                                               std::sin(yaw) * std::cos(pitch));
   camera.fovY = glm::radians(fovDegrees);
@@ -70,7 +70,7 @@ Comparison compareSky(const Image& image, const FrameUniformBuffer& frame, const
       const glm::vec2 ndc((static_cast<float>(x) + 0.5f) / static_cast<float>(w) * 2.0f - 1.0f,
                           1.0f - (static_cast<float>(row) + 0.5f) / static_cast<float>(h) * 2.0f);
       const glm::vec3 dir = skyViewDirection(frame.data().viewProj, frame.data().view, ndc);
-      const glm::vec3 c = skyWithSun(dir, kSun, params);
+      const glm::vec3 c = skyWithSun(dir, kSkySun, params);
       int pixelWorst = 0;
       for (int ch = 0; ch < 3; ++ch) {
         const int cpu = static_cast<int>(std::lround(toSrgb(c[ch]) * 255.0f));
@@ -90,7 +90,7 @@ TEST_F(SkyRendererTest, SkyPassEqualsTheCpuSkyPerPixel) {
   const Environment env = skyEnvironment();
   const SkyParams params = skyParamsFrom(env);
   // A wide view from below the horizon to high up, and a narrow one on the sun (its disc ~7 px in radius).
-  for (const auto& [fov, pitch] : {std::pair{70.0f, 0.35f}, std::pair{6.0f, std::asin(kSun.y)}}) {
+  for (const auto& [fov, pitch] : {std::pair{70.0f, 0.35f}, std::pair{6.0f, std::asin(kSkySun.y)}}) {
     RenderTarget target(96, 64);
     const Camera camera = cameraNearSun(fov, 0.0f, pitch);
     frame.update(camera, target.width(), target.height(), 0.0, env);
@@ -179,7 +179,7 @@ TEST_F(SkyRendererTest, AtmosphereMatchesTheCpuAerialAndTheOldFog) {
       const float distance = glm::length(toSurface);
       glm::vec3 cpu;
       if (mode == Atmosphere::Sky) {
-        cpu = aerial(lit[i], toSurface / distance, distance, kSun, skyParamsFrom(env));
+        cpu = aerial(lit[i], toSurface / distance, distance, kSkySun, skyParamsFrom(env));
       } else {
         const float fog = std::clamp(1.0f - std::exp(-env.fogDensity * distance), 0.0f, 1.0f);
         cpu = glm::mix(lit[i], env.fogColor, fog);
@@ -254,7 +254,7 @@ FlareRun renderFlare(const shader::Library& library, int coverRight, float stren
   // Exposure 0.4: at 1 the sky around the sun is saturated white and additive ghosts could not show.
   Environment env = skyEnvironment();
   env.exposure = 0.4f;
-  frame.update(cameraNearSun(50.0f, -0.12f, std::asin(kSun.y) - 0.08f), w, h, 0.0, env);
+  frame.update(cameraNearSun(50.0f, -0.12f, std::asin(kSkySun.y) - 0.08f), w, h, 0.0, env);
   frame.bind();
   target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   if (coverRight > 0) {
@@ -289,10 +289,10 @@ TEST_F(SkyRendererTest, FlareFullClearZeroOccludedHalfWhenHalfCovered) {
   const glm::vec4 cpuSun = sunScreenPosition(
       [&] {
         FrameUniformBuffer f;
-        f.update(cameraNearSun(50.0f, -0.12f, std::asin(kSun.y) - 0.08f), 128, 96, 0.0, skyEnvironment());
+        f.update(cameraNearSun(50.0f, -0.12f, std::asin(kSkySun.y) - 0.08f), 128, 96, 0.0, skyEnvironment());
         return f.data().viewProj;
       }(),
-      kSun, 128, 96, 3.0f);
+      kSkySun, 128, 96, 3.0f);
   EXPECT_NEAR(full.sunPixel.x, cpuSun.x, 1e-2f);
   EXPECT_NEAR(full.sunPixel.y, cpuSun.y, 1e-2f);
   EXPECT_EQ(full.sunPixel.z, 1.0f);

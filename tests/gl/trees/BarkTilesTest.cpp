@@ -18,7 +18,7 @@ protected:
   void expectTilesAsTheCpu(int colours);
 };
 
-render::Camera lookingAt(glm::vec3 from, glm::vec3 to) {
+render::Camera barkCloseUp(glm::vec3 from, glm::vec3 to) {
   render::Camera camera;
   camera.position = from;
   camera.target = to;
@@ -77,7 +77,7 @@ void BarkTilesTest::expectTilesAsTheCpu(int colours) {
   for (const Piece& piece : forest->pieces.pieces) {
     tilings.push_back(pieceTiling(piece));
   }
-  const render::Camera camera = lookingAt({-3, 2.0f, 3.5f}, {0, 2.0f, 0});
+  const render::Camera camera = barkCloseUp({-3, 2.0f, 3.5f}, {0, 2.0f, 0});
   render::RenderTarget target(240, 180);
   TreeLod lod;
   lod.fixedLevel = 3.0f;
@@ -125,7 +125,7 @@ void BarkTilesTest::expectTilesAsTheCpu(int colours) {
 TEST_F(BarkTilesTest, TexturedDrawIsDeterministicAndUsesTheTiles) {
   auto forest = std::make_shared<Forest>(gridForest({"almond", "apple"}, 2, 5.0f, 3));
   TreeRenderer renderer(shaders(), forest);
-  const render::Camera camera = lookingAt({-6, 3, 8}, {0, 2.5f, 0});
+  const render::Camera camera = barkCloseUp({-6, 3, 8}, {0, 2.5f, 0});
   render::RenderTarget target(160, 120);
   TreeLod lod;
   auto draw = [&] {

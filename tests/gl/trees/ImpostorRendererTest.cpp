@@ -23,7 +23,7 @@ namespace {
 
 using ImpostorRendererTest = test::GlTest;
 
-constexpr int kSize = 160;
+constexpr int kImpostorSize = 160;
 const glm::vec4 kClear(0.0f, 0.0f, 0.0f, 0.0f);
 
 /** One almond tree at the origin, its pieces and its baked impostor. */
@@ -139,7 +139,7 @@ TEST_F(ImpostorRendererTest, BakedViewReproducesTheMeshFarAway) {
   Scene scene(shaders());
   keep(scene.impostors->readAtlas(0), "impostor-atlas");
   keep(scene.impostors->readAtlasNormal(0), "impostor-atlas-normal");
-  render::RenderTarget target(kSize, kSize);
+  render::RenderTarget target(kImpostorSize, kImpostorSize);
   // The impostor draws alone from 1 m on; the pieces always (no far field).
   const glm::vec2 impostorOnly(0.5f, 1.0f);
   int views = 0;
@@ -154,7 +154,7 @@ TEST_F(ImpostorRendererTest, BakedViewReproducesTheMeshFarAway) {
       plain.bake(*scene.forest);
       plain.setTrees(scene.far);
       target.begin(kClear);
-      plain.draw(camera, kSize, kSize, 0.0, impostorOnly);
+      plain.draw(camera, kImpostorSize, kImpostorSize, 0.0, impostorOnly);
       keep(target.readColor(), "impostor-flat-" + std::to_string(views));
     }
     keep(mesh, "impostor-mesh-" + std::to_string(views));
@@ -186,7 +186,7 @@ TEST_F(ImpostorRendererTest, BakedViewReproducesTheMeshFarAway) {
 
 TEST_F(ImpostorRendererTest, FadeBandPassesDrawDisjointPixels) {
   Scene scene(shaders());
-  render::RenderTarget target(kSize, kSize);
+  render::RenderTarget target(kImpostorSize, kImpostorSize);
   const render::Camera camera = scene.camera(glm::normalize(glm::vec3(0.6f, 0.3f, 0.75f)), 25.0f);
   const float d = glm::distance(camera.position, scene.crown);
   const Image full = scene.drawPieces(target, camera, glm::vec2(0.0f));
@@ -204,8 +204,8 @@ TEST_F(ImpostorRendererTest, FadeBandPassesDrawDisjointPixels) {
     int fromImpostor = 0;
     int unionCount = 0;
     int bothCount = 0;
-    for (int y = 0; y < kSize; ++y) {
-      for (int x = 0; x < kSize; ++x) {
+    for (int y = 0; y < kImpostorSize; ++y) {
+      for (int x = 0; x < kImpostorSize; ++x) {
         const bool p = covered(piecesPass, x, y);
         const bool i = covered(impostorPass, x, y);
         overlap += p && i ? 1 : 0;
@@ -238,7 +238,7 @@ struct Popping {
 };
 
 Popping dolly(Scene& scene, glm::vec2 band, float from, float to, int steps) {
-  render::RenderTarget target(kSize, kSize);
+  render::RenderTarget target(kImpostorSize, kImpostorSize);
   const glm::vec3 direction = glm::normalize(glm::vec3(-0.5f, 0.25f, 0.8f));
   Popping worst;
   Image previous;
@@ -264,8 +264,8 @@ Popping dolly(Scene& scene, glm::vec2 band, float from, float to, int steps) {
     }
     if (k > 0) {
       int changed = 0;
-      for (int y = 0; y < kSize; ++y) {
-        for (int x = 0; x < kSize; ++x) {
+      for (int y = 0; y < kImpostorSize; ++y) {
+        for (int x = 0; x < kImpostorSize; ++x) {
           float diff = 0.0f;
           for (int ch = 0; ch < 4; ++ch) {
             diff = std::max(diff, std::abs(image.get(x, y, ch) - previous.get(x, y, ch)));
@@ -370,7 +370,7 @@ TEST_F(ImpostorRendererTest, HundredThousandFarTreesDraw) {
 
 TEST_F(ImpostorRendererTest, BakedDepthSortsAgainstOpaqueSurfaces) {
   Scene scene(shaders());
-  render::RenderTarget target(kSize, kSize);
+  render::RenderTarget target(kImpostorSize, kImpostorSize);
   const glm::vec3 direction = glm::normalize(glm::vec3(0.4f, 0.2f, -0.9f));
   const render::Camera camera = scene.camera(direction, 25.0f);
   const float distance = glm::distance(camera.position, scene.centre);
@@ -385,8 +385,8 @@ TEST_F(ImpostorRendererTest, BakedDepthSortsAgainstOpaqueSurfaces) {
   };
   float lo = 1.0f;
   float hi = 0.0f;
-  for (int y = 0; y < kSize; ++y) {
-    for (int x = 0; x < kSize; ++x) {
+  for (int y = 0; y < kImpostorSize; ++y) {
+    for (int x = 0; x < kImpostorSize; ++x) {
       if (covered(alone, x, y)) {
         lo = std::min(lo, depth.get(x, y, 0));
         hi = std::max(hi, depth.get(x, y, 0));
@@ -398,8 +398,8 @@ TEST_F(ImpostorRendererTest, BakedDepthSortsAgainstOpaqueSurfaces) {
   EXPECT_GT(hi - lo, 0.1f * (windowDepth(distance + scene.radius) - windowDepth(distance - scene.radius)));
   // An opaque screen-aligned quad over the lower half of the view, in front of the tree and then behind it.
   int aloneInQuad = 0;
-  for (int y = kSize / 2; y < kSize; ++y) {
-    for (int x = 0; x < kSize; ++x) {
+  for (int y = kImpostorSize / 2; y < kImpostorSize; ++y) {
+    for (int x = 0; x < kImpostorSize; ++x) {
       aloneInQuad += covered(alone, x, y) ? 1 : 0;
     }
   }
@@ -407,17 +407,17 @@ TEST_F(ImpostorRendererTest, BakedDepthSortsAgainstOpaqueSurfaces) {
   for (const bool inFront : {true, false}) {
     target.begin(kClear);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(0, 0, kSize, kSize / 2);
+    glScissor(0, 0, kImpostorSize, kImpostorSize / 2);
     target.framebuffer().clearColor(0, glm::vec4(1.0f, 0.0f, 1.0f, 1.0f));
     target.framebuffer().clearDepth(windowDepth(distance + (inFront ? -1.2f : 1.2f) * scene.radius));
     glDisable(GL_SCISSOR_TEST);
-    scene.impostors->draw(camera, kSize, kSize, 0.0, impostorOnly);
+    scene.impostors->draw(camera, kImpostorSize, kImpostorSize, 0.0, impostorOnly);
     const Image image = target.readColor();
     int treeInQuad = 0;
     int treeOutside = 0;
-    for (int y = 0; y < kSize; ++y) {
-      for (int x = 0; x < kSize; ++x) {
-        const bool inQuad = y >= kSize / 2; // file order: the lower half
+    for (int y = 0; y < kImpostorSize; ++y) {
+      for (int x = 0; x < kImpostorSize; ++x) {
+        const bool inQuad = y >= kImpostorSize / 2; // file order: the lower half
         const bool magenta =
             image.get(x, y, 0) == 1.0f && image.get(x, y, 1) == 0.0f && image.get(x, y, 2) == 1.0f;
         if (inQuad) {

@@ -93,7 +93,7 @@ TEST(KinectCapture, OptionsAreValidatedFirst) {
   EXPECT_NE(error(options).find("device index"), std::string::npos);
 }
 
-RawDepth pattern(int n) {
+RawDepth replayDepth(int n) {
   RawDepth raw;
   raw.width = 640;
   raw.height = 480;
@@ -106,7 +106,7 @@ RawDepth pattern(int n) {
   return raw;
 }
 
-Image rgbPattern(int n) {
+Image replayRgb(int n) {
   Image image(640, 480, 3, PixelType::U8);
   auto v = image.values<std::uint8_t>();
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -119,12 +119,12 @@ Image rgbPattern(int n) {
 void writeRecording(const fs::path& folder) {
   FakenectWriter writer(folder);
   const double start = 1700000000.25;
-  writer.addRgb(rgbPattern(0), start);
+  writer.addRgb(replayRgb(0), start);
   for (int i = 0; i < 4; ++i) {
     if (i == 2) {
-      writer.addRgb(rgbPattern(1), start + i / 30.0);
+      writer.addRgb(replayRgb(1), start + i / 30.0);
     }
-    writer.addRawDepth(pattern(i), start + i / 30.0 + 0.001);
+    writer.addRawDepth(replayDepth(i), start + i / 30.0 + 0.001);
   }
   writer.finish();
 }
@@ -205,7 +205,7 @@ TEST_F(KinectReplay, EveryFrameArrivesIdenticalThroughLibfreenect) {
     const DepthFrame expected = reference.depthFrame(i);
     ASSERT_EQ(delivered.size(), expected.depth.size());
     const RawDepth raw = reference.rawDepthFrame(i);
-    ASSERT_EQ(raw.raw, pattern(static_cast<int>(i)).raw);
+    ASSERT_EQ(raw.raw, replayDepth(static_cast<int>(i)).raw);
     for (std::size_t p = 0; p < delivered.size(); ++p) {
       ASSERT_EQ(delivered[p], expected.depth[p]) << "pixel " << p;
       if (raw.raw[p] <= 1084) {
@@ -229,7 +229,7 @@ TEST_F(KinectReplay, ColourIsTheLatestRgbBeforeEachFrame) {
     SCOPED_TRACE(i);
     EXPECT_EQ(probe.frames[i].colour, 1);
     const Image expected = reference.depthFrame(i).colour;
-    ASSERT_EQ(expected, rgbPattern(i < 2 ? 0 : 1));
+    ASSERT_EQ(expected, replayRgb(i < 2 ? 0 : 1));
     const std::string delivered = test::readAll(out() / ("frame-" + std::to_string(i) + ".rgb"));
     ASSERT_EQ(delivered.size(), expected.byteSize());
     EXPECT_EQ(std::memcmp(delivered.data(), expected.data(), delivered.size()), 0);

@@ -40,7 +40,7 @@ Project modelProject() {
                       "model.json");
 }
 
-std::string dump(const Project& p) {
+std::string projectText(const Project& p) {
   return toJson(p).dump();
 }
 
@@ -62,7 +62,7 @@ TEST(FoldingEditorModel, ADragIsOneUndoStep) {
   history.undo();
   EXPECT_EQ(std::get<PointsTool>(history.project().zones[0].tools[0]).pairs[0][0], h.pos + Vec2(10.0, 5.0));
   history.undo();
-  EXPECT_EQ(dump(history.project()), dump(start));
+  EXPECT_EQ(projectText(history.project()), projectText(start));
 }
 
 TEST(FoldingEditorModel, EveryHandleMovesExactlyItsPoint) {
@@ -73,7 +73,7 @@ TEST(FoldingEditorModel, EveryHandleMovesExactlyItsPoint) {
     for (std::size_t i = 0; i < handles.size(); ++i) {
       Project same = start;
       setHandle(same, handles[i], handles[i].pos);
-      EXPECT_EQ(dump(same), dump(start)) << "handle " << i << " set to itself";
+      EXPECT_EQ(projectText(same), projectText(start)) << "handle " << i << " set to itself";
       Project moved = start;
       const Vec2 to = handles[i].pos + Vec2(1.0, 2.0);
       setHandle(moved, handles[i], to);
@@ -157,19 +157,19 @@ TEST(FoldingEditorModel, NewEditsUndoByteForByte) {
       }
       ++applied;
     } catch (const Error&) {
-      ASSERT_EQ(dump(history.project()), dump(before)) << "a refused edit must change nothing";
+      ASSERT_EQ(projectText(history.project()), projectText(before)) << "a refused edit must change nothing";
     }
   }
   EXPECT_GT(applied, 40);
-  const std::string edited = dump(history.project());
+  const std::string edited = projectText(history.project());
   while (history.canUndo()) {
     history.undo();
   }
-  EXPECT_EQ(dump(history.project()), dump(start));
+  EXPECT_EQ(projectText(history.project()), projectText(start));
   while (history.canRedo()) {
     history.redo();
   }
-  EXPECT_EQ(dump(history.project()), edited);
+  EXPECT_EQ(projectText(history.project()), edited);
 }
 
 TEST(FoldingEditorModel, CanvasZoomsAroundTheCursorWithinItsLimits) {
@@ -297,10 +297,10 @@ TEST(FoldingEditorSession, EditsMustFitTheLoadedImages) {
   auto s = Session::fromImages({dir.path() / "img.png", dir.path() / "two.png"}, dir.path() / "p.json");
   Zone z = rectZone("big", "img", "motion", {10, 10}, {70, 50});
   const int zone = addZone(s->history(), z);
-  const std::string before = dump(s->project());
+  const std::string before = projectText(s->project());
   EXPECT_THROW(moveZoneToImage(s->history(), zone, "two"), Error) << "70×50 does not fit 48×40";
   EXPECT_THROW(moveHandle(s->history(), zoneHandles(s->project(), zone)[2], Vec2(120, 40)), Error);
-  EXPECT_EQ(dump(s->project()), before);
+  EXPECT_EQ(projectText(s->project()), before);
 }
 
 TEST(FoldingEditorSession, SaveOpenRecoverAndReloadKeepTheZones) {
@@ -324,12 +324,12 @@ TEST(FoldingEditorSession, SaveOpenRecoverAndReloadKeepTheZones) {
   // An unsaved edit, autosaved, then a "crash": reopening recovers it as one undoable step.
   addTool(s->history(), 0, TranslateTool{Vec2(-1.0, 3.0)});
   s->autosaveNow();
-  const std::string edited = dump(s->project());
+  const std::string edited = projectText(s->project());
   s.reset();
   std::string notice;
   auto r = Session::open(dir.path() / "sub" / "q.json", true, &notice);
   EXPECT_NE(notice.find("recovered"), std::string::npos) << notice;
-  EXPECT_EQ(dump(r->project()), edited);
+  EXPECT_EQ(projectText(r->project()), edited);
   EXPECT_TRUE(r->history().dirty());
   r->history().undo();
   EXPECT_EQ(r->project().zones[0].tools.size(), 1u);
@@ -343,7 +343,7 @@ TEST(FoldingEditorSession, SaveOpenRecoverAndReloadKeepTheZones) {
   EXPECT_TRUE(r->stale());
   EXPECT_TRUE(r->synthesize().full);
   EXPECT_FALSE(r->textures()->atlas.color == before);
-  EXPECT_EQ(dump(r->project()), edited);
+  EXPECT_EQ(projectText(r->project()), edited);
   // A resized image that no longer holds the zone is refused; the old images stay.
   saveImage(dir.path() / "img.png", patternImage(32, 32));
   EXPECT_THROW(r->reloadImages(), Error);

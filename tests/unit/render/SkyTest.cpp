@@ -23,7 +23,7 @@ float luminance(const glm::vec3& c) {
   return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
 }
 
-const glm::vec3 kSun = elevated(40.0f, 0.0f);
+const glm::vec3 kSkySun = elevated(40.0f, 0.0f);
 
 TEST(Sky, ZenithValuesMatchHandComputation) {
   // T = 3, θs = 50°: χ = (4/9 − 3/120)(π − 2·0.872665) = 0.585655, tan χ = 0.662070,
@@ -54,12 +54,12 @@ TEST(Sky, PerezAndColourSpaceValues) {
 
 TEST(Sky, RadianceValuesMatchHandComputation) {
   // Zenith: Y = Yz, (x, y) = zenith chromaticity, so sRGB · calibration is (0.22736, 0.51364, 1.10829).
-  const glm::vec3 zenith = skyRadiance({0.0f, 1.0f, 0.0f}, kSun, {});
+  const glm::vec3 zenith = skyRadiance({0.0f, 1.0f, 0.0f}, kSkySun, {});
   EXPECT_NEAR(zenith.r, 0.22736f, 2e-3f);
   EXPECT_NEAR(zenith.g, 0.51364f, 2e-3f);
   EXPECT_NEAR(zenith.b, 1.10829f, 4e-3f);
   // Horizon opposite the sun: Y = 7.83718, (x, y) = (0.311967, 0.317443) → (0.46990, 0.59130, 0.72876).
-  const glm::vec3 away = skyRadiance({-1.0f, 0.0f, 0.0f}, kSun, {});
+  const glm::vec3 away = skyRadiance({-1.0f, 0.0f, 0.0f}, kSkySun, {});
   EXPECT_NEAR(away.r, 0.46990f, 2e-3f);
   EXPECT_NEAR(away.g, 0.59130f, 2e-3f);
   EXPECT_NEAR(away.b, 0.72876f, 2e-3f);
@@ -69,7 +69,7 @@ TEST(Sky, HorizonAveragesToTheOldFogColour) {
   glm::vec3 sum(0.0f);
   const int n = 180;
   for (int i = 0; i < n; ++i) {
-    sum += skyRadiance(elevated(0.0f, 360.0f * static_cast<float>(i) / n), kSun, {});
+    sum += skyRadiance(elevated(0.0f, 360.0f * static_cast<float>(i) / n), kSkySun, {});
   }
   const glm::vec3 mean = sum / static_cast<float>(n);
   EXPECT_NEAR(mean.r, 0.62f, 0.01f);
@@ -81,8 +81,8 @@ TEST(Sky, ZenithIsDarkerAndBluerThanTheHorizonWhenClear) {
   for (float turbidity : {2.0f, 2.5f, 3.0f}) { // clear; by T = 4 Preetham's zenith outshines the side horizon
     SkyParams p;
     p.turbidity = turbidity;
-    const glm::vec3 zenith = skyRadiance({0.0f, 1.0f, 0.0f}, kSun, p);
-    const glm::vec3 horizon = skyRadiance(elevated(0.0f, 90.0f), kSun, p);
+    const glm::vec3 zenith = skyRadiance({0.0f, 1.0f, 0.0f}, kSkySun, p);
+    const glm::vec3 horizon = skyRadiance(elevated(0.0f, 90.0f), kSkySun, p);
     // Photometric luminance: Preetham's Y, i.e. before the per-channel calibration.
     EXPECT_LT(luminance(zenith / kSkyCalibration), luminance(horizon / kSkyCalibration)) << turbidity;
     EXPECT_GT(zenith.b / zenith.r, horizon.b / horizon.r) << turbidity;
@@ -93,8 +93,8 @@ TEST(Sky, SymmetricAboutTheSunsVerticalPlane) {
   // The sun is in the xy plane: mirroring z must not change anything.
   for (float elevation : {0.0f, 10.0f, 35.0f, 70.0f}) {
     for (float azimuth : {15.0f, 60.0f, 120.0f, 170.0f}) {
-      const glm::vec3 a = skyRadiance(elevated(elevation, azimuth), kSun, {});
-      const glm::vec3 b = skyRadiance(elevated(elevation, -azimuth), kSun, {});
+      const glm::vec3 a = skyRadiance(elevated(elevation, azimuth), kSkySun, {});
+      const glm::vec3 b = skyRadiance(elevated(elevation, -azimuth), kSkySun, {});
       EXPECT_NEAR(a.r, b.r, 1e-5f);
       EXPECT_NEAR(a.g, b.g, 1e-5f);
       EXPECT_NEAR(a.b, b.b, 1e-5f);
@@ -106,13 +106,13 @@ TEST(Sky, BrighterTowardsTheSun) {
   // Along the sun's elevation circle, luminance falls as the azimuth leaves the sun.
   float previous = 1e9f;
   for (float azimuth = 5.0f; azimuth <= 90.0f; azimuth += 5.0f) {
-    const float l = luminance(skyRadiance(elevated(40.0f, azimuth), kSun, {}));
+    const float l = luminance(skyRadiance(elevated(40.0f, azimuth), kSkySun, {}));
     EXPECT_LT(l, previous) << azimuth;
     previous = l;
   }
   // The haze's Mie glow is strongest towards the sun.
-  const glm::vec3 towards = skyInscatter(elevated(0.0f, 0.0f), kSun, {});
-  const glm::vec3 away = skyInscatter(elevated(0.0f, 180.0f), kSun, {});
+  const glm::vec3 towards = skyInscatter(elevated(0.0f, 0.0f), kSkySun, {});
+  const glm::vec3 away = skyInscatter(elevated(0.0f, 180.0f), kSkySun, {});
   EXPECT_GT(luminance(towards), luminance(away));
 }
 
@@ -121,24 +121,24 @@ TEST(Sky, ContinuousEverywhereIncludingTheHorizon) {
   // the zenith or around the sun.
   SkyParams p;
   for (float azimuth = 0.0f; azimuth < 360.0f; azimuth += 7.5f) {
-    glm::vec3 previous = skyRadiance(elevated(-5.0f, azimuth), kSun, p);
+    glm::vec3 previous = skyRadiance(elevated(-5.0f, azimuth), kSkySun, p);
     for (float e = -4.9f; e <= 90.0f; e += 0.1f) {
-      const glm::vec3 c = skyRadiance(elevated(e, azimuth), kSun, p);
+      const glm::vec3 c = skyRadiance(elevated(e, azimuth), kSkySun, p);
       EXPECT_LT(glm::length(c - previous), 0.03f) << azimuth << " " << e;
       previous = c;
     }
   }
   // Below the horizon: exactly the horizon of that azimuth.
-  const glm::vec3 below = skyRadiance(elevated(-30.0f, 45.0f), kSun, p);
-  const glm::vec3 horizon = skyRadiance(elevated(0.0f, 45.0f), kSun, p);
+  const glm::vec3 below = skyRadiance(elevated(-30.0f, 45.0f), kSkySun, p);
+  const glm::vec3 horizon = skyRadiance(elevated(0.0f, 45.0f), kSkySun, p);
   EXPECT_NEAR(glm::length(below - horizon), 0.0f, 1e-5f);
 }
 
 TEST(Sky, ExposureScalesAndTurbidityHazes) {
   SkyParams p;
   p.exposure = 0.5f;
-  const glm::vec3 a = skyRadiance(elevated(20.0f, 100.0f), kSun, {});
-  const glm::vec3 b = skyRadiance(elevated(20.0f, 100.0f), kSun, p);
+  const glm::vec3 a = skyRadiance(elevated(20.0f, 100.0f), kSkySun, {});
+  const glm::vec3 b = skyRadiance(elevated(20.0f, 100.0f), kSkySun, p);
   EXPECT_NEAR(b.g, 0.5f * a.g, 1e-5f);
   // Above 1 the roll-off keeps the hue and whitens: continuous at 1, never above 1, monotone.
   EXPECT_EQ(skyHighlight(glm::vec3(0.2f, 0.5f, 1.0f)), glm::vec3(0.2f, 0.5f, 1.0f));
@@ -150,13 +150,13 @@ TEST(Sky, ExposureScalesAndTurbidityHazes) {
   // Hazier skies are whiter at the zenith (less blue over red).
   SkyParams hazy;
   hazy.turbidity = 8.0f;
-  const glm::vec3 clear = skyRadiance({0.0f, 1.0f, 0.0f}, kSun, {});
-  const glm::vec3 milky = skyRadiance({0.0f, 1.0f, 0.0f}, kSun, hazy);
+  const glm::vec3 clear = skyRadiance({0.0f, 1.0f, 0.0f}, kSkySun, {});
+  const glm::vec3 milky = skyRadiance({0.0f, 1.0f, 0.0f}, kSkySun, hazy);
   EXPECT_LT(milky.b / milky.r, clear.b / clear.r);
 }
 
 TEST(Sky, AutoExposureKeepsTheHorizonSteady) {
-  EXPECT_NEAR(skyAutoExposure(kSun, 3.0f), 1.0f, 1e-6f);
+  EXPECT_NEAR(skyAutoExposure(kSkySun, 3.0f), 1.0f, 1e-6f);
   // Hazier skies are brighter in Preetham's model: the auto exposure darkens them, and the horizon's mean
   // photometric luminance after it stays the calibration point's.
   auto meanY = [](const glm::vec3& sun, float turbidity, float exposure) {
@@ -171,7 +171,7 @@ TEST(Sky, AutoExposureKeepsTheHorizonSteady) {
     }
     return sum / 64.0f;
   };
-  const float reference = meanY(kSun, 3.0f, 1.0f);
+  const float reference = meanY(kSkySun, 3.0f, 1.0f);
   for (float turbidity : {2.0f, 6.0f, 10.0f}) {
     for (float elevation : {5.0f, 20.0f, 60.0f}) {
       const glm::vec3 sun = elevated(elevation, 30.0f);
@@ -180,16 +180,16 @@ TEST(Sky, AutoExposureKeepsTheHorizonSteady) {
       EXPECT_NEAR(meanY(sun, turbidity, exposure) / reference, 1.0f, 0.02f) << turbidity << " " << elevation;
     }
   }
-  EXPECT_LT(skyAutoExposure(kSun, 10.0f), skyAutoExposure(kSun, 3.0f));
+  EXPECT_LT(skyAutoExposure(kSkySun, 10.0f), skyAutoExposure(kSkySun, 3.0f));
 }
 
 TEST(Sky, SunDiscIsBrightInsideAndZeroOutside) {
   SkyParams p;
-  EXPECT_GT(luminance(sunDisc(kSun, kSun, p)), 10.0f);
-  const glm::vec3 edge = glm::normalize(kSun + glm::vec3(0.0f, 0.0f, 2.0f * kSunAngularRadius));
-  EXPECT_EQ(sunDisc(edge, kSun, p), glm::vec3(0.0f));
-  EXPECT_EQ(sunDisc(-kSun, kSun, p), glm::vec3(0.0f));
-  EXPECT_EQ(skyWithSun(edge, kSun, p), skyHighlight(skyRadiance(edge, kSun, p)));
+  EXPECT_GT(luminance(sunDisc(kSkySun, kSkySun, p)), 10.0f);
+  const glm::vec3 edge = glm::normalize(kSkySun + glm::vec3(0.0f, 0.0f, 2.0f * kSunAngularRadius));
+  EXPECT_EQ(sunDisc(edge, kSkySun, p), glm::vec3(0.0f));
+  EXPECT_EQ(sunDisc(-kSkySun, kSkySun, p), glm::vec3(0.0f));
+  EXPECT_EQ(skyWithSun(edge, kSkySun, p), skyHighlight(skyRadiance(edge, kSkySun, p)));
 }
 
 TEST(Sky, HenyeyGreensteinIsNormalised) {
@@ -208,11 +208,11 @@ TEST(Aerial, HazeGrowsMonotonicallyWithDistance) {
   const glm::vec3 lit(0.1f, 0.3f, 0.05f);
   const glm::vec3 view = glm::normalize(glm::vec3(0.3f, -0.1f, 1.0f));
   SkyParams p;
-  const glm::vec3 inscatter = skyInscatter(view, kSun, p);
-  EXPECT_EQ(aerial(lit, view, 0.0f, kSun, p), lit);
+  const glm::vec3 inscatter = skyInscatter(view, kSkySun, p);
+  EXPECT_EQ(aerial(lit, view, 0.0f, kSkySun, p), lit);
   float previous = 1e9f;
   for (float d = 50.0f; d <= 20000.0f; d *= 1.5f) {
-    const float gap = glm::length(aerial(lit, view, d, kSun, p) - inscatter);
+    const float gap = glm::length(aerial(lit, view, d, kSkySun, p) - inscatter);
     EXPECT_LT(gap, previous) << d;
     previous = gap;
   }
@@ -220,7 +220,7 @@ TEST(Aerial, HazeGrowsMonotonicallyWithDistance) {
   // Hand value: d = 500 m, density 0.0012: T = e^{−0.6} = 0.548812.
   const float t = std::exp(-0.6f);
   const glm::vec3 expected = lit * t + inscatter * (1.0f - t);
-  const glm::vec3 got = aerial(lit, view, 500.0f, kSun, p);
+  const glm::vec3 got = aerial(lit, view, 500.0f, kSkySun, p);
   EXPECT_NEAR(got.g, expected.g, 1e-6f);
   EXPECT_NEAR(t, 0.548812f, 1e-6f);
 }
@@ -229,9 +229,9 @@ TEST(Aerial, InscatterBelowTheHorizonIsTheHorizonSkyPlusGlow) {
   SkyParams p;
   const glm::vec3 down = elevated(-20.0f, 130.0f);
   const glm::vec3 glow = kSunColour * (kSkyMieStrength * p.sunIntensity * p.exposure *
-                                       henyeyGreenstein(glm::dot(down, kSun), kSkyMieG));
-  const glm::vec3 expected = skyHighlight(skyRadiance(elevated(0.0f, 130.0f), kSun, p) + glow);
-  EXPECT_NEAR(glm::length(skyInscatter(down, kSun, p) - expected), 0.0f, 1e-5f);
+                                       henyeyGreenstein(glm::dot(down, kSkySun), kSkyMieG));
+  const glm::vec3 expected = skyHighlight(skyRadiance(elevated(0.0f, 130.0f), kSkySun, p) + glow);
+  EXPECT_NEAR(glm::length(skyInscatter(down, kSkySun, p) - expected), 0.0f, 1e-5f);
 }
 
 TEST(Flare, GhostsLieOnTheLineThroughTheCentre) {
@@ -278,7 +278,7 @@ TEST(Flare, VisibilityCountsTheDepthAtTheSun) {
 
 TEST(Flare, SunProjectsWhereTheCameraLooks) {
   // Looking straight at the sun puts it at the target's centre; looking away puts it behind.
-  const glm::vec3 sun = kSun;
+  const glm::vec3 sun = kSkySun;
   const glm::mat4 view = glm::lookAt(glm::vec3(5.0f, 2.0f, -3.0f), glm::vec3(5.0f, 2.0f, -3.0f) + sun,
                                      glm::vec3(0.0f, 1.0f, 0.0f));
   const float f = 1.0f / std::tan(glm::radians(30.0f));

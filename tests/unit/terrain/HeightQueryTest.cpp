@@ -10,10 +10,12 @@
 #include <limits>
 #include <string>
 
+#include "TestUtil.hpp"
+
 namespace sylva::terrain {
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 using Surface = std::function<double(double, double)>;
 
 HeightField sampled(const Surface& f, int w, int h, float sx, float sz) {

@@ -6,6 +6,7 @@
 
 #include "ExternalData.hpp"
 #include "TempDir.hpp"
+#include "TestUtil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +32,7 @@
 namespace sylva::terrain {
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 // ---- helpers ----
 

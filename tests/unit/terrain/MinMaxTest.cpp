@@ -8,10 +8,12 @@
 #include <cmath>
 #include <limits>
 
+#include "TestUtil.hpp"
+
 namespace sylva::terrain {
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 // Random heights in [-50, 450] m (negative: bathymetry) with a fraction of absent samples and one absent
 // block.

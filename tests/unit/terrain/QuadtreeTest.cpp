@@ -18,10 +18,12 @@
 #include <utility>
 #include <vector>
 
+#include "TestUtil.hpp"
+
 namespace sylva::terrain {
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 // A non-square, non-power-of-two field (301×187 samples, 1.5 m × 2 m spacing → 450 m × 372 m) of rolling
 // hills in [~5, ~125] m with a round hole of absent samples (nodata) near the north-east corner.

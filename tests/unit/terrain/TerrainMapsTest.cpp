@@ -4,6 +4,7 @@
 #include <sylva/core/Files.hpp>
 
 #include "TempDir.hpp"
+#include "TestUtil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +19,7 @@
 namespace sylva::terrain {
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 glm::vec3 normalOf(const Image& normals, int x, int y) {
   return {normals.get(x, y, 0), normals.get(x, y, 1), normals.get(x, y, 2)};

@@ -11,6 +11,8 @@
 #include <set>
 #include <vector>
 
+#include "TestUtil.hpp"
+
 namespace sylva::texsynth {
 namespace {
 
@@ -36,14 +38,7 @@ std::set<std::vector<float>> texelSet(const Texture& t) {
   return set;
 }
 
-std::string errorOf(const auto& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::errorOf;
 
 TEST(Quilt, EveryOutputTexelIsASourceTexel) {
   for (const int channels : {3, 6}) {

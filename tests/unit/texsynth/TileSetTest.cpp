@@ -1,6 +1,7 @@
 // Edge-constrained tiles: shared edge lines (Wang and bark sets, before and after an 8-bit PNG round trip),
 // symmetric palindromes, seamless grid tilings, closed rings, determinism, errors, save/load.
 #include "TempDir.hpp"
+#include "TestUtil.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -434,14 +435,7 @@ TEST(TileSets, SameSeedSameSetOtherSeedOtherSet) {
   EXPECT_EQ(w1.tiles[0].texels, w2.tiles[0].texels);
 }
 
-std::string errorOf(const auto& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::errorOf;
 
 TEST(TileSets, BadInputsAreOneLineErrors) {
   Texture small = proceduralBark(24, 1);

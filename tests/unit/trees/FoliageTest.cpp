@@ -20,7 +20,7 @@
 namespace sylva::trees {
 namespace {
 
-void expectError(const std::filesystem::path& file, const std::string& expected) {
+void expectLeafCloudError(const std::filesystem::path& file, const std::string& expected) {
   try {
     (void)loadLeafCloud(file);
     FAIL() << file << " loaded";
@@ -247,19 +247,19 @@ TEST(LeafCloudLoader, ReadsTrianglesWithUvsIntoTheUnitSphere) {
 
 TEST(LeafCloudLoader, BadFilesFailWithOneLineNamingTheFile) {
   const test::TempDir dir;
-  expectError(dir / "missing.obj", "missing.obj: no such file");
+  expectLeafCloudError(dir / "missing.obj", "missing.obj: no such file");
   writeTextFile(dir / "garbage.dae", "<COLLADA><oops");
-  expectError(dir / "garbage.dae", "garbage.dae: cannot read the file");
+  expectLeafCloudError(dir / "garbage.dae", "garbage.dae: cannot read the file");
   writeTextFile(dir / "nouv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  expectError(dir / "nouv.obj", "nouv.obj: mesh 0 has no texture coordinates");
+  expectLeafCloudError(dir / "nouv.obj", "nouv.obj: mesh 0 has no texture coordinates");
   writeTextFile(dir / "nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
-  expectError(dir / "nan.obj", "nan.obj: vertex 0 of mesh 0 is not finite");
+  expectLeafCloudError(dir / "nan.obj", "nan.obj: vertex 0 of mesh 0 is not finite");
   writeTextFile(dir / "point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
-  expectError(dir / "point.obj", "point.obj: all vertices at one point");
+  expectLeafCloudError(dir / "point.obj", "point.obj: all vertices at one point");
   writeTextFile(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n");
-  expectError(dir / "lines.obj", "lines.obj");
+  expectLeafCloudError(dir / "lines.obj", "lines.obj");
   writeTextFile(dir / "empty.obj", "# nothing\n");
-  expectError(dir / "empty.obj", "empty.obj");
+  expectLeafCloudError(dir / "empty.obj", "empty.obj");
   writeTextFile(dir / "many.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
                                   "f 1/1 2/2 3/3\nf 2/2 4/4 3/3\n");
   try {
