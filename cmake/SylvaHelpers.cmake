@@ -52,6 +52,8 @@ function(sylva_add_test name)
     return()
   endif()
   add_executable(${name} ${ARG_SOURCES})
+  # Unity batches: GoogleTest's headers cost more than most test files (docs/testing.md, "Build time").
+  set_target_properties(${name} PROPERTIES UNITY_BUILD ${SYLVA_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 8)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock)
   target_compile_options(${name} PRIVATE ${SYLVA_WARNINGS})
   target_compile_definitions(${name} PRIVATE
@@ -64,9 +66,15 @@ function(sylva_add_test name)
   if(ARG_FILTER)
     set(filter TEST_FILTER ${ARG_FILTER})
   endif()
+  # A second label names the module (sylva_<tier>_<module>; module:cli for tests of the sylva program), so
+  # scripts/quick-test.sh can run the gl tests of the modules a change touches.
+  string(REGEX REPLACE "^sylva_(unit|gl|golden)_" "" module ${name})
+  if(module MATCHES "^sylva_cli")
+    set(module cli)
+  endif()
   gtest_discover_tests(${name} ${filter}
     DISCOVERY_MODE PRE_TEST
-    PROPERTIES LABELS ${ARG_LABEL} ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}" ${lock}
+    PROPERTIES LABELS "${ARG_LABEL};module:${module}" ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}" ${lock}
     DISCOVERY_TIMEOUT 60)
   add_dependencies(sylva_tests_${ARG_LABEL} ${name})
 endfunction()
