@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes Sylva's loaders and parsers with libFuzzer (+ ASan/UBSan):
+# Fuzzes Sylva's loaders and parsers with libFuzzer (+ ASan/UBSan), built by the `asan` preset (clang: the same
+# objects serve the sanitizer test run and the fuzz targets):
 #   scripts/fuzz.sh [TARGET|all] [SECONDS] [--merge]
 # TARGET: png exr npy npz gdal json shader fold flow cli blade_models depth_png fakenect (default all), or
 # flow_ffmpeg (by name only: it finds a known OpenCV 4.6 over-read, docs/testing.md); SECONDS per target
@@ -8,7 +9,8 @@
 # works in build/fuzz-work/TARGET. A crash, leak, sanitizer report, timeout (>10 s) or allocation over the limit
 # writes the input there as crash-*/leak-*/timeout-*/oom-* and makes the script fail; copy it into
 # fuzz/regressions/TARGET when fixing the defect. --merge adds inputs that reach new coverage to fuzz/corpus/TARGET.
-# Prints one summary line per target: executions, executions/s, coverage (edges) and features.
+# Prints one summary line per target: executions, executions/s, coverage (edges) and features. Targets run
+# side by side, one per core (SYLVA_FUZZ_JOBS overrides), each for SECONDS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target="${1:-all}"
@@ -21,7 +23,7 @@ for t in "${targets[@]}"; do
 done
 [[ "$seconds" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2; }
 
-scripts/build.sh fuzz sylva_fuzz >/dev/null
+scripts/build.sh asan sylva_fuzz >/dev/null
 # Memory ceiling per input: loaders accept fields up to their documented limits, but a small input must never
 # make them allocate near this much (see docs/testing.md).
 limit_mb=2048
@@ -31,14 +33,15 @@ limit_mb=2048
 # allocates is checked first, and -malloc_limit_mb reports any allocation over the limit as a finding.
 export ASAN_OPTIONS="allocator_may_return_null=1:${ASAN_OPTIONS:-}"
 status=0
-for t in "${targets[@]}"; do
-  work="build/fuzz-work/$t"
+# fuzz_one TARGET: one target's run and its summary line; exit status 1 on a finding.
+fuzz_one() {
+  local t="$1" work="build/fuzz-work/$1" log rc execs rate cov
   mkdir -p "$work/corpus"
-  seeds=("fuzz/corpus/$t")
+  local seeds=("fuzz/corpus/$t")
   [ -d "fuzz/regressions/$t" ] && seeds+=("fuzz/regressions/$t")
   log="$work/fuzz.log"
   set +e
-  "build/fuzz/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb="$limit_mb" \
+  "build/asan/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb="$limit_mb" \
     -malloc_limit_mb="$limit_mb" -max_len=65536 -print_final_stats=1 -artifact_prefix="$work/" \
     "$work/corpus" "${seeds[@]}" >"$log" 2>&1
   rc=$?
@@ -47,14 +50,30 @@ for t in "${targets[@]}"; do
   rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
   cov=$(grep -o 'cov: [0-9]* ft: [0-9]*' "$log" | tail -1 || true)
   if [ $rc -ne 0 ]; then
-    status=1
-    echo "fuzz.sh: $t FAILED after ${execs:-?} executions (exit $rc); input and log in $work/" >&2
-    grep -m3 -E 'ERROR: (AddressSanitizer|libFuzzer|UndefinedBehaviorSanitizer|LeakSanitizer)|runtime error|uncaught exception|Test unit written' "$log" >&2 || tail -5 "$log" >&2
-  else
-    echo "fuzz.sh: $t ok: $execs executions in ${seconds} s ($rate/s), ${cov:-cov: ?}"
+    {
+      echo "fuzz.sh: $t FAILED after ${execs:-?} executions (exit $rc); input and log in $work/"
+      grep -m3 -E 'ERROR: (AddressSanitizer|libFuzzer|UndefinedBehaviorSanitizer|LeakSanitizer)|runtime error|uncaught exception|Test unit written' "$log" || tail -5 "$log"
+    } >&2
+    return 1
   fi
-  if [ "$merge" = --merge ] && [ $rc -eq 0 ]; then
-    "build/fuzz/fuzz/fuzz_$t" -merge=1 -max_len=65536 "fuzz/corpus/$t" "$work/corpus" >>"$log" 2>&1
+  echo "fuzz.sh: $t ok: $execs executions in ${seconds} s ($rate/s), ${cov:-cov: ?}"
+  if [ "$merge" = --merge ]; then
+    "build/asan/fuzz/fuzz_$t" -merge=1 -max_len=65536 "fuzz/corpus/$t" "$work/corpus" >>"$log" 2>&1
   fi
+}
+jobs="${SYLVA_FUZZ_JOBS:-$(nproc 2>/dev/null || echo 2)}"
+[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: SYLVA_FUZZ_JOBS must be a positive whole number, got '$jobs'" >&2; exit 2; }
+running=0
+for t in "${targets[@]}"; do
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || status=1
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
+done
+while [ "$running" -gt 0 ]; do
+  wait -n || status=1
+  running=$((running - 1))
 done
 exit $status

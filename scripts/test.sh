@@ -1,22 +1,36 @@
 #!/usr/bin/env bash
 # Quick start, command 2: installs what is missing, builds, and runs the whole test suite (what CI runs):
-#   1. Release build: unit + gl (headless EGL, and a real window under Xvfb) + golden tests, CI-sized heavy
-#      proofs (SYLVA_FULL=1 runs their full case counts; docs/testing.md);
-#   2. ASan+UBSan build: unit tests and the gl tests (all but the long crack sweep) on llvmpipe;
-#   3. TSan build: the unit tests of the parallel CPU code (parallelFor, noise, maps, min/max);
-#   4. libFuzzer build (clang): every fuzz target for a short smoke run over its corpus and regression inputs.
+#   1. Release build (GCC, Ninja, mold): unit + gl (headless EGL, and real windows under Xvfb) + golden tests,
+#      CI-sized heavy proofs (SYLVA_FULL=1 runs their full case counts; docs/testing.md);
+#   2. one clang ASan+UBSan build whose objects also carry libFuzzer's coverage: its unit and gl tests (all but
+#      the long crack and watertightness sweeps) on llvmpipe, then every fuzz target for a short smoke run over
+#      its corpus and regression inputs (two at a time);
+#   3. TSan build: the unit tests of the parallel CPU code (parallelFor, noise, maps, min/max, solvers, synthesis).
 # GL tests fail (instead of skipping) when no context or display can be made, so CI cannot pass vacuously.
-# Each phase prints its start time; the summary at the end lists how long each took.
+# Each phase prints its start time; the summary at the end lists how long each took and the slowest tests.
+#
+#   scripts/test.sh            everything (the README's command; .ci/run calls it)
+#   scripts/test.sh --quick [MODULE ...]
+#                              between commits: rebuilds the release preset incrementally, runs every unit test
+#                              and the gl + golden tests of the given modules, or of the modules the working
+#                              tree changes (git diff HEAD); see docs/testing.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
-scripts/setup-debian.sh
-if [ -x scripts/fetch-sample-data.sh ]; then
-  scripts/fetch-sample-data.sh
+jobs="$(nproc 2>/dev/null || echo 2)"
+
+if [ "${1:-}" = --quick ]; then
+  shift
+  exec scripts/quick-test.sh "$@"
+elif [ $# -gt 0 ]; then
+  echo "test.sh: unknown argument '$1' (usage: scripts/test.sh [--quick [MODULE ...]])" >&2
+  exit 2
 fi
+
+scripts/setup-debian.sh
+scripts/fetch-sample-data.sh
 # Node tools (gltf-validator for the tree export tests) into .cache/node/.
 scripts/fetch-node-tools.sh
-jobs="$(nproc 2>/dev/null || echo 2)"
 fuzz_seconds="${SYLVA_FUZZ_SECONDS:-10}"
 
 summary=()
@@ -24,7 +38,7 @@ last=$start
 phase() {
   local now
   now=$(date +%s)
-  [ -n "${current:-}" ] && summary+=("$(printf '%-34s %5d s' "$current" $((now - last)))")
+  [ -n "${current:-}" ] && summary+=("$(printf '%-44s %5d s' "$current" $((now - last)))")
   current="$1"
   last=$now
   echo "test.sh: $1 ($((now - start)) s since start)"
@@ -36,11 +50,13 @@ phase "release: unit + gl + golden"
 export SYLVA_REQUIRE_GL=1 SYLVA_REQUIRE_DISPLAY=1
 xvfb-run -a -s "-screen 0 1280x720x24" ctest --preset release -j "$jobs"
 
-phase "build asan (unit + gl)"
-scripts/build.sh asan sylva_tests_unit sylva_tests_gl
+phase "build asan (clang: unit + gl + fuzz targets)"
+scripts/build.sh asan sylva_tests_unit sylva_tests_gl sylva_fuzz
 phase "asan: unit + gl"
-# Headless only: the window test runs in the release phase under Xvfb.
+# Headless only: the window tests run in the release phase under Xvfb.
 env -u SYLVA_REQUIRE_DISPLAY ctest --preset asan -j "$jobs"
+phase "fuzz smoke (${fuzz_seconds} s per target)"
+scripts/fuzz.sh all "$fuzz_seconds"
 
 phase "build tsan (parallel CPU code)"
 scripts/build.sh tsan sylva_unit_core sylva_unit_terrain sylva_unit_folding sylva_unit_grass sylva_unit_trees \
@@ -48,12 +64,11 @@ scripts/build.sh tsan sylva_unit_core sylva_unit_terrain sylva_unit_folding sylv
 phase "tsan: parallel CPU code"
 ctest --preset tsan -j "$jobs"
 
-phase "build fuzz targets (clang)"
-scripts/build.sh fuzz sylva_fuzz
-phase "fuzz smoke (${fuzz_seconds} s per target)"
-scripts/fuzz.sh all "$fuzz_seconds"
-
 phase "done"
 echo "test.sh: phase times"
 printf '  %s\n' "${summary[@]}"
+# CTest keeps each test's last duration in CTestCostData.txt ("name runs seconds", then "---" and the failures).
+echo "test.sh: slowest release tests (s)"
+awk '/^---/ { exit } NF == 3 { printf "  %8.1f  %s\n", $3, $1 }' build/release/Testing/Temporary/CTestCostData.txt |
+  sort -rn | awk 'NR <= 10'
 echo "test.sh: all suites passed in $(( $(date +%s) - start )) s"
