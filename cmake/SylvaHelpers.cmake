@@ -66,16 +66,24 @@ function(sylva_add_test name)
   if(ARG_FILTER)
     set(filter TEST_FILTER ${ARG_FILTER})
   endif()
+  gtest_discover_tests(${name} ${filter}
+    DISCOVERY_MODE PRE_TEST
+    PROPERTIES LABELS ${ARG_LABEL} ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}" ${lock}
+    DISCOVERY_TIMEOUT 60)
   # A second label names the module (sylva_<tier>_<module>; module:cli for tests of the sylva program), so
-  # scripts/quick-test.sh can run the gl tests of the modules a change touches.
+  # scripts/quick-test.sh can run the gl tests of the modules a change touches. gtest_discover_tests passes its
+  # PROPERTIES on as one flat list (a list value would split into property names), so the labels are set by a
+  # script CTest includes after the discovered tests, over the list discovery leaves in ${name}_TESTS.
   string(REGEX REPLACE "^sylva_(unit|gl|golden)_" "" module ${name})
   if(module MATCHES "^sylva_cli")
     set(module cli)
   endif()
-  gtest_discover_tests(${name} ${filter}
-    DISCOVERY_MODE PRE_TEST
-    PROPERTIES LABELS "${ARG_LABEL};module:${module}" ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}" ${lock}
-    DISCOVERY_TIMEOUT 60)
+  set(labels_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+  file(WRITE ${labels_file}
+    "foreach(test IN LISTS ${name}_TESTS)\n"
+    "  set_tests_properties(\"\${test}\" PROPERTIES LABELS \"${ARG_LABEL};module:${module}\")\n"
+    "endforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels_file})
   add_dependencies(sylva_tests_${ARG_LABEL} ${name})
 endfunction()
 
