@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Quick start, command 1: installs what is missing, builds, and renders the demo images headless into out/.
-# The scene's still comes first (about 6 minutes on a fresh 2-core machine, most of it the build), then the
+# The scene's still comes first (about 3½ minutes on a fresh 2-core machine, most of it the build), then the
 # other stills, then the animations, the scene's fly-over last:
 #   out/scene.png         the scene data/scenes/meadow.json: terrain, grass, trees, lake, bodies, sky, shadows
 #   out/terrain.png       the procedural demo landscape, shaded (multi-textured, lit, fogged)
