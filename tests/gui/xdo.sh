@@ -35,15 +35,16 @@ shown() {
   echo "${n:-0}"
 }
 # frames N [--or-exit]: waits until the window has shown N more frames (at most 120 s without one), and fails
-# if the app ($pid) exits meanwhile (with --or-exit, returns then instead: for the key that quits). After an input event, one frame reads it and the next shows its effect; a screenshot
-# taken after two frames therefore shows the state the event made.
+# if the app ($pid) exits meanwhile (with --or-exit, returns then instead: for the key that quits). After an
+# input event, one frame reads it and the next shows its effect; a screenshot taken after two frames therefore
+# shows the state the event made.
 frames() {
-  local until last now idle=0
+  local target last now idle=0
   last="$(shown)"
-  until=$((last + $1))
+  target=$((last + $1))
   while :; do
     now="$(shown)"
-    [ "$now" -ge "$until" ] && return 0
+    [ "$now" -ge "$target" ] && return 0
     if [ -n "$pid" ] && ! kill -0 "$pid" 2>/dev/null; then
       [ "${2:-}" = --or-exit ] && return 0
       echo "$e2e_name: the app exited while the test waited for a frame" >&2
