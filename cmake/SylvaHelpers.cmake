@@ -52,7 +52,7 @@ function(sylva_add_test name)
     return()
   endif()
   add_executable(${name} ${ARG_SOURCES})
-  # Unity batches: GoogleTest's headers cost more than most test files (docs/testing.md, "Build time").
+  # Unity batches: GoogleTest's headers cost more than most test files (docs/testing.md, "Where the time goes").
   set_target_properties(${name} PROPERTIES UNITY_BUILD ${SYLVA_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 8)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock)
   target_compile_options(${name} PRIVATE ${SYLVA_WARNINGS})

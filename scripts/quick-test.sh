@@ -62,7 +62,7 @@ export SYLVA_REQUIRE_GL=1
 echo "quick-test: unit tests"
 "${run[@]}" -L '^unit$'
 if [ ${#selected[@]} -gt 0 ]; then
-  if [ "${selected[*]}" = all ]; then
+  if [[ " ${selected[*]} " == *" all "* ]]; then
     modules='.*'
   else
     modules="$(IFS='|'; echo "${selected[*]}")"

@@ -41,8 +41,6 @@ public:
    * of sleeping for a fixed time.
    */
   void swapBuffers() override;
-  /** Frames shown (swapBuffers calls) since the window opened. */
-  std::uint64_t framesShown() const { return mFramesShown; }
   bool headless() const override { return false; }
 
   /** Processes events; returns false once the user asked to close the window. */
