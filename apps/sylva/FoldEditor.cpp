@@ -1775,7 +1775,10 @@ void FoldEditor::canvasInput(const ImVec2& origin, const ImVec2& size) {
     case ToolKind::Count:
       break;
     }
-  } else if (dragging) {
+  } else if (dragging || released) {
+    // The frame that reads the release may also read the pointer's last move (GLFW polls once a frame and
+    // ImGui applies a move and a button change of one frame together): apply the move before finishing, or
+    // a fast drag loses its end.
     mGesture.current = at;
     if (mGesture.handle && at != mGesture.handleLast) {
       const Handle h = *mGesture.handle;
@@ -1794,8 +1797,8 @@ void FoldEditor::canvasInput(const ImVec2& origin, const ImVec2& size) {
         mGesture.handleLast = at;
         refresh(hint);
       }
-    } else if (mGesture.tool == ToolKind::Freeze) {
-      paintFreeze(at, io.KeyShift, false);
+    } else if (mGesture.tool == ToolKind::Freeze && !released) {
+      paintFreeze(at, io.KeyShift, false); // the release paints at the end and writes the mask
     }
   }
   if (released) {

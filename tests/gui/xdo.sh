@@ -126,14 +126,15 @@ click() {
   frames 2
 }
 # drag X0 Y0 X1 Y1: left button down at the first point, moved in six steps (a frame each), released at the
-# second.
+# second together with the last step, as a quick hand does: the app may read the last move and the release in
+# one frame and must still end the drag at the second point.
 drag() {
   at "$1" "$2"
   xdotool mousedown 1
   frames 2
   for i in 1 2 3 4 5 6; do
     xdotool mousemove --sync $((X + $1 + ($3 - $1) * i / 6)) $((Y + $2 + ($4 - $2) * i / 6))
-    frames 1
+    [ "$i" -lt 6 ] && frames 1
   done
   xdotool mouseup 1
   frames 2
