@@ -31,11 +31,6 @@ SYLVA_GPU_BEGIN
 #define SYLVA_TREE_FOLIAGE_UNIT 10     // sampler2D: the 2.5D leaf-cloud impostor (rgb colour, a depth)
 #define SYLVA_TREE_IMPOSTOR_UNIT 11    // sampler2DArray: far-field octahedral atlas (first of the units used)
 #define SYLVA_TREE_MAX_TILE_CLASSES 4  // bark tile classes (the pieces use 0: plain, 1: by a fork, 2: crotch)
-// Quads per indirect command. Mesa's draw module (llvmpipe) numbers the tessellated vertices of one instance
-// of a draw with 16 bits: at level 64 a quad makes up to 65 x 65 vertices, so 15 quads (63,375) fit and 16
-// would not; beyond that, parts of patches vanish. A piece type's quads are drawn as several commands of the
-// one multi-draw; the patch id (the quad's stable id) is gl_PrimitiveID plus the chunk's first quad.
-#define SYLVA_TREE_QUADS_PER_COMMAND 15
 
 /**
  * A joint's world frame as three rows of a 3x4 matrix: world = (dot(x, p1), dot(y, p1), dot(z, p1)) with
@@ -76,7 +71,8 @@ struct TreeUniforms {
                       // distance in metres
   vec4 colours[SYLVA_TREE_MAX_SPECIES]; // bark colour (rgb) per species of the forest
   uvec4 info;         // x: instance count, y: piece types, z: view (TreeView), w: debug flags (1: break rims)
-  vec4 cull;          // x: bounding-sphere slack factor for bends; yzw: unused
+  vec4 cull;          // x: bounding-sphere slack factor for bends, y: quads per indirect command (a chunk's
+                      // first quad is (gl_DrawID - the type's first command) * y); zw: unused
   vec4 corners[6];    // rimCorner(k) exactly as the CPU computes it (xyz)
   vec4 rimNormals[6]; // rimNormal(k) (xyz)
   uvec4 quadTable[2]; // first entry of piece type t in the quad table at SYLVA_TREE_QUAD_BINDING: [t / 4][t % 4]

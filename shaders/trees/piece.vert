@@ -74,5 +74,5 @@ void main() {
   vcUv = aUv;
   vcInstance = aInstance;
   // The quad chunk this command draws: its first quad id, so the patch id is the quad's stable id.
-  vcQuadBase = (uint(gl_DrawIDARB) + uDrawBase - pieceTable[type].range.x) * uint(SYLVA_TREE_QUADS_PER_COMMAND);
+  vcQuadBase = (uint(gl_DrawIDARB) + uDrawBase - pieceTable[type].range.x) * uint(trees.cull.y);
 }

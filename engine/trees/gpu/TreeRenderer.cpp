@@ -3,6 +3,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/shader/Compiler.hpp>
+#include <sylva/trees/Tessellation.hpp>
 #include <sylva/trees/Tree.hpp>
 
 #include <algorithm>
@@ -29,14 +30,12 @@ TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const
   // One vertex and index buffer for all piece types; quads as 4-index patches.
   std::vector<PieceVertexGpu> vertices;
   std::vector<std::uint32_t> indices;
-  mCommandsReset.clear();
   for (std::size_t t = 0; t < f.pieces.size(); ++t) {
     const Piece& piece = f.pieces[t];
     if (piece.joints.size() > SYLVA_TREE_MAX_PIECE_JOINTS) {
       fail("trees: piece '{}' has {} joints (at most {})", piece.name, piece.joints.size(),
            SYLVA_TREE_MAX_PIECE_JOINTS);
     }
-    gpu::TreePieceGpu entry = pieceTableEntry(piece);
     const auto baseVertex = static_cast<std::uint32_t>(vertices.size());
     const auto firstIndex = static_cast<std::uint32_t>(indices.size());
     for (const PieceVertex& v : piece.vertices) {
@@ -53,20 +52,8 @@ TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const
     for (const auto& q : piece.quads) {
       indices.insert(indices.end(), q.begin(), q.end());
     }
-    const auto count = static_cast<std::uint32_t>(indices.size()) - firstIndex;
-    // One command per chunk of at most SYLVA_TREE_QUADS_PER_COMMAND quads (all instances of the type in
-    // each).
-    const auto firstCommand = static_cast<std::uint32_t>(mCommandsReset.size() / kCommandUints);
-    const auto quads = static_cast<std::uint32_t>(piece.quads.size());
-    std::uint32_t chunks = 0;
-    for (std::uint32_t q = 0; q < quads; q += SYLVA_TREE_QUADS_PER_COMMAND, ++chunks) {
-      const std::uint32_t n = std::min<std::uint32_t>(SYLVA_TREE_QUADS_PER_COMMAND, quads - q);
-      mCommandsReset.insert(mCommandsReset.end(),
-                            {n * 4u, 0u, firstIndex + q * 4u, baseVertex, mPacked.first[t]});
-      mCommandType.push_back(static_cast<std::uint32_t>(t));
-    }
-    entry.range = glm::uvec4(firstCommand, chunks, mPacked.first[t], count);
-    mPieceTable.push_back(entry);
+    mPieceTable.push_back(pieceTableEntry(piece));
+    mPieceGeometry.push_back({firstIndex, baseVertex, static_cast<std::uint32_t>(piece.quads.size())});
   }
   // Tile class and rotation of every quad of every piece type (the patch id indexes it).
   std::vector<glm::uvec2> quadTable;
@@ -92,14 +79,14 @@ TreeRenderer::TreeRenderer(const shader::Library& library, std::shared_ptr<const
   mIndices = gl::Buffer{std::span<const std::uint32_t>(indices)};
   const std::size_t n = std::max<std::size_t>(mPacked.instances.size(), 1);
   mInstances = gl::Buffer(n * sizeof(gpu::TreeInstanceGpu), mPacked.instances.data());
-  mPieces = gl::Buffer{std::span<const gpu::TreePieceGpu>(mPieceTable)};
+  mPieces = gl::Buffer(std::max<std::size_t>(mPieceTable.size(), 1) * sizeof(gpu::TreePieceGpu));
   mVisible = gl::Buffer(n * sizeof(std::uint32_t));
   std::vector<std::uint32_t> all(n);
   for (std::size_t i = 0; i < n; ++i) {
     all[i] = static_cast<std::uint32_t>(i);
   }
   mAll = gl::Buffer{std::span<const std::uint32_t>(all)};
-  mCommands = gl::Buffer{std::span<const std::uint32_t>(mCommandsReset)};
+  useQuadsPerCommand(kMaxQuadsPerCommand);
   mFrames = gl::Buffer(std::max<std::size_t>(f.jointCount, 1) * sizeof(gpu::JointFrame));
   gl::setLabel(GL_BUFFER, mVertices.id(), "tree piece vertices");
   gl::setLabel(GL_BUFFER, mFrames.id(), "tree joint frames");
@@ -139,6 +126,30 @@ void TreeRenderer::reloadShaders(const shader::Library& library) {
       {"trees draw", {"trees/piece.vert", "trees/piece.tesc", "trees/piece.tese", "trees/piece.frag"}, {}});
   mCull = std::move(cull);
   mDraw = std::move(draw);
+}
+
+void TreeRenderer::useQuadsPerCommand(std::uint32_t quads) {
+  if (quads == mQuadsPerCommand) {
+    return;
+  }
+  // One command per chunk of `quads` quads of a type (all the type's visible instances in each).
+  mQuadsPerCommand = quads;
+  mCommandsReset.clear();
+  for (std::size_t t = 0; t < mPieceTable.size(); ++t) {
+    const PieceGeometry& g = mPieceGeometry[t];
+    const auto firstCommand = static_cast<std::uint32_t>(mCommandsReset.size() / kCommandUints);
+    std::uint32_t chunks = 0;
+    for (std::uint32_t q = 0; q < g.quads; q += quads, ++chunks) {
+      const std::uint32_t n = std::min(quads, g.quads - q);
+      mCommandsReset.insert(mCommandsReset.end(),
+                            {n * 4u, 0u, g.firstIndex + q * 4u, g.baseVertex, mPacked.first[t]});
+    }
+    mPieceTable[t].range = glm::uvec4(firstCommand, chunks, mPacked.first[t], g.quads * 4u);
+  }
+  if (!mPieceTable.empty()) {
+    mPieces.setSubData(std::span<const gpu::TreePieceGpu>(mPieceTable));
+  }
+  mCommands = gl::Buffer{std::span<const std::uint32_t>(mCommandsReset)};
 }
 
 void TreeRenderer::setFrames(std::span<const gpu::JointFrame> frames) {
@@ -248,7 +259,7 @@ void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, co
   u.info =
       glm::uvec4(static_cast<unsigned>(mPacked.instances.size()), static_cast<unsigned>(mPieceTable.size()),
                  static_cast<unsigned>(view), breakRims ? 1u : 0u);
-  u.cull = glm::vec4(kBendSlack, 0.0f, 0.0f, 0.0f);
+  u.cull = glm::vec4(kBendSlack, static_cast<float>(mQuadsPerCommand), 0.0f, 0.0f);
   for (int k = 0; k < kRimCorners; ++k) {
     u.corners[k] = glm::vec4(rimCorner(k), 0.0f);
     u.rimNormals[k] = glm::vec4(rimNormal(k), 0.0f);
@@ -279,6 +290,7 @@ void TreeRenderer::cull(const render::Camera& camera, float aspect, const TreeLo
   if (timers != nullptr) {
     timers->begin("trees cull");
   }
+  useQuadsPerCommand(quadsPerCommand(lod.fixedLevel > 0.0f ? lod.fixedLevel : lod.maxLevel));
   uploadUniforms(camera, aspect, lod, TreeView::Shaded, false);
   mFrame.update(camera, 1, 1, 0.0, {});
   mFrame.bind();

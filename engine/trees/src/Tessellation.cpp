@@ -2,6 +2,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace sylva::trees {
 namespace {
 
@@ -56,6 +59,17 @@ int countFolds(const Piece& piece, int level) {
     }
   }
   return folds;
+}
+
+std::uint32_t quadVertices(float level) {
+  const float clamped = level >= 1.0f ? std::min(level, 63.0f) : 1.0f;
+  auto segments = static_cast<std::uint32_t>(std::ceil(clamped));
+  segments += segments % 2 == 0 ? 1 : 0;
+  return (segments + 1) * (segments + 1);
+}
+
+std::uint32_t quadsPerCommand(float maxLevel) {
+  return std::clamp<std::uint32_t>(kVerticesPerCommand / quadVertices(maxLevel), 1, kMaxQuadsPerCommand);
 }
 
 } // namespace sylva::trees

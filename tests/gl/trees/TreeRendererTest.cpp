@@ -1,12 +1,14 @@
 // The tree renderer against its CPU references: the culling compute pass gives exactly the instances
 // cullInstances() keeps, for every piece type; the draw is deterministic; one multi-draw and the per-piece
-// baseline draw the same image.
+// baseline draw the same image, and so do commands of any chunk size.
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/trees/Tessellation.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
 
 #include "GlTest.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace sylva::trees {
@@ -87,6 +89,49 @@ TEST_F(TreeRendererTest, DrawIsDeterministicAndTheBaselineDrawsTheSameImage) {
     }
   }
   EXPECT_GT(covered, 500);
+}
+
+TEST_F(TreeRendererTest, ChunkSizeDoesNotChangeTheImage) {
+  // The cull picks the quads per command from the largest level (15 at 16, 1 at 64). With segments long
+  // enough that no edge reaches level 16, both largest levels tessellate alike: the images, patch ids
+  // included (the tiles view shows them), must be identical, and so must the visible counts.
+  ASSERT_NE(quadsPerCommand(16.0f), quadsPerCommand(64.0f));
+  auto forest = std::make_shared<Forest>(gridForest({"almond", "california-black-oak"}, 2, 6.0f, 5));
+  TreeRenderer renderer(shaders(), forest);
+  const render::Camera camera = lookingAt({-8, 4, 10}, {0, 2, 0});
+  render::RenderTarget target(200, 150);
+  auto draw = [&](float maxLevel, TreeView view) {
+    TreeLod lod;
+    lod.maxLevel = maxLevel;
+    lod.pixelsPerSegment = 40.0f;
+    target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 0.0f));
+    renderer.cull(camera, target.aspect(), lod);
+    TreeDrawOptions options;
+    options.view = view;
+    renderer.draw(camera, 200, 150, 0.0, lod, nullptr, options);
+    return std::pair{target.readColor(), renderer.readVisibleCounts()};
+  };
+  for (TreeView view : {TreeView::Tiles, TreeView::Shaded}) {
+    const auto [coarse, coarseCounts] = draw(16.0f, view);
+    const auto [fine, fineCounts] = draw(64.0f, view);
+    EXPECT_TRUE(coarse == fine) << "view " << static_cast<int>(view);
+    EXPECT_EQ(coarseCounts, fineCounts);
+  }
+  // Patch ids differ across each piece's quads (the green channel of the tiles view): more than one chunk's
+  // worth of quads is on screen, so a wrong chunk base would have shown.
+  const Image tiles = draw(64.0f, TreeView::Tiles).first;
+  std::vector<bool> seen(256, false);
+  int patches = 0;
+  for (int y = 0; y < tiles.height(); ++y) {
+    for (int x = 0; x < tiles.width(); ++x) {
+      const auto id = static_cast<std::size_t>(std::lround(tiles.get(x, y, 1) * 255.0f));
+      if (tiles.get(x, y, 3) > 0.0f && !seen[id]) {
+        seen[id] = true;
+        ++patches;
+      }
+    }
+  }
+  EXPECT_GT(patches, static_cast<int>(kMaxQuadsPerCommand));
 }
 
 } // namespace

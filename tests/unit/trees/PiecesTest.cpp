@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstring>
+#include <limits>
 #include <map>
 
 namespace sylva::trees {
@@ -220,6 +221,39 @@ TEST(Tessellation, EdgesDependOnlyOnTheirTwoCorners) {
   }
   // Phong bulges a curved edge outwards: the midpoint leaves the chord.
   EXPECT_GT(glm::length(phongQuad(p, n, 0.5f, 0.0f) - 0.5f * (p[0] + p[1])), 1e-3f);
+}
+
+TEST(Tessellation, QuadVerticesFollowFractionalOddSpacing) {
+  // Levels round up to an odd segment count (at most 63); a quad has (segments + 1)² vertices.
+  EXPECT_EQ(quadVertices(1.0f), 4u);
+  EXPECT_EQ(quadVertices(1.5f), 16u);
+  EXPECT_EQ(quadVertices(3.0f), 16u);
+  EXPECT_EQ(quadVertices(3.01f), 36u);
+  EXPECT_EQ(quadVertices(16.0f), 18u * 18u);
+  EXPECT_EQ(quadVertices(63.0f), 64u * 64u);
+  EXPECT_EQ(quadVertices(64.0f), 64u * 64u);
+  EXPECT_EQ(quadVertices(1000.0f), 64u * 64u);
+  EXPECT_EQ(quadVertices(0.0f), 4u);
+  EXPECT_EQ(quadVertices(-3.0f), 4u);
+  EXPECT_EQ(quadVertices(std::numeric_limits<float>::quiet_NaN()), 4u);
+}
+
+TEST(Tessellation, CommandsStayWithinTheVertexBudgetAtEveryLevel) {
+  // The default largest level keeps the full chunk; the finest level draws one quad per command.
+  EXPECT_EQ(quadsPerCommand(16.0f), kMaxQuadsPerCommand);
+  EXPECT_EQ(quadsPerCommand(32.0f), 4u);
+  EXPECT_EQ(quadsPerCommand(64.0f), 1u);
+  std::uint32_t previous = kMaxQuadsPerCommand;
+  for (float level = 0.5f; level <= 70.0f; level += 0.25f) {
+    const std::uint32_t q = quadsPerCommand(level);
+    ASSERT_GE(q, 1u) << level;
+    ASSERT_LE(q, previous) << level << ": finer levels never get larger chunks";
+    // Within the budget (one quad may exceed it only when a single quad does), and always within the 16-bit
+    // vertex numbering of Mesa's draw module.
+    ASSERT_TRUE(q * quadVertices(level) <= kVerticesPerCommand || q == 1) << level;
+    ASSERT_LT(q * quadVertices(level), 65536u) << level;
+    previous = q;
+  }
 }
 
 } // namespace

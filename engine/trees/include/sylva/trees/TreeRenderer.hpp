@@ -2,8 +2,8 @@
 // Trees on the GPU (docs/trees.md, seed 000 §4): the piece meshes of a forest in one vertex and index buffer,
 // every piece instance of every tree in one instance buffer, every joint of every tree in one frame buffer.
 // Per frame a culling compute pass writes the indirect commands of every piece type (all instances of a type
-// in each; a type's quads in chunks of SYLVA_TREE_QUADS_PER_COMMAND, see shared/Trees.h) and one
-// glMultiDrawElementsIndirect draws them all as quad patches: skinned in the vertex
+// in each; a type's quads in chunks of quadsPerCommand() for the cull's largest level, Tessellation.hpp) and
+// one glMultiDrawElementsIndirect draws them all as quad patches: skinned in the vertex
 // shader, Phong-tessellated by distance in the tessellation shaders, lit in the fragment shader. Needs a
 // current GL context.
 
@@ -137,13 +137,22 @@ private:
   void prepareDraw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
                    const TreeDrawOptions& options);
   void submit(const TreeDrawOptions& options, bool perPiece);
+  /** Rebuilds the indirect commands and the piece table's command ranges for chunks of `quads` quads. */
+  void useQuadsPerCommand(std::uint32_t quads);
+
+  /** Where a piece type's quads lie in the index and vertex buffers. */
+  struct PieceGeometry {
+    std::uint32_t firstIndex;
+    std::uint32_t baseVertex;
+    std::uint32_t quads;
+  };
 
   std::shared_ptr<const Forest> mForest;
   PackedInstances mPacked;
   std::vector<gpu::TreePieceGpu> mPieceTable;
+  std::vector<PieceGeometry> mPieceGeometry;
   std::vector<std::uint32_t> mCommandsReset;
-  /** Piece type of each indirect command. */
-  std::vector<std::uint32_t> mCommandType;
+  std::uint32_t mQuadsPerCommand = 0;
   std::size_t mVertexBytes = 0;
   std::size_t mIndexBytes = 0;
   gl::Program mCull{gl::NoCreate};
