@@ -44,9 +44,9 @@ std::uint32_t quadVertices(float level);
 /**
  * Quads per indirect draw command when no edge's level exceeds `maxLevel`: as many as keep a command within
  * kVerticesPerCommand tessellated vertices, 1 … kMaxQuadsPerCommand (docs/trees.md, "Quads in chunks").
- * Mesa's draw module (llvmpipe) numbers one command instance's tessellated vertices with 16 bits, and when
- * any of them needs clipping it sends the whole command through a path whose cost grows with the square of
- * that count; a GPU does not care. 15 at levels up to 16, 4 at 32, 1 at 64.
+ * Mesa's draw module (llvmpipe) numbers one command instance's tessellated vertices with 16 bits, and a
+ * command that goes through its primitive pipeline (clipping, for one) costs it the square of that count; a
+ * GPU does not care. 15 at levels up to 16, 4 at 32, 1 at 64.
  */
 std::uint32_t quadsPerCommand(float maxLevel);
 
