@@ -68,6 +68,11 @@ void GrassFlags::add(CLI::App& command) {
       .add_option("--grass-layer", layer,
                   "Grow only where the terrain's splat layer of this name applies ('none': everywhere)")
       ->capture_default_str();
+  command
+      .add_option("--grass-max-slope", maxSlope,
+                  "Steepest ground with grass, true degrees (before --exaggeration), faded over the last 8")
+      ->check(finiteRange(0.0, 90.0))
+      ->capture_default_str();
   command.add_option("--grass-distance", cull.maxDistance, "Draw distance of blades, metres")
       ->check(finiteRange(1.0, 100000.0))
       ->capture_default_str();
@@ -148,61 +153,47 @@ std::vector<std::string> splitList(const std::string& text) {
 
 } // namespace
 
-std::shared_ptr<const grass::GrassField> GrassFlags::buildField(const terrain::TerrainScene& scene) const {
-  check();
-  std::vector<grass::BladeType> bladeTypes;
-  if (types == "procedural") {
-    bladeTypes = grass::proceduralBladeTypes();
-  } else {
-    for (const std::string& file : splitList(types)) {
-      std::vector<grass::BladeType> loaded = grass::loadBladeTypes(file);
-      bladeTypes.insert(bladeTypes.end(), loaded.begin(), loaded.end());
-    }
-    if (bladeTypes.empty()) {
+scene::GrassLayer GrassFlags::layerDesc() const {
+  scene::GrassLayer l;
+  if (types != "procedural") {
+    l.blades = splitList(types);
+    if (l.blades.empty()) {
       fail("--grass-types: no blade-model file in '{}'", types);
     }
   }
-  grass::FieldSettings settings = field;
-  settings.density.seed = field.patch.seed + 1;
-  const terrain::HeightField& terrain = scene.field();
-  const float e = scene.exaggeration();
-  settings.density.verticalScale = e;
-  if (scene.seaLevel()) {
-    settings.density.minHeight = (*scene.seaLevel() + 0.3f) * e;
-    settings.density.heightFade = 1.0f * e;
-  }
-  if (!paint.empty()) {
-    auto image = std::make_shared<Image>(loadImage(paint));
-    if (image->width() < 2 || image->height() < 2) {
-      fail("--grass-paint {}: {}x{} pixels is too small (at least 2x2)", paint, image->width(),
-           image->height());
+  l.density = field.density.base;
+  l.coverage = field.density.coverage;
+  l.seed = field.patch.seed;
+  l.paint = paint;
+  l.layer = layer;
+  l.maxSlope = maxSlope;
+  l.distance = cull.maxDistance;
+  l.patchBlades = field.patch.blades;
+  l.tileSize = field.patch.tileSize;
+  l.bladesPerTile = field.bladesPerTile;
+  return l;
+}
+
+scene::GrassGround grassGround(const terrain::TerrainScene& scene) {
+  return {&scene.field(), scene.exaggeration(), scene.seaLevel(), scene.renderer().layers()};
+}
+
+std::shared_ptr<const grass::GrassField> GrassFlags::buildField(const terrain::TerrainScene& scene) const {
+  check();
+  // Errors name the option a layer field comes from.
+  const scene::GrassFieldName option = [](std::string_view f) -> std::string {
+    if (f == "blades") {
+      return "--grass-types";
     }
-    const double imageAspect = static_cast<double>(image->width()) / image->height();
-    const double groundAspect = static_cast<double>(terrain.extentX()) / terrain.extentZ();
-    if (std::abs(imageAspect / groundAspect - 1.0) > 0.02) {
-      fail("--grass-paint {}: {}x{} pixels does not match the terrain's {:.0f} x {:.0f} m footprint (aspect "
-           "{:.3f}, the image's {:.3f})",
-           paint, image->width(), image->height(), terrain.extentX(), terrain.extentZ(), groundAspect,
-           imageAspect);
+    if (f == "blades_per_tile") {
+      return "--grass-per-tile";
     }
-    settings.density.paint = image;
-    settings.density.paintMin = {0.0f, 0.0f};
-    settings.density.paintMax = {terrain.extentX(), terrain.extentZ()};
-  }
-  if (layer != "none") {
-    const auto& layers = scene.renderer().layers();
-    const auto it =
-        std::find_if(layers.begin(), layers.end(), [&](const auto& l) { return l.name == layer; });
-    if (it == layers.end()) {
-      std::string names;
-      for (const auto& l : layers) {
-        names += (names.empty() ? "" : ", ") + l.name;
-      }
-      fail("--grass-layer: the terrain has no splat layer '{}' (it has: {}; or 'none')", layer, names);
+    if (f == "max_slope") {
+      return "--grass-max-slope";
     }
-    settings.density.layer = *it;
-  }
-  return std::make_shared<grass::GrassField>(terrain, std::move(bladeTypes), settings);
+    return fmt::format("--grass-{}", f);
+  };
+  return scene::buildGrassField(layerDesc(), grassGround(scene), option);
 }
 
 render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,

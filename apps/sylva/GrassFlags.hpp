@@ -3,6 +3,7 @@
 // `sylva bench grass`), and the shared frame that draws terrain and grass together.
 
 #include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/scene/SceneGrass.hpp>
 #include <sylva/terrain/TerrainScene.hpp>
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,8 @@ struct GrassFlags {
   std::string view = "shaded";
   std::string paint;
   std::string layer = "grass";
+  /** Steepest ground with grass, true degrees (a scene file's max_slope). */
+  float maxSlope = 38.0f;
   float windSpeed = 3.0f;
   float windDirection = 30.0f;
   float gusts = 0.8f;
@@ -31,7 +34,8 @@ struct GrassFlags {
 
   static grass::FieldSettings defaultField();
   /** Adds --grass, --grass-types, --grass-blades, --grass-per-tile, --grass-tile, --grass-density,
-   * --grass-coverage, --grass-seed, --grass-paint, --grass-layer, --grass-distance, --grass-lod,
+   * --grass-coverage, --grass-seed, --grass-paint, --grass-layer, --grass-max-slope, --grass-distance,
+   * --grass-lod,
    * --grass-view, --wind-speed, --wind-direction, --wind-gusts, --wind-seed (the wind options are the
    * scene's wind: trees read them too, with or without --grass). */
   void add(CLI::App& command);
@@ -41,12 +45,18 @@ struct GrassFlags {
   grass::CullSettings cullSettings() const;
   wind::WindSettings wind() const;
   grass::GrassView grassView() const;
+  /** The grass layer these options describe (what a scene file's grass entry holds). */
+  scene::GrassLayer layerDesc() const;
   /**
-   * The field over `scene`'s terrain (heights as drawn): blade types, patch, density with the paint mask and
-   * the scene's splat layer named --grass-layer, grass only above the sea level. Errors name the option/file.
+   * The field over `scene`'s terrain (heights as drawn) as the engine builds a scene's grass layer
+   * (scene::buildGrassField): blade types, patch, density with the paint mask and the scene's splat layer
+   * named --grass-layer, grass only above the sea level. Errors name the option and file.
    */
   std::shared_ptr<const grass::GrassField> buildField(const terrain::TerrainScene& scene) const;
 };
+
+/** The facts of `scene`'s terrain a grass layer grows by (its splat layers live in its renderer). */
+scene::GrassGround grassGround(const terrain::TerrainScene& scene);
 
 /**
  * A camera at eye height (1.7 m) over the densest grass near the terrain's centre, looking along the wind

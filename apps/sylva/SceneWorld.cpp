@@ -89,25 +89,14 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
   for (std::size_t i = 0; i < mDesc.grass.size(); ++i) {
     const scene::GrassLayer& layer = mDesc.grass[i];
     GrassFlags g;
-    g.enabled = true;
-    if (!layer.blades.empty()) {
-      g.types.clear();
-      for (const std::string& b : layer.blades) {
-        g.types += (g.types.empty() ? "" : ",") + b;
-      }
-    }
-    g.field.density.base = std::clamp(layer.density, 0.0f, 1.0f);
-    g.field.density.coverage = layer.coverage;
-    g.field.patch.seed = layer.seed;
-    g.paint = layer.paint;
-    g.layer = layer.layer;
     g.cull.maxDistance = layer.distance;
     // LOD bands scale with the draw distance (the defaults 12 and 35 m suit 60 m), so every distance is
     // valid.
     g.lod = fmt::format("{:.3g},{:.3g}", 0.2f * layer.distance, 0.55f * layer.distance);
-    g.check();
-    auto field = g.buildField(*mTerrain);
-    mGrass.push_back(std::make_unique<grass::GrassRenderer>(library, field, g.cullSettings()));
+    const grass::CullSettings cull = g.cullSettings();
+    auto field =
+        scene::buildGrassField(layer, grassGround(*mTerrain), scene::sceneGrassFieldName(mDesc.path, i));
+    mGrass.push_back(std::make_unique<grass::GrassRenderer>(library, field, cull));
     if (layer.simulate) {
       if (mSimulatedGrass >= 0) {
         fail("{}: /grass/{}/simulate: only one grass layer can be simulated (layer {} already is)",

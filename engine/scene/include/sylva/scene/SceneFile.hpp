@@ -58,12 +58,16 @@ struct GrassLayer {
   std::vector<std::string> blades; ///< resolved blade-model files; empty: the procedural blade
   float density = 1.0f;            ///< multiplier on the blade renderer's base density, [0, kMaxGrassDensity]
   float coverage = 1.0f;           ///< fraction of cells that hold grass, [0, 1]
-  std::string layer = "grass";     ///< terrain splat layer that carries this grass
+  std::string layer = "grass";     ///< terrain splat layer that carries this grass; "none": everywhere
   std::string paint;               ///< resolved density-map PNG over the terrain extent; empty: none
-  float maxSlope = 35.0f;          ///< degrees; steeper ground has no grass
+  float maxSlope = 35.0f;          ///< true degrees (before exaggeration); steeper ground has no grass
   std::uint64_t seed = 1;          ///< placement seed
   bool simulate = false;           ///< blade physics simulation on (else wind-only animation)
   float distance = 60.0f;          ///< draw distance, metres
+  // Not in scene files (the command line sets them: --grass-blades, --grass-tile, --grass-per-tile).
+  int patchBlades = 16384; ///< blades in the patch every tile draws from
+  float tileSize = 2.0f;   ///< tile (and patch) side, metres
+  int bladesPerTile = 256; ///< blades a tile draws at density 1 (at most patchBlades)
 };
 
 /** One forest: a species mix placed by rules evaluated from the terrain. */
