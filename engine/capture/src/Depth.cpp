@@ -1,6 +1,7 @@
 // Depth frames and their file formats: the Kinect v1 raw scale, 16-bit depth PNGs, Middlebury disparity maps,
 // previews.
 #include <sylva/capture/Depth.hpp>
+#include "internal/Limits.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -21,8 +22,8 @@ constexpr double kOffset = 3.3309495161;
 /** The largest raw value with a positive depth (533 m; 1085 and above give a negative denominator). */
 constexpr int kMaxValidRaw = 1084;
 
-constexpr int kMaxSide = 65536;
-constexpr std::int64_t kMaxPixels = std::int64_t{1} << 28;
+using internal::kMaxPixels;
+using internal::kMaxSide;
 
 const char* channelName(int channels) {
   switch (channels) {

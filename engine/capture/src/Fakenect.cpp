@@ -1,6 +1,7 @@
 // libfreenect recordings ("fakenect" folders): INDEX.txt parsing, the depth PGM and RGB PPM frame files, and
 // a writer whose folders both FakenectRecording and libfreenect's fakenect replay.
 #include <sylva/capture/Fakenect.hpp>
+#include "internal/Limits.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -26,8 +27,8 @@ namespace fs = std::filesystem;
 
 constexpr int kFrameWidth = 640;
 constexpr int kFrameHeight = 480;
-constexpr int kMaxSide = 65536;
-constexpr std::int64_t kMaxPixels = std::int64_t{1} << 28;
+using internal::kMaxPixels;
+using internal::kMaxSide;
 /** A header line longer than this is not a fakenect header ("P5 65536 65536 65535\n" is 21 bytes). */
 constexpr std::size_t kMaxHeaderBytes = 64;
 /** Frame files above this size are refused before reading (a 640×480 depth frame is 600 KiB). */

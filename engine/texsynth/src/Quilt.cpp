@@ -41,17 +41,7 @@ void validate(const QuiltSettings& settings, const Texture& source) {
   }
 }
 
-namespace {
-
-/** Squared colour difference of two texels. */
-inline double colourError(const float* a, const float* b) {
-  const double dr = a[0] - b[0];
-  const double dg = a[1] - b[1];
-  const double db = a[2] - b[2];
-  return dr * dr + dg * dg + db * db;
-}
-
-} // namespace
+namespace {} // namespace
 
 int quiltBlockCount(int outWidth, int outHeight, const QuiltSettings& settings) {
   const int overlap = settings.effectiveOverlap();
@@ -108,8 +98,8 @@ Texture quilt(const Texture& source, int outWidth, int outHeight, const QuiltSet
               for (std::size_t i = begin; i < end; ++i) {
                 double sum = 0.0;
                 for (const detail::Position& t : overlapTexels) {
-                  sum += colourError(canvas.at(px + t.x, py + t.y),
-                                     source.at(candidates[i].x + t.x, candidates[i].y + t.y));
+                  sum += detail::colourError(canvas.at(px + t.x, py + t.y),
+                                             source.at(candidates[i].x + t.x, candidates[i].y + t.y));
                 }
                 errors[i] = sum;
               }
@@ -125,7 +115,7 @@ Texture quilt(const Texture& source, int outWidth, int outHeight, const QuiltSet
           for (int x = 0; x < block; ++x) {
             if (inOverlap(x, y)) {
               surface.values[static_cast<std::size_t>(y) * block + x] =
-                  colourError(canvas.at(px + x, py + y), source.at(from.x + x, from.y + y));
+                  detail::colourError(canvas.at(px + x, py + y), source.at(from.x + x, from.y + y));
             }
           }
         }

@@ -88,6 +88,7 @@ void validate(const TileSettings& settings, const std::vector<Texture>& photos) 
 
 namespace {
 
+using detail::colourError;
 using detail::Position;
 
 /** Sizes of the tile construction: tile T, band b, overlap ring o, band depth read from sources D = b + o. */
@@ -98,13 +99,6 @@ struct Geometry {
   int depth = 0;
   int channels = 3;
 };
-
-inline double colourError(const float* a, const float* b) {
-  const double dr = a[0] - b[0];
-  const double dg = a[1] - b[1];
-  const double db = a[2] - b[2];
-  return dr * dr + dg * dg + db * db;
-}
 
 inline void copyTexel(float* to, const float* from, int channels) {
   std::memcpy(to, from, sizeof(float) * static_cast<std::size_t>(channels));

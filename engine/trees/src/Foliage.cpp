@@ -1,4 +1,5 @@
 #include <sylva/trees/Foliage.hpp>
+#include "internal/Finite.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Random.hpp>
@@ -24,15 +25,9 @@
 namespace sylva::trees {
 namespace {
 
+using internal::finite;
+
 namespace fs = std::filesystem;
-
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool finite(const glm::vec2& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y);
-}
 
 /** A uniformly distributed unit vector. */
 glm::vec3 randomUnit(Rng& rng) {

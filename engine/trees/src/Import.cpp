@@ -1,4 +1,5 @@
 #include <sylva/trees/Import.hpp>
+#include "internal/Finite.hpp"
 
 #include "internal/Gltf.hpp"
 #include "internal/Skinning.hpp"
@@ -33,6 +34,8 @@
 namespace sylva::trees {
 namespace {
 
+using internal::finite;
+
 namespace fs = std::filesystem;
 using internal::appendBytes;
 using internal::base64;
@@ -40,10 +43,6 @@ using internal::matrixJson;
 
 constexpr std::size_t kMaxLeafRims = 15;
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 std::string vec3Text(const glm::vec3& v) {
   return fmt::format("({:.4g}, {:.4g}, {:.4g})", v.x, v.y, v.z);

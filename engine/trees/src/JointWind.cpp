@@ -2,6 +2,7 @@
 // shaders/trees/jointwind.glsl (wind.comp, frames.comp), written in the same order with the same float types;
 // the wind comes from wind::windVelocities, bit for bit windVelocity (the twin of wind.glsl).
 #include <sylva/trees/JointWind.hpp>
+#include "internal/Finite.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Parallel.hpp>
@@ -22,6 +23,8 @@
 
 namespace sylva::trees {
 namespace {
+
+using internal::finite;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -94,17 +97,6 @@ gpu::JointFrame rows(const glm::mat4& m) {
   return gpu::JointFrame{glm::vec4(m[0][0], m[1][0], m[2][0], m[3][0]),
                          glm::vec4(m[0][1], m[1][1], m[2][1], m[3][1]),
                          glm::vec4(m[0][2], m[1][2], m[2][2], m[3][2])};
-}
-
-bool finite(const glm::mat4& m) {
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) {
-      if (!std::isfinite(m[c][r])) {
-        return false;
-      }
-    }
-  }
-  return true;
 }
 
 // ---- The twins of shaders/trees/jointwind.glsl -----------------------------------------------------------

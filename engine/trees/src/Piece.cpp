@@ -1,4 +1,5 @@
 #include <sylva/trees/Piece.hpp>
+#include "internal/Finite.hpp"
 
 #include <sylva/core/Error.hpp>
 
@@ -11,6 +12,8 @@
 
 namespace sylva::trees {
 namespace {
+
+using internal::finite;
 
 // Corner constants: computed once in double and rounded, so every caller (and the shader's table, written
 // from the same values) sees identical floats.
@@ -35,21 +38,6 @@ struct CornerTable {
 const CornerTable& table() {
   static const CornerTable t;
   return t;
-}
-
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool finite(const glm::mat4& m) {
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) {
-      if (!std::isfinite(m[c][r])) {
-        return false;
-      }
-    }
-  }
-  return true;
 }
 
 /** Uniform scale of a similarity, or -1 when `m` is not one (within `tolerance`, relative). */

@@ -1,4 +1,5 @@
 #include <sylva/trees/Species.hpp>
+#include "internal/Finite.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -13,6 +14,8 @@
 
 namespace sylva::trees {
 namespace {
+
+using internal::finite;
 
 OrderParams order(int minSegments, int maxSegments, float fork, float trifurcation, float sideBranch,
                   float asymmetry, float bend, float droop) {
@@ -175,10 +178,6 @@ void check(bool ok, const std::string& where, const char* field, const std::stri
   }
 }
 
-bool finite3(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 glm::vec3 colour(const JsonNode& node) {
   node.arrayOf(3, "r, g, b");
   return glm::vec3(static_cast<float>(node[std::size_t{0}].number(0, 1)),
@@ -216,7 +215,7 @@ void validate(const Species& s, const std::string& where) {
   check(std::isfinite(s.sizeVariation) && s.sizeVariation >= 0.0f && s.sizeVariation < 1.0f, where,
         "sizeVariation", "must be in [0, 1)");
   check(!s.orders.empty() && s.orders.size() <= 17, where, "orders", "needs 1 … 17 entries");
-  check(finite3(s.barkColour) && finite3(s.leafColour), where, "colours", "must be finite");
+  check(finite(s.barkColour) && finite(s.leafColour), where, "colours", "must be finite");
   check(std::find(barkPhotoNames().begin(), barkPhotoNames().end(), s.bark) != barkPhotoNames().end(), where,
         "bark", "must be one of oak, birch, pine, willow, procedural");
   check(std::isfinite(s.youngModulus) && s.youngModulus >= 1e6f && s.youngModulus <= 1e12f, where,
@@ -271,8 +270,10 @@ Species speciesPreset(const std::string& name) {
   Species s = it->second();
   // Bark photos by the look of the real bark: smooth pale (birch, aspen), furrowed (oaks and most), scaly
   // (larch), deeply ridged (willow, poplar).
-  static const std::map<std::string, std::string> kBark{{"quaking-aspen", "birch"},  {"silver-birch", "birch"},
-                                                        {"european-larch", "pine"},  {"weeping-willow", "willow"},
+  static const std::map<std::string, std::string> kBark{{"quaking-aspen", "birch"},
+                                                        {"silver-birch", "birch"},
+                                                        {"european-larch", "pine"},
+                                                        {"weeping-willow", "willow"},
                                                         {"lombardy-poplar", "willow"}};
   if (const auto b = kBark.find(name); b != kBark.end()) {
     s.bark = b->second;
@@ -322,8 +323,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, 1, where);
   const JsonNode root(json, where, "");
   root.object({"version", "name", "rule", "maxOrder", "maxDepth", "maxPieces", "minRadius", "trunkRadius",
-               "sizeVariation", "orders", "barkColour", "leafColour", "bark", "youngModulus",
-               "woodDensity", "damping"});
+               "sizeVariation", "orders", "barkColour", "leafColour", "bark", "youngModulus", "woodDensity",
+               "damping"});
   Species s;
   s.name = root["name"].string();
   if (root.has("rule")) {

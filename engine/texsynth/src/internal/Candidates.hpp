@@ -4,6 +4,14 @@
 
 namespace sylva::texsynth::detail {
 
+/** Squared colour difference of two texels (their first three channels). */
+inline double colourError(const float* a, const float* b) {
+  const double dr = a[0] - b[0];
+  const double dg = a[1] - b[1];
+  const double db = a[2] - b[2];
+  return dr * dr + dg * dg + db * db;
+}
+
 /** Top-left (lowest row, lowest column) texel of a candidate block in a source. */
 struct Position {
   int x = 0;
