@@ -66,6 +66,25 @@ function(sylva_add_test name)
   if(ARG_FILTER)
     set(filter TEST_FILTER ${ARG_FILTER})
   endif()
+  string(REGEX REPLACE "^sylva_(unit|gl|golden)_" "" module ${name})
+  if(module MATCHES "^sylva_cli")
+    set(module cli)
+  endif()
+  if(SYLVA_BATCH_UNIT_TESTS AND ARG_LABEL STREQUAL "unit")
+    # One CTest test per suite (cmake/GTestSuites.cmake): the sanitizer builds, where starting a process costs
+    # more than most unit tests.
+    set(suites_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_suites.cmake)
+    string(CONCAT content
+      "set(SYLVA_SUITES_EXE [==[$<TARGET_FILE:${name}>]==])\n"
+      "set(SYLVA_SUITES_FILTER [==[${ARG_FILTER}]==])\n"
+      "set(SYLVA_SUITES_LABELS [==[${ARG_LABEL};module:${module}]==])\n"
+      "set(SYLVA_SUITES_LOCK [==[${ARG_LOCK}]==])\n"
+      "include([==[${PROJECT_SOURCE_DIR}/cmake/GTestSuites.cmake]==])\n")
+    file(GENERATE OUTPUT ${suites_file} CONTENT "${content}")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${suites_file})
+    add_dependencies(sylva_tests_${ARG_LABEL} ${name})
+    return()
+  endif()
   gtest_discover_tests(${name} ${filter}
     DISCOVERY_MODE PRE_TEST
     PROPERTIES LABELS ${ARG_LABEL} ENVIRONMENT "SYLVA_TEST_LABEL=${ARG_LABEL}" ${lock}
@@ -74,10 +93,6 @@ function(sylva_add_test name)
   # scripts/quick-test.sh can run the gl tests of the modules a change touches. gtest_discover_tests passes its
   # PROPERTIES on as one flat list (a list value would split into property names), so the labels are set by a
   # script CTest includes after the discovered tests, over the list discovery leaves in ${name}_TESTS.
-  string(REGEX REPLACE "^sylva_(unit|gl|golden)_" "" module ${name})
-  if(module MATCHES "^sylva_cli")
-    set(module cli)
-  endif()
   set(labels_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
   file(WRITE ${labels_file}
     "foreach(test IN LISTS ${name}_TESTS)\n"
