@@ -14,10 +14,12 @@
 namespace sylva::app {
 
 grass::FieldSettings GrassFlags::defaultField() {
+  // The patch of a scene's grass layer (one set of defaults for files and options).
+  const scene::GrassLayer layer;
   grass::FieldSettings f;
-  f.patch.blades = 16384;
-  f.patch.tileSize = 2.0f;
-  f.bladesPerTile = 256;
+  f.patch.blades = layer.patchBlades;
+  f.patch.tileSize = layer.tileSize;
+  f.bladesPerTile = layer.bladesPerTile;
   return f;
 }
 

@@ -35,9 +35,8 @@ struct GrassFlags {
   static grass::FieldSettings defaultField();
   /** Adds --grass, --grass-types, --grass-blades, --grass-per-tile, --grass-tile, --grass-density,
    * --grass-coverage, --grass-seed, --grass-paint, --grass-layer, --grass-max-slope, --grass-distance,
-   * --grass-lod,
-   * --grass-view, --wind-speed, --wind-direction, --wind-gusts, --wind-seed (the wind options are the
-   * scene's wind: trees read them too, with or without --grass). */
+   * --grass-lod, --grass-view, --wind-speed, --wind-direction, --wind-gusts, --wind-seed (the wind options
+   * are the scene's wind: trees read them too, with or without --grass). */
   void add(CLI::App& command);
   /** Throws naming the option when a value is malformed (before any work is done). */
   void check() const;

@@ -10,7 +10,7 @@
 namespace sylva::terrain {
 namespace {
 
-constexpr double kNaNDouble = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /** a + t·(b − a), ignoring the side whose weight is exactly 0 (so an absent sample there does not matter). */
 double lerpSkip(double a, double b, double t) {
@@ -48,7 +48,7 @@ double heightGrid(const HeightField& f, double gx, double gz, Interpolation inte
   const int w = f.width();
   const int h = f.height();
   if (w < 1 || h < 1 || std::isnan(gx) || std::isnan(gz)) {
-    return kNaNDouble;
+    return kNaN;
   }
   const AxisCell cx = axisCell(gx, w);
   const AxisCell cz = axisCell(gz, h);
@@ -110,7 +110,7 @@ glm::dvec3 normalWorld(const HeightField& f, double x, double z, Interpolation i
   const auto h = [&](double wx, double wz) { return heightGrid(f, wx / sx, wz / sz, interpolation); };
   const double centre = h(x, z);
   if (std::isnan(centre)) {
-    return glm::dvec3(kNaNDouble);
+    return glm::dvec3(kNaN);
   }
   const double extentX = static_cast<double>(f.width() - 1) * sx;
   const double extentZ = static_cast<double>(f.height() - 1) * sz;

@@ -41,8 +41,6 @@ void validate(const QuiltSettings& settings, const Texture& source) {
   }
 }
 
-namespace {} // namespace
-
 int quiltBlockCount(int outWidth, int outHeight, const QuiltSettings& settings) {
   const int overlap = settings.effectiveOverlap();
   const int step = std::max(1, settings.block - overlap);

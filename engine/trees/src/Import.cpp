@@ -1,6 +1,6 @@
 #include <sylva/trees/Import.hpp>
-#include "internal/Finite.hpp"
 
+#include "internal/Finite.hpp"
 #include "internal/Gltf.hpp"
 #include "internal/Skinning.hpp"
 
