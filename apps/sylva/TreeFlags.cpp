@@ -400,10 +400,9 @@ void TreeScene::advance(double time, const wind::WindSettings& wind, int maxStep
 void TreeScene::draw(const render::Camera& camera, int width, int height, double time,
                      const trees::TreeLod& lod, const trees::TreeDrawOptions& options,
                      render::GpuTimers* timers) {
-  const float aspect = static_cast<float>(std::max(width, 1)) / static_cast<float>(std::max(height, 1));
   trees::TreeLod l = lod;
   l.farRange = mImpostors ? mFarRange : glm::vec2(0.0f);
-  mRenderer->cull(camera, aspect, l, timers);
+  mRenderer->cull(camera, width, height, l, timers);
   mRenderer->draw(camera, width, height, time, l, timers, options);
   if (mFoliage && options.view == trees::TreeView::Shaded) {
     mFoliage->bake(camera, options.environment, timers);

@@ -72,7 +72,8 @@ struct TreeUniforms {
   vec4 colours[SYLVA_TREE_MAX_SPECIES]; // bark colour (rgb) per species of the forest
   uvec4 info;         // x: instance count, y: piece types, z: view (TreeView), w: debug flags (1: break rims)
   vec4 cull;          // x: bounding-sphere slack factor for bends, y: quads per indirect command (a chunk's
-                      // first quad is (gl_DrawID - the type's first command) * y); zw: unused
+                      // first quad is (gl_DrawID - the type's first command) * y); zw: size culling, a piece
+                      // is dropped when its sphere's diameter < z * distance + w (sizeCullTerms)
   vec4 corners[6];    // rimCorner(k) exactly as the CPU computes it (xyz)
   vec4 rimNormals[6]; // rimNormal(k) (xyz)
   uvec4 quadTable[2]; // first entry of piece type t in the quad table at SYLVA_TREE_QUAD_BINDING: [t / 4][t % 4]

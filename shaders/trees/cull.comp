@@ -1,7 +1,7 @@
 #version 450
-// Culls every piece instance of every tree against the frustum and the draw distance, appending the visible
-// ones to their piece type's list and counting them into that type's indirect draw command (cullInstances in
-// C++ is the reference).
+// Culls every piece instance of every tree against the frustum, the draw distance and its size on screen,
+// appending the visible ones to their piece type's list and counting them into that type's indirect draw
+// command (cullInstances in C++ is the reference).
 #include "trees.glsl"
 #include "../common/frame.glsl"
 
@@ -34,7 +34,12 @@ void main() {
       return;
     }
   }
-  if (trees.tess.w > 0.0 && distance(centre, frame.cameraPos.xyz) - radius > trees.tess.w) {
+  float d = distance(centre, frame.cameraPos.xyz);
+  if (trees.tess.w > 0.0 && d - radius > trees.tess.w) {
+    return;
+  }
+  // Size culling: under TreeLod::minPixels across (cull.z per metre of distance, cull.w for orthographic).
+  if (2.0 * radius < trees.cull.z * d + trees.cull.w) {
     return;
   }
   // The type's first command hands out the slot; its other quad chunks count the same instances.

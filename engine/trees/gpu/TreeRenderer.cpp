@@ -226,7 +226,7 @@ void TreeRenderer::setBark(std::span<const BarkSet> sets, std::span<const int> s
 }
 
 void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod,
-                                  TreeView view, bool breakRims) {
+                                  TreeView view, bool breakRims, glm::vec2 sizeCull) {
   gpu::TreeUniforms& u = mLast;
   const Frustum frustum = camera.frustum(aspect);
   for (std::size_t p = 0; p < 6; ++p) {
@@ -259,7 +259,7 @@ void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, co
   u.info =
       glm::uvec4(static_cast<unsigned>(mPacked.instances.size()), static_cast<unsigned>(mPieceTable.size()),
                  static_cast<unsigned>(view), breakRims ? 1u : 0u);
-  u.cull = glm::vec4(kBendSlack, static_cast<float>(mQuadsPerCommand), 0.0f, 0.0f);
+  u.cull = glm::vec4(kBendSlack, static_cast<float>(mQuadsPerCommand), sizeCull);
   for (int k = 0; k < kRimCorners; ++k) {
     u.corners[k] = glm::vec4(rimCorner(k), 0.0f);
     u.rimNormals[k] = glm::vec4(rimNormal(k), 0.0f);
@@ -287,11 +287,22 @@ void TreeRenderer::bindAll() const {
 
 void TreeRenderer::cull(const render::Camera& camera, float aspect, const TreeLod& lod,
                         render::GpuTimers* timers) {
+  runCull(camera, aspect, lod, glm::vec2(0.0f), timers);
+}
+
+void TreeRenderer::cull(const render::Camera& camera, int width, int height, const TreeLod& lod,
+                        render::GpuTimers* timers) {
+  runCull(camera, static_cast<float>(std::max(width, 1)) / static_cast<float>(std::max(height, 1)), lod,
+          sizeCullTerms(camera.fovY, camera.orthoHeight, height, lod.minPixels), timers);
+}
+
+void TreeRenderer::runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec2 sizeCull,
+                           render::GpuTimers* timers) {
   if (timers != nullptr) {
     timers->begin("trees cull");
   }
   useQuadsPerCommand(quadsPerCommand(lod.fixedLevel > 0.0f ? lod.fixedLevel : lod.maxLevel));
-  uploadUniforms(camera, aspect, lod, TreeView::Shaded, false);
+  uploadUniforms(camera, aspect, lod, TreeView::Shaded, false, sizeCull);
   mFrame.update(camera, 1, 1, 0.0, {});
   mFrame.bind();
   mCommands.setSubData(std::span<const std::uint32_t>(mCommandsReset));

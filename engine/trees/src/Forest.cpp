@@ -313,11 +313,21 @@ gpu::TreePieceGpu pieceTableEntry(const Piece& piece) {
   return entry;
 }
 
-std::vector<std::vector<std::uint32_t>> cullInstances(const PackedInstances& packed,
-                                                      std::span<const gpu::TreePieceGpu> pieces,
-                                                      std::span<const gpu::JointFrame> frames,
-                                                      const std::array<glm::vec4, 6>& planes,
-                                                      glm::vec3 camera, float drawDistance, float slack) {
+glm::vec2 sizeCullTerms(float fovY, float orthoHeight, int height, float minPixels) {
+  if (!(minPixels > 0.0f) || height <= 0) {
+    return glm::vec2(0.0f);
+  }
+  if (orthoHeight > 0.0f) {
+    return glm::vec2(0.0f, minPixels * 2.0f * orthoHeight / static_cast<float>(height));
+  }
+  const float focal = static_cast<float>(height) / (2.0f * std::tan(0.5f * fovY));
+  return glm::vec2(minPixels / focal, 0.0f);
+}
+
+std::vector<std::vector<std::uint32_t>>
+cullInstances(const PackedInstances& packed, std::span<const gpu::TreePieceGpu> pieces,
+              std::span<const gpu::JointFrame> frames, const std::array<glm::vec4, 6>& planes,
+              glm::vec3 camera, float drawDistance, float slack, glm::vec2 sizeCull) {
   std::vector<std::vector<std::uint32_t>> out(pieces.size());
   for (std::size_t i = 0; i < packed.instances.size(); ++i) {
     const glm::uvec4 inst = packed.instances[i].joints;
@@ -335,7 +345,11 @@ std::vector<std::vector<std::uint32_t>> cullInstances(const PackedInstances& pac
         break;
       }
     }
-    if (inside && drawDistance > 0.0f && glm::length(centre - camera) - radius > drawDistance) {
+    const float distance = glm::length(centre - camera);
+    if (inside && drawDistance > 0.0f && distance - radius > drawDistance) {
+      inside = false;
+    }
+    if (inside && 2.0f * radius < sizeCull.x * distance + sizeCull.y) {
       inside = false;
     }
     if (inside) {

@@ -258,3 +258,32 @@ TEST(Tessellation, CommandsStayWithinTheVertexBudgetAtEveryLevel) {
 
 } // namespace
 } // namespace sylva::trees
+
+#include <sylva/trees/Forest.hpp>
+
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+
+namespace sylva::trees {
+namespace {
+
+TEST(SizeCulling, TermsTurnPixelsIntoMetresForBothProjections) {
+  // Perspective: 720 pixels over a 45° field of view is a focal length of 720 / (2 tan 22.5°) pixels, so one
+  // pixel at distance d spans d / focal metres.
+  const float focal = 720.0f / (2.0f * std::tan(glm::radians(22.5f)));
+  const glm::vec2 perspective = sizeCullTerms(glm::radians(45.0f), 0.0f, 720, 1.0f);
+  EXPECT_NEAR(perspective.x, 1.0f / focal, 1e-7f);
+  EXPECT_EQ(perspective.y, 0.0f);
+  EXPECT_NEAR(sizeCullTerms(glm::radians(45.0f), 0.0f, 720, 3.0f).x, 3.0f / focal, 1e-7f);
+  // Orthographic (a shadow cascade): ±10 m over 1,000 texels is 0.02 m a texel, whatever the distance.
+  const glm::vec2 ortho = sizeCullTerms(glm::radians(45.0f), 10.0f, 1000, 1.0f);
+  EXPECT_EQ(ortho.x, 0.0f);
+  EXPECT_NEAR(ortho.y, 0.02f, 1e-7f);
+  // Off: no pixels asked for, or no target.
+  EXPECT_EQ(sizeCullTerms(glm::radians(45.0f), 0.0f, 720, 0.0f), glm::vec2(0.0f));
+  EXPECT_EQ(sizeCullTerms(glm::radians(45.0f), 10.0f, 0, 1.0f), glm::vec2(0.0f));
+}
+
+} // namespace
+} // namespace sylva::trees

@@ -115,13 +115,22 @@ void forestFrames(const Forest& forest, std::span<const glm::vec2> extraBends,
 gpu::TreePieceGpu pieceTableEntry(const Piece& piece);
 
 /**
- * CPU reference of the culling pass: the visible instance indices of each piece type (sorted), given the
- * frames, the camera's frustum planes (as in TreeUniforms) and position, the draw distance and the slack.
+ * Size culling (TreeLod::minPixels) as the culling pass takes it (TreeUniforms::cull.zw): a piece is dropped
+ * when its bounding sphere's diameter d (metres) < x · distance + y. A perspective camera (`orthoHeight` 0)
+ * of vertical field of view `fovY` (radians) gives x = minPixels / focal length in pixels, y = 0; an
+ * orthographic one (±`orthoHeight` metres) gives x = 0, y = minPixels · metres per pixel. `height` is the
+ * target's height in pixels; minPixels <= 0 or height <= 0 gives (0, 0): nothing is dropped.
  */
-std::vector<std::vector<std::uint32_t>> cullInstances(const PackedInstances& packed,
-                                                      std::span<const gpu::TreePieceGpu> pieces,
-                                                      std::span<const gpu::JointFrame> frames,
-                                                      const std::array<glm::vec4, 6>& planes,
-                                                      glm::vec3 camera, float drawDistance, float slack);
+glm::vec2 sizeCullTerms(float fovY, float orthoHeight, int height, float minPixels);
+
+/**
+ * CPU reference of the culling pass: the visible instance indices of each piece type (sorted), given the
+ * frames, the camera's frustum planes (as in TreeUniforms) and position, the draw distance, the slack and
+ * the size culling terms (sizeCullTerms; zero: none).
+ */
+std::vector<std::vector<std::uint32_t>>
+cullInstances(const PackedInstances& packed, std::span<const gpu::TreePieceGpu> pieces,
+              std::span<const gpu::JointFrame> frames, const std::array<glm::vec4, 6>& planes,
+              glm::vec3 camera, float drawDistance, float slack, glm::vec2 sizeCull = glm::vec2(0.0f));
 
 } // namespace sylva::trees

@@ -62,6 +62,14 @@ struct TreeLod {
    * (shaders/trees/fade.glsl), from y on only the impostor is drawn; y <= x: no far field.
    */
   glm::vec2 farRange{0.0f};
+  /**
+   * Size culling: a piece whose bounding sphere (bends included) spans fewer pixels than this across is not
+   * drawn. It could cover at most about one pixel, which its sample hits or misses; a distant tree's twigs
+   * are thousands of such pieces, each paying its tessellation (docs/trees.md "Size culling"). 0 draws every
+   * piece. Used by cull() with a target size: pixels of a perspective view, texels of an orthographic one (a
+   * shadow cascade).
+   */
+  float minPixels = 1.0f;
 };
 
 /** Per-draw options. */
@@ -102,8 +110,14 @@ public:
   const std::vector<glm::vec4>& treeCentres() const { return mCentres; }
   const gl::Buffer& centresBuffer() const { return mCentreBuffer; }
 
-  /** Culls every piece instance for `camera` at `aspect`, writing the indirect commands. */
+  /**
+   * Culls every piece instance for `camera` at `aspect`, writing the indirect commands. No size culling:
+   * for views without a pixel size (impostor bakes, tests of the frustum).
+   */
   void cull(const render::Camera& camera, float aspect, const TreeLod& lod,
+            render::GpuTimers* timers = nullptr);
+  /** As above for a `width` × `height` pixel target, also dropping pieces under lod.minPixels across. */
+  void cull(const render::Camera& camera, int width, int height, const TreeLod& lod,
             render::GpuTimers* timers = nullptr);
   /** Draws the last cull into the bound framebuffer: one glMultiDrawElementsIndirect for all piece types. */
   void draw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
@@ -131,7 +145,9 @@ public:
 
 private:
   void uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod, TreeView view,
-                      bool breakRims);
+                      bool breakRims, glm::vec2 sizeCull = glm::vec2(0.0f));
+  void runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec2 sizeCull,
+               render::GpuTimers* timers);
   void bindAll() const;
   /** Uniforms, frame block and bindings of a draw (both draw paths). */
   void prepareDraw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
