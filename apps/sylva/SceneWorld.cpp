@@ -4,6 +4,7 @@
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/physics/World.hpp>
+#include <sylva/render/Shadows.hpp>
 #include <sylva/scene/ShoreWater.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/trees/Forest.hpp>
@@ -215,8 +216,7 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
         options.environment = in.environment;
         options.waterLevel.reset();
         options.geomorph = mDesc.terrain.geomorph;
-        options.view =
-            terrain::TerrainView::WorldPosition; // the cheapest fragment work: depth is all we keep
+        options.view = terrain::TerrainView::Depth; // depth is all a cascade keeps
         mTerrain->draw(in.camera, in.width, in.height, in.time, nullptr, options);
       });
   if (!mForests.empty()) {
@@ -224,8 +224,13 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
       trees::TreeDrawOptions options;
       options.environment = in.environment;
       // Shadow draws: the distance rule measured from the sun camera (outside the casters) gives the coarsest
-      // pieces, which is what a shadow map of this resolution can show.
-      const trees::TreeLod lod;
+      // pieces, which is what a shadow map of this resolution can show; depth is all a cascade keeps, and
+      // pieces under the shadow filter's footprint are skipped.
+      trees::TreeLod lod;
+      if (in.shadow) {
+        options.view = trees::TreeView::Depth;
+        lod.minPixels = render::kCasterMinTexels;
+      }
       for (auto& forest : mForests) {
         forest->draw(in.camera, in.width, in.height, in.time, lod, options, in.timers);
       }

@@ -404,11 +404,12 @@ void TreeScene::draw(const render::Camera& camera, int width, int height, double
   l.farRange = mImpostors ? mFarRange : glm::vec2(0.0f);
   mRenderer->cull(camera, width, height, l, timers);
   mRenderer->draw(camera, width, height, time, l, timers, options);
-  if (mFoliage && options.view == trees::TreeView::Shaded) {
+  const bool full = options.view == trees::TreeView::Shaded || options.view == trees::TreeView::Depth;
+  if (mFoliage && full) {
     mFoliage->bake(camera, options.environment, timers);
     mFoliage->draw(camera, width, height, time, *mRenderer, l, timers, options.environment);
   }
-  if (mImpostors && options.view == trees::TreeView::Shaded) {
+  if (mImpostors && full) {
     mImpostors->draw(camera, width, height, time, mFarRange, timers, options.environment);
   }
 }

@@ -23,6 +23,11 @@ uniform vec4 uGroundTintMap;
 layout(binding = 5) uniform sampler2D groundTintMap;
 
 void main() {
+#ifdef SYLVA_TERRAIN_DEPTH_ONLY
+  // TerrainView::Depth on a field without holes: nothing to discard, no colour kept (shadow casters).
+  outColor = vec4(0.0);
+  return;
+#endif
   vec2 xz = teWorldPos.xz;
   if (any(lessThan(xz, vec2(0.0))) || any(greaterThan(xz, terrain.extent.xy))) {
     discard;
@@ -32,7 +37,7 @@ void main() {
     discard;
   }
   int view = int(terrain.extent.z + 0.5);
-  if (view == 4) {
+  if (view >= 4) { // WorldPosition, or Depth where it must discard
     outColor = vec4(teWorldPos, 1.0);
     return;
   }

@@ -61,6 +61,11 @@ void main() {
       discard;
     }
   }
+#ifdef SYLVA_TREE_DEPTH_ONLY
+  // TreeView::Depth (shadow casters): the depth is all that is kept.
+  outColour = vec4(0.0);
+  return;
+#endif
   uint view = trees.info.z;
   vec3 albedo;
   if (view == 1u) {

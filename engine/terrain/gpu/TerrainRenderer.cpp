@@ -123,6 +123,8 @@ TerrainRenderer::TerrainRenderer(const shader::Library& library, const HeightFie
   }
   mMinHeight = info.minHeight;
   mMaxHeight = info.maxHeight;
+  mHoles =
+      info.validCount < static_cast<std::size_t>(field.width()) * static_cast<std::size_t>(field.height());
   std::vector<std::uint8_t> valid;
   {
     std::vector<float> filled;
@@ -157,6 +159,7 @@ void TerrainRenderer::reloadShaders(const shader::Library& library) {
   mWater = std::move(water);
   mSurface = std::move(surface);
   mSurfacePoints = gl::Program(gl::NoCreate);
+  mSurfaceDepth = gl::Program(gl::NoCreate);
   mLibrary = &library;
   mNormals = std::move(normals);
   mSplat = std::move(splat);
@@ -249,7 +252,21 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
                                                            "terrain/patch.tese", "terrain/patch.frag"},
                                                           {{"SYLVA_TERRAIN_POINTS", "1"}}});
     }
-    gl::Program& surface = options.vertexPoints ? mSurfacePoints : mSurface;
+    // Depth only: without holes in the data or patches past its extent nothing is discarded, and a fragment
+    // shader without discard lets the rasteriser reject hidden fragments before shading.
+    bool depthOnly = options.view == TerrainView::Depth && !options.vertexPoints && !mHoles;
+    for (std::size_t i = 0; depthOnly && i < selection.nodes.size(); ++i) {
+      const SelectedNode& n = selection.nodes[i];
+      depthOnly =
+          n.x >= 0.0f && n.z >= 0.0f && n.x + n.size <= mField.extentX && n.z + n.size <= mField.extentZ;
+    }
+    if (depthOnly && !mSurfaceDepth) {
+      mSurfaceDepth = shader::compileProgram(*mLibrary, {"terrain surface depth",
+                                                         {"terrain/patch.vert", "terrain/patch.tesc",
+                                                          "terrain/patch.tese", "terrain/patch.frag"},
+                                                         {{"SYLVA_TERRAIN_DEPTH_ONLY", "1"}}});
+    }
+    gl::Program& surface = options.vertexPoints ? mSurfacePoints : depthOnly ? mSurfaceDepth : mSurface;
     surface.use();
     mVao.bind();
     // Geomorphing follows the selection's camera and LOD distances (off: w = 0, the plain surface).

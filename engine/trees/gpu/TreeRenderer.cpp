@@ -124,8 +124,13 @@ void TreeRenderer::reloadShaders(const shader::Library& library) {
   gl::Program draw = shader::compileProgram(
       library,
       {"trees draw", {"trees/piece.vert", "trees/piece.tesc", "trees/piece.tese", "trees/piece.frag"}, {}});
+  gl::Program depth = shader::compileProgram(
+      library, {"trees draw depth",
+                {"trees/piece.vert", "trees/piece.tesc", "trees/piece.tese", "trees/piece.frag"},
+                {{"SYLVA_TREE_DEPTH_ONLY", "1"}}});
   mCull = std::move(cull);
   mDraw = std::move(draw);
+  mDrawDepth = std::move(depth);
 }
 
 void TreeRenderer::useQuadsPerCommand(std::uint32_t quads) {
@@ -330,8 +335,9 @@ void TreeRenderer::submit(const TreeDrawOptions& options, bool perPiece) {
     glCullFace(options.faces == TreeFaces::Front ? GL_BACK : GL_FRONT);
   }
   glPatchParameteri(GL_PATCH_VERTICES, 4);
-  mDraw.use();
-  const GLint drawBase = glGetUniformLocation(mDraw.id(), "uDrawBase");
+  const gl::Program& program = options.view == TreeView::Depth ? mDrawDepth : mDraw;
+  program.use();
+  const GLint drawBase = glGetUniformLocation(program.id(), "uDrawBase");
   glUniform1ui(drawBase, 0u);
   if (perPiece) {
     mAllVao.bind();

@@ -1,7 +1,8 @@
 // Cascaded sun shadows on the GPU (render::ShadowMaps + shaders/common/shadows.glsl) with the terrain as
 // caster and receiver: the shadowed pixels agree with a CPU ray cast towards the sun over the height field, a
 // flat control shows no dark region (no acne), shadows off are byte-identical to no shadow map at all, and a
-// camera moved by small steps leaves sunVisibility() at fixed world points unchanged (no swimming).
+// camera moved by small steps leaves sunVisibility() at fixed world points unchanged (no swimming), and the
+// depth-only caster program writes the same depth as the shading one, also where the data has holes.
 #include <sylva/gl/Buffer.hpp>
 #include <sylva/gl/Framebuffer.hpp>
 #include <sylva/gl/Program.hpp>
@@ -27,6 +28,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace sylva::render {
 namespace {
@@ -81,11 +83,20 @@ struct Terrain {
   terrain::QuadtreeSelection selection;
   Aabb bounds;
 
-  Terrain(const shader::Library& library, bool relief)
-      : field(testField(relief)), quadtree(config(), field),
+  Terrain(const shader::Library& library, bool relief, bool holes = false)
+      : field(withHoles(testField(relief), holes)), quadtree(config(), field),
         renderer(library, field, terrain::defaultSplatLayers(0.0f, 40.0f)) {
     selection = quadtree.select(viewCamera().position, nullptr);
     bounds = Aabb{{0.0f, -1.0f, 0.0f}, {320.0f, 40.0f, 320.0f}};
+  }
+  /** With `holes`, a 40 m square of nodata on the ridge's west flank (in every cascade's view). */
+  static terrain::HeightField withHoles(terrain::HeightField field, bool holes) {
+    for (int j = 60; holes && j < 80; ++j) {
+      for (int i = 30; i < 50; ++i) {
+        field.at(i, j) = std::numeric_limits<float>::quiet_NaN();
+      }
+    }
+    return field;
   }
   static terrain::QuadtreeConfig config() {
     terrain::QuadtreeConfig c;
@@ -96,7 +107,8 @@ struct Terrain {
   }
 
   /** Renders every cascade's depth with the terrain as caster. */
-  void renderShadows(ShadowMaps& maps, const ShadowCascades& fit) {
+  void renderShadows(ShadowMaps& maps, const ShadowCascades& fit,
+                     terrain::TerrainView view = terrain::TerrainView::Shaded) {
     for (int i = 0; i < static_cast<int>(fit.cascades.size()); ++i) {
       const ShadowCascade& cascade = fit.cascades[static_cast<std::size_t>(i)];
       // Cull against the cascade's orthographic frustum; LOD stays the viewer's (same mesh as the receivers).
@@ -105,6 +117,7 @@ struct Terrain {
       maps.begin(i);
       terrain::TerrainDrawOptions options;
       options.environment.fogDensity = 0.0f;
+      options.view = view;
       renderer.draw(casters, cascade.camera, maps.size(), maps.size(), 0.0, nullptr, options);
       maps.end();
     }
@@ -201,6 +214,51 @@ TEST_F(ShadowGpu, TerrainShadowsMatchCpuRayCast) {
   EXPECT_GT(cpuShadowed, covered / 10) << "the scene must contain real shadows";
   EXPECT_GE(agreement, 0.95) << covered << " covered, CPU " << cpuShadowed << " shadowed, GPU "
                              << gpuShadowed;
+}
+
+TEST_F(ShadowGpu, DepthOnlyCastersWriteTheSameDepth) {
+  // TerrainView::Depth drops the fragment shader's work and, without holes, its discard: every cascade's
+  // depth must equal the shading program's, except a few texels on the terrain's outer edge, where the
+  // interpolated position rounds a hair outside the extent and the shading program discards them. With holes
+  // it falls back to the discarding program: equal bit for bit, and the holes stay open (the control: more
+  // texels keep the cleared depth than without holes, so a program that filled them would fail).
+  int clearedWithout = 0;
+  for (const bool holes : {false, true}) {
+    Terrain scene(shaders(), true, holes);
+    const ShadowSettings settings = testSettings();
+    const ShadowCascades fit = fitCascades(viewCamera(), float(kW) / float(kH), kSun, settings, scene.bounds);
+    ShadowMaps shaded(settings.size, settings.cascades);
+    ShadowMaps depth(settings.size, settings.cascades);
+    scene.renderShadows(shaded, fit, terrain::TerrainView::Shaded);
+    scene.renderShadows(depth, fit, terrain::TerrainView::Depth);
+    int cleared = 0;
+    for (int i = 0; i < settings.cascades; ++i) {
+      const Image a = shaded.downloadDepth(i);
+      const Image b = depth.downloadDepth(i);
+      int differ = 0;
+      int edge = 0;
+      for (int y = 0; y < a.height(); ++y) {
+        for (int x = 0; x < a.width(); ++x) {
+          cleared += a.get(x, y, 0) == 1.0f ? 1 : 0;
+          if (a.get(x, y, 0) != b.get(x, y, 0)) {
+            ++differ;
+            edge += a.get(x, y, 0) == 1.0f ? 1 : 0;
+          }
+        }
+      }
+      if (holes) {
+        EXPECT_EQ(differ, 0) << "cascade " << i << " with holes";
+      } else {
+        EXPECT_EQ(edge, differ) << "cascade " << i << ": texels the shading program drew differ";
+        EXPECT_LE(differ, 8) << "cascade " << i;
+      }
+    }
+    if (holes) {
+      EXPECT_GT(cleared, clearedWithout + 100);
+    } else {
+      clearedWithout = cleared;
+    }
+  }
 }
 
 TEST_F(ShadowGpu, FlatGroundHasNoDarkRegion) {

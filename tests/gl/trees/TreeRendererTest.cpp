@@ -1,7 +1,8 @@
 // The tree renderer against its CPU references: the culling compute pass gives exactly the instances
 // cullInstances() keeps, for every piece type, with and without size culling; the draw is deterministic; one
 // multi-draw and the per-piece baseline draw the same image, and so do commands of any chunk size; size
-// culling drops many pieces of a distant forest and leaves its picture.
+// culling drops many pieces of a distant forest and leaves its picture; the depth-only view (shadow casters)
+// writes the shaded view's depth.
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/trees/Tessellation.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
@@ -199,6 +200,35 @@ TEST_F(TreeRendererTest, SizeCullingMatchesTheCpuReferenceAndKeepsThePicture) {
     EXPECT_LE(changed, covered / 10) << "ortho " << camera.orthoHeight;
     EXPECT_GT(coarseChanged, covered / 2) << "ortho " << camera.orthoHeight;
   }
+}
+
+TEST_F(TreeRendererTest, DepthViewWritesTheShadedDepth) {
+  auto forest = std::make_shared<Forest>(gridForest({"almond", "california-black-oak"}, 2, 6.0f, 5));
+  TreeRenderer renderer(shaders(), forest);
+  const render::Camera camera = lookingAt({-8, 4, 10}, {0, 2, 0});
+  render::RenderTarget target(200, 150);
+  auto depth = [&](TreeView view) {
+    TreeLod lod;
+    target.begin(glm::vec4(0.0f));
+    renderer.cull(camera, 200, 150, lod);
+    TreeDrawOptions options;
+    options.view = view;
+    renderer.draw(camera, 200, 150, 0.0, lod, nullptr, options);
+    return std::pair{target.readDepth(), target.readColor()};
+  };
+  const auto [shadedDepth, shaded] = depth(TreeView::Shaded);
+  const auto [depthOnly, colour] = depth(TreeView::Depth);
+  EXPECT_TRUE(shadedDepth == depthOnly);
+  int covered = 0;
+  int coloured = 0;
+  for (int y = 0; y < shaded.height(); ++y) {
+    for (int x = 0; x < shaded.width(); ++x) {
+      covered += shadedDepth.get(x, y, 0) < 1.0f ? 1 : 0;
+      coloured += colour.get(x, y, 0) + colour.get(x, y, 1) + colour.get(x, y, 2) > 0.0f ? 1 : 0;
+    }
+  }
+  EXPECT_GT(covered, 500);
+  EXPECT_EQ(coloured, 0); // no shading: the depth program writes no colour of its own
 }
 
 } // namespace

@@ -21,6 +21,14 @@ struct ShadowSettings {
       1.5f; ///< receivers move along their normal by this many shadow texels of their cascade
 };
 
+/**
+ * Casters narrower than this many texels of their cascade may be skipped (size culling, e.g. a tree's twigs):
+ * a receiver's filter reads 3 × 3 texels around it, so such a caster only ever made a partial shadow. On the
+ * meadow scene's view it changes no pixel (inside a crown the foliage's shadow covers the twigs'); the
+ * fly-over's first frame at 640 × 360: 13 pixels by at most 10/255.
+ */
+inline constexpr float kCasterMinTexels = 3.0f;
+
 /** One cascade: the sun's orthographic view of a slice of the camera frustum. */
 struct ShadowCascade {
   float nearDepth = 0.0f;     ///< slice start, metres along the view direction

@@ -29,6 +29,12 @@ enum class TerrainView : int {
   Splat = 3,
   /** World position (metres) in RGB, for float targets: what is drawn, to compare with CPU queries. */
   WorldPosition = 4,
+  /**
+   * Depth only (shadow casters; colour writes must be masked): on a field without holes whose patches stay
+   * inside its extent, a fragment shader without discard or work, so the rasteriser can test depth before
+   * shading; otherwise the WorldPosition program, which discards outside the data.
+   */
+  Depth = 5,
 };
 
 /**
@@ -155,6 +161,8 @@ private:
   float mMaxHeight = 0.0f;
   gl::Program mSurface{gl::NoCreate};
   gl::Program mSurfacePoints{gl::NoCreate}; // point_mode variant, compiled on first use
+  gl::Program mSurfaceDepth{gl::NoCreate};  // TerrainView::Depth variant, compiled on first use
+  bool mHoles = false;                      // some sample is nodata
   const shader::Library* mLibrary = nullptr;
   gl::Program mNormals{gl::NoCreate};
   gl::Program mSplat{gl::NoCreate};

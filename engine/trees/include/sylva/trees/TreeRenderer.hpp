@@ -42,6 +42,11 @@ enum class TreeView : int {
    * (so alpha 0 is background), each / 255.
    */
   Tiles = 4,
+  /**
+   * Depth only (shadow casters; colour writes must be masked): a fragment shader that does only the far
+   * field's dissolve, none of the bark's texturing and lighting.
+   */
+  Depth = 5,
 };
 
 /** Which faces to draw (trees are closed surfaces, so back faces are hidden and culled by default). */
@@ -173,6 +178,7 @@ private:
   std::size_t mIndexBytes = 0;
   gl::Program mCull{gl::NoCreate};
   gl::Program mDraw{gl::NoCreate};
+  gl::Program mDrawDepth{gl::NoCreate}; // TreeView::Depth
   gl::Buffer mVertices{gl::NoCreate};
   gl::Buffer mIndices{gl::NoCreate};
   gl::Buffer mInstances{gl::NoCreate};
