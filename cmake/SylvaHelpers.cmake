@@ -55,7 +55,9 @@ function(sylva_add_test name)
   # Unity batches: GoogleTest's headers cost more than most test files (docs/testing.md, "Where the time goes").
   set_target_properties(${name} PROPERTIES UNITY_BUILD ${SYLVA_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 8)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock)
-  target_compile_options(${name} PRIVATE ${SYLVA_WARNINGS})
+  # The code under test is the libraries', built as shipped; the test code itself compiles at -O1 in Release
+  # builds, 38 % faster than at -O3 (docs/testing.md, "Where the time goes").
+  target_compile_options(${name} PRIVATE ${SYLVA_WARNINGS} $<$<CONFIG:Release>:-O1>)
   target_compile_definitions(${name} PRIVATE
     SYLVA_SOURCE_DIR="${PROJECT_SOURCE_DIR}" SYLVA_BINARY_DIR="${PROJECT_BINARY_DIR}")
   set(lock)
