@@ -197,7 +197,7 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report) {
     std::vector<int> speciesSet;
     const std::vector<trees::BarkSet> bark = trees::barkSetsFor(*animated, sources, speciesSet);
     renderer.setBark(bark, speciesSet);
-    trees::JointWindGpu wind(library, forestWindRest(*animated));
+    trees::JointWindGpu wind(library, trees::forestWindRest(*animated));
     renderer.useFrames(&wind.frames());
     trees::FoliageRenderer foliage(library, animated);
     trees::ImpostorRenderer impostors(library);
@@ -262,7 +262,7 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report) {
     }
     grid.trees.resize(keep);
     grid.index();
-    const trees::JointWindRest rest = forestWindRest(grid);
+    const trees::JointWindRest rest = trees::forestWindRest(grid);
     trees::JointWindState state(rest.jointCount());
     wind::WindSettings settings;
     settings.speed = 6.0f;

@@ -169,10 +169,10 @@ void registerRender(CLI::App& app) {
                     camera.target.y / e, camera.target.z);
         }
       }
-      std::unique_ptr<TreeScene> forest;
+      std::unique_ptr<trees::ForestScene> forest;
       if (o->trees.enabled) {
         std::shared_ptr<trees::Forest> placed = o->trees.buildForest(*scene);
-        forest = std::make_unique<TreeScene>(library, placed, o->trees.wind);
+        forest = std::make_unique<trees::ForestScene>(library, placed, o->trees.wind);
         forest->setBark(o->trees.barkSources());
         o->trees.applyFoliage(*forest);
         o->trees.applyFarField(*forest, *scene);
@@ -212,7 +212,7 @@ void registerRender(CLI::App& app) {
           // Fixed steps from --time on (the first frame after the same warm-up): the same image for the same
           // --time, and enough steps per frame for any --fps.
           forest->advance(time, grassOptions.wind,
-                          static_cast<int>(std::ceil(1.0 / (o->fps * kTreeWindStep))) + 1);
+                          static_cast<int>(std::ceil(1.0 / (o->fps * trees::kForestWindStep))) + 1);
           trees::TreeDrawOptions treeOptions;
           treeOptions.view = o->trees.treeView();
           treeOptions.environment = options.environment;

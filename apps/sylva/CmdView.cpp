@@ -478,7 +478,7 @@ struct ViewerTrees {
   bool enabled = false;
   /** Where new scenes read their shaders: the viewer's library, or the last hot reload's directory. */
   shader::Library shaders;
-  std::unique_ptr<TreeScene> scene;
+  std::unique_ptr<trees::ForestScene> scene;
   /** Mixes of the species combo and the one built. */
   std::vector<SpeciesMix> mixes;
   int mix = 0;
@@ -517,7 +517,7 @@ struct ViewerTrees {
   }
 
   /** The scene to draw this frame, or null when the trees are off. */
-  TreeScene* active() const { return enabled ? scene.get() : nullptr; }
+  trees::ForestScene* active() const { return enabled ? scene.get() : nullptr; }
   /** The wind the trees feel: the shared wind (Grass section sliders) × windStrength. */
   wind::WindSettings windFor(const GrassFlags& grassFlags) const {
     wind::WindSettings w = grassFlags.wind();
@@ -529,7 +529,7 @@ struct ViewerTrees {
 /** Builds the forest of `t.flags` on `scene` and its GPU state; throws, leaving `t` as it was, on errors. */
 void buildTrees(ViewerTrees& t, const terrain::TerrainScene& scene) {
   std::shared_ptr<trees::Forest> forest = t.flags.buildForest(scene);
-  auto built = std::make_unique<TreeScene>(t.shaders, forest, t.wind);
+  auto built = std::make_unique<trees::ForestScene>(t.shaders, forest, t.wind);
   built->setBark(t.flags.barkSources());
   t.flags.applyFoliage(*built);
   t.flags.applyFarField(*built, scene);
@@ -569,7 +569,7 @@ double treesGpuMs(const render::GpuTimers& timers) {
 }
 
 /** "bark: N tile sets of T×T texels (M layers)" or "bark: flat colours", as the scene draws it now. */
-std::string barkStatus(const TreeScene& scene) {
+std::string barkStatus(const trees::ForestScene& scene) {
   const std::vector<trees::BarkSet>& sets = scene.barkSets();
   if (sets.empty()) {
     return "bark: flat colours";
@@ -802,7 +802,8 @@ void treesPanel(ViewerTrees& t, const terrain::TerrainScene& scene, const render
       ImGui::Text("visible pieces    %zu", total);
     }
     if (t.scene->windOn()) {
-      ImGui::Text("wind steps        %d this frame (%.0f Hz)", t.scene->lastSteps(), 1.0 / kTreeWindStep);
+      ImGui::Text("wind steps        %d this frame (%.0f Hz)", t.scene->lastSteps(),
+                  1.0 / trees::kForestWindStep);
     }
     if (const trees::FoliageRenderer* foliage = t.scene->foliage()) {
       const trees::FoliageStats stats = foliage->stats();

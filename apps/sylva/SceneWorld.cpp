@@ -161,7 +161,7 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
       fail("{}: {}", where, error.what());
     }
     auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), s));
-    auto scene = std::make_unique<TreeScene>(library, forest, true);
+    auto scene = std::make_unique<trees::ForestScene>(library, forest, true);
     scene->setBark(flags.barkSources());
     flags.applyFoliage(*scene);
     flags.applyFarField(*scene, *mTerrain);

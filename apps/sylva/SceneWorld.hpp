@@ -21,10 +21,12 @@
 namespace sylva::scene {
 class ShoreWater;
 }
+namespace sylva::trees {
+class ForestScene;
+}
 
 namespace sylva::app {
 
-class TreeScene;
 class GrassSimScene;
 
 /**
@@ -93,7 +95,7 @@ private:
   std::vector<std::unique_ptr<grass::GrassRenderer>> mGrass;
   int mSimulatedGrass = -1;
   std::unique_ptr<GrassSimScene> mSimulation;
-  std::vector<std::unique_ptr<TreeScene>> mForests;
+  std::vector<std::unique_ptr<trees::ForestScene>> mForests;
   std::vector<std::unique_ptr<scene::ShoreWater>> mWater;
   std::unique_ptr<scene::ScenePasses> mPasses;
   std::map<std::string, std::vector<scene::WorldCameraKey>> mCameras;

@@ -111,7 +111,7 @@ void TreeFlags::add(CLI::App& command) {
       ->capture_default_str();
 }
 
-void TreeFlags::applyFarField(TreeScene& scene, const terrain::TerrainScene& terrain) const {
+void TreeFlags::applyFarField(trees::ForestScene& scene, const terrain::TerrainScene& terrain) const {
   if (farDistance <= 0.0f) {
     scene.setFarField(glm::vec2(0.0f));
     return;
@@ -161,7 +161,7 @@ void TreeFlags::applyFarField(TreeScene& scene, const terrain::TerrainScene& ter
   scene.setFarField(glm::vec2(farDistance, farDistance + farBand), extra);
 }
 
-void TreeFlags::applyFoliage(TreeScene& scene) const {
+void TreeFlags::applyFoliage(trees::ForestScene& scene) const {
   if (!foliage) {
     scene.setFoliage(false);
     return;
@@ -248,193 +248,6 @@ std::shared_ptr<trees::Forest> TreeFlags::buildForest(const terrain::TerrainScen
     settings.minHeight = (*scene.seaLevel() + 0.5f) * scene.exaggeration();
   }
   return std::make_shared<trees::Forest>(trees::placeForest(scene.field(), settings));
-}
-
-trees::JointWindRest forestWindRest(const trees::Forest& forest) {
-  std::vector<trees::JointWindTree> list;
-  list.reserve(forest.trees.size());
-  for (const trees::ForestTree& t : forest.trees) {
-    trees::JointWindTree w;
-    w.topology = &t.topology;
-    w.species = &forest.species[static_cast<std::size_t>(t.species)];
-    w.base = t.base;
-    w.pose = t.pose;
-    w.timeOffset = t.phase;
-    list.push_back(w);
-  }
-  return trees::buildJointWindRest(forest.pieces, list);
-}
-
-TreeScene::TreeScene(const shader::Library& library, std::shared_ptr<const trees::Forest> forest, bool wind)
-    : mShaders(library), mForest(std::move(forest)),
-      mRenderer(std::make_unique<trees::TreeRenderer>(library, mForest)) {
-  // Bounds from the joints at rest with a margin of half the tallest tree: every piece lies within a few rim
-  // radii of its joints, and bends of at most 30° per joint move a crown by less than that.
-  std::vector<gpu::JointFrame> frames;
-  trees::forestFrames(*mForest, {}, frames);
-  mBounds = Aabb{glm::vec3(0.0f), glm::vec3(0.0f)};
-  float tallest = 0.0f;
-  for (std::size_t t = 0; t < mForest->trees.size(); ++t) {
-    const float foot = mForest->trees[t].base[3].y;
-    const std::size_t first = mForest->jointOffset[t];
-    for (std::size_t j = first; j < first + mForest->trees[t].topology.jointCount(); ++j) {
-      const glm::vec3 p(frames[j].x.w, frames[j].y.w, frames[j].z.w);
-      mBounds.min = j == 0 ? p : glm::min(mBounds.min, p);
-      mBounds.max = j == 0 ? p : glm::max(mBounds.max, p);
-      tallest = std::max(tallest, p.y - foot);
-    }
-  }
-  if (!frames.empty()) {
-    const float margin = 0.5f * tallest + 2.0f;
-    mBounds.min -= glm::vec3(margin);
-    mBounds.max += glm::vec3(margin);
-  }
-  setWind(wind);
-}
-
-void TreeScene::setBark(const std::optional<trees::BarkSources>& sources) {
-  if (!sources) {
-    mBarkSets.clear();
-    mRenderer->setBark({});
-    return;
-  }
-  // Into locals first: on an error the scene keeps its bark (the viewer's Bark combo relies on it).
-  std::vector<int> speciesSet;
-  std::vector<trees::BarkSet> sets = trees::barkSetsFor(*mForest, *sources, speciesSet);
-  mRenderer->setBark(sets, speciesSet);
-  mBarkSets = std::move(sets);
-  mSpeciesSet = std::move(speciesSet);
-}
-
-void TreeScene::setFoliage(bool enabled, const Image* leafImage, const trees::LeafCloud* cloud) {
-  mLeafImageCopy.reset();
-  mLeafCloud.reset();
-  if (!enabled) {
-    mFoliage.reset();
-    return;
-  }
-  if (leafImage != nullptr) {
-    mLeafImageCopy = *leafImage;
-  }
-  if (cloud != nullptr) {
-    mLeafCloud = *cloud;
-  }
-  auto foliage = std::make_unique<trees::FoliageRenderer>(mShaders, mForest);
-  if (leafImage != nullptr) {
-    foliage->setLeafTexture(*leafImage);
-  }
-  if (cloud != nullptr) {
-    foliage->setLeafCloud(*cloud);
-  }
-  mFoliage = std::move(foliage);
-}
-
-void TreeScene::setFarField(glm::vec2 range, std::span<const trees::FarTree> extra) {
-  if (range.y <= range.x) {
-    mImpostors.reset();
-    mFarRange = glm::vec2(0.0f);
-    return;
-  }
-  auto impostors = std::make_unique<trees::ImpostorRenderer>(mShaders);
-  // Each species' representative tree is baked as this scene draws it: bark tiles and foliage.
-  const trees::ImpostorBakeOptions options = trees::sceneBakeOptions(
-      mShaders, mBarkSets, mSpeciesSet, mFoliage != nullptr, mLeafImageCopy ? &*mLeafImageCopy : nullptr,
-      mLeafCloud ? &*mLeafCloud : nullptr);
-  impostors->bake(*mForest, options);
-  std::vector<trees::FarTree> all = trees::farTrees(*mForest);
-  all.insert(all.end(), extra.begin(), extra.end());
-  impostors->setTrees(all);
-  mImpostors = std::move(impostors);
-  mFarRange = range;
-}
-
-void TreeScene::setWind(bool on) {
-  if (on && !mWind) {
-    mWind = std::make_unique<trees::JointWindGpu>(mShaders, forestWindRest(*mForest));
-  }
-  mWindOn = on;
-  mRenderer->useFrames(on ? &mWind->frames() : nullptr);
-}
-
-void TreeScene::resetWind() {
-  mClock.reset();
-  if (mWind) {
-    mWind = std::make_unique<trees::JointWindGpu>(mShaders, forestWindRest(*mForest));
-    mRenderer->useFrames(mWindOn ? &mWind->frames() : nullptr);
-  }
-}
-
-void TreeScene::advance(double time, const wind::WindSettings& wind, int maxSteps,
-                        render::GpuTimers* timers) {
-  mSteps = 0;
-  if (!mWindOn) {
-    return;
-  }
-  int steps = 0;
-  if (!mClock) {
-    // From rest, a fixed stretch of wind before the first frame: the same time gives the same state.
-    mClock = time - kTreeWindWarmup;
-    steps = trees::fixedSteps(*mClock, time, kTreeWindStep,
-                              static_cast<int>(std::ceil(kTreeWindWarmup / kTreeWindStep)) + 1);
-  } else {
-    steps = trees::fixedSteps(*mClock, time, kTreeWindStep, std::max(maxSteps, 1));
-  }
-  if (steps == 0) {
-    return;
-  }
-  if (timers != nullptr) {
-    timers->begin("trees wind");
-  }
-  // Step i runs at the wind time clock − (n − 1 − i)·dt (fixedSteps' contract).
-  for (int i = 0; i < steps; ++i) {
-    const double at = *mClock - static_cast<double>(steps - 1 - i) * kTreeWindStep;
-    mWind->step(wind::toUniforms(wind, static_cast<float>(at)), static_cast<float>(kTreeWindStep));
-  }
-  mWind->updateFrames();
-  if (timers != nullptr) {
-    timers->end();
-  }
-  mSteps = steps;
-}
-
-void TreeScene::draw(const render::Camera& camera, int width, int height, double time,
-                     const trees::TreeLod& lod, const trees::TreeDrawOptions& options,
-                     render::GpuTimers* timers) {
-  trees::TreeLod l = lod;
-  l.farRange = mImpostors ? mFarRange : glm::vec2(0.0f);
-  mRenderer->cull(camera, width, height, l, timers);
-  mRenderer->draw(camera, width, height, time, l, timers, options);
-  const bool full = options.view == trees::TreeView::Shaded || options.view == trees::TreeView::Depth;
-  if (mFoliage && full) {
-    mFoliage->bake(camera, options.environment, timers);
-    mFoliage->draw(camera, width, height, time, *mRenderer, l, timers, options.environment);
-  }
-  if (mImpostors && full) {
-    mImpostors->draw(camera, width, height, time, mFarRange, timers, options.environment);
-  }
-}
-
-void TreeScene::reloadShaders(const shader::Library& library) {
-  mRenderer->reloadShaders(library);
-  if (mFoliage) {
-    mFoliage->reloadShaders(library);
-  }
-  if (mImpostors) {
-    mImpostors->reloadShaders(library);
-  }
-  if (mWind) {
-    mWind->reloadShaders(library);
-  }
-  mShaders = library;
-}
-
-std::size_t TreeScene::gpuBytes() const {
-  std::size_t bytes = mRenderer->gpuBytes() + (mFoliage ? mFoliage->gpuBytes() : 0) +
-                      (mImpostors ? mImpostors->gpuBytes() : 0);
-  if (mWind) {
-    bytes += mWind->jointCount() * (sizeof(gpu::TreeJointRest) + sizeof(glm::vec4) + sizeof(gpu::JointFrame));
-  }
-  return bytes;
 }
 
 render::Camera forestCamera(const terrain::TerrainScene& scene, const trees::Forest& forest, float fovY) {

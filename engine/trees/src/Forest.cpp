@@ -5,6 +5,7 @@
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/wind/Wind.hpp>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -311,6 +312,44 @@ gpu::TreePieceGpu pieceTableEntry(const Piece& piece) {
     entry.inverseBind[j] = packFrame(inverseSimilarity(piece.joints[j].bind));
   }
   return entry;
+}
+
+JointWindRest forestWindRest(const Forest& forest) {
+  std::vector<JointWindTree> list;
+  list.reserve(forest.trees.size());
+  for (const ForestTree& t : forest.trees) {
+    JointWindTree w;
+    w.topology = &t.topology;
+    w.species = &forest.species[static_cast<std::size_t>(t.species)];
+    w.base = t.base;
+    w.pose = t.pose;
+    w.timeOffset = t.phase;
+    list.push_back(w);
+  }
+  return buildJointWindRest(forest.pieces, list);
+}
+
+Aabb forestBounds(const Forest& forest) {
+  std::vector<gpu::JointFrame> frames;
+  forestFrames(forest, {}, frames);
+  Aabb bounds{glm::vec3(0.0f), glm::vec3(0.0f)};
+  float tallest = 0.0f;
+  for (std::size_t t = 0; t < forest.trees.size(); ++t) {
+    const float foot = forest.trees[t].base[3].y;
+    const std::size_t first = forest.jointOffset[t];
+    for (std::size_t j = first; j < first + forest.trees[t].topology.jointCount(); ++j) {
+      const glm::vec3 p(frames[j].x.w, frames[j].y.w, frames[j].z.w);
+      bounds.min = j == 0 ? p : glm::min(bounds.min, p);
+      bounds.max = j == 0 ? p : glm::max(bounds.max, p);
+      tallest = std::max(tallest, p.y - foot);
+    }
+  }
+  if (!frames.empty()) {
+    const float margin = 0.5f * tallest + 2.0f;
+    bounds.min -= glm::vec3(margin);
+    bounds.max += glm::vec3(margin);
+  }
+  return bounds;
 }
 
 glm::vec2 sizeCullTerms(float fovY, float orthoHeight, int height, float minPixels) {

@@ -3,7 +3,9 @@
 // of every tree can be drawn by piece type and every joint lives in one buffer. Placement on terrain by
 // seeded density, slope and height rules.
 
+#include <sylva/core/Geometry.hpp>
 #include <sylva/terrain/HeightField.hpp>
+#include <sylva/trees/JointWind.hpp>
 #include <sylva/trees/Skeleton.hpp>
 
 #include <shared/Trees.h>
@@ -110,6 +112,16 @@ gpu::JointFrame packFrame(const glm::mat4& frame);
  */
 void forestFrames(const Forest& forest, std::span<const glm::vec2> extraBends,
                   std::vector<gpu::JointFrame>& out);
+
+/** The joint springs' rest data of `forest` (one JointWindTree per tree; its phase is the wind offset). */
+JointWindRest forestWindRest(const Forest& forest);
+
+/**
+ * World box around every tree of `forest` at rest (metres), with a margin of half the tallest tree plus 2 m:
+ * every piece lies within a few rim radii of its joints, and bends of at most 30° per joint move a crown by
+ * less than that. An empty forest gives a zero box at the origin.
+ */
+Aabb forestBounds(const Forest& forest);
 
 /** Per piece type: bounding sphere and inverse binds, as the renderer uploads them (ranges left zero). */
 gpu::TreePieceGpu pieceTableEntry(const Piece& piece);
