@@ -28,21 +28,15 @@ render::Camera lookingAt(glm::vec3 from, glm::vec3 to) {
   return camera;
 }
 
-/** The piece table as the renderer uploads it, for the CPU culling reference. */
-std::vector<gpu::TreePieceGpu> pieceTable(const Forest& forest) {
-  std::vector<gpu::TreePieceGpu> table;
-  for (const Piece& p : forest.pieces.pieces) {
-    table.push_back(pieceTableEntry(p));
-  }
-  return table;
-}
-
 TEST_F(TreeRendererTest, CullingPassMatchesTheCpuReference) {
   auto forest = std::make_shared<Forest>(gridForest({"almond", "apple", "weeping-willow"}, 6, 6.0f, 2));
   TreeRenderer renderer(shaders(), forest);
   std::vector<gpu::JointFrame> frames;
   forestFrames(*forest, {}, frames);
-  const std::vector<gpu::TreePieceGpu> table = pieceTable(*forest);
+  std::vector<gpu::TreePieceGpu> table;
+  for (const Piece& p : forest->pieces.pieces) {
+    table.push_back(pieceTableEntry(p));
+  }
   const float aspect = 16.0f / 9.0f;
   int partial = 0;
   for (const auto& [camera, distance] : {std::pair{lookingAt({-20, 6, 20}, {0, 2, 0}), 0.0f},
@@ -150,7 +144,10 @@ TEST_F(TreeRendererTest, SizeCullingMatchesTheCpuReferenceAndKeepsThePicture) {
   TreeRenderer renderer(shaders(), forest);
   std::vector<gpu::JointFrame> frames;
   forestFrames(*forest, {}, frames);
-  const std::vector<gpu::TreePieceGpu> table = pieceTable(*forest);
+  std::vector<gpu::TreePieceGpu> table;
+  for (const Piece& p : forest->pieces.pieces) {
+    table.push_back(pieceTableEntry(p));
+  }
   const int width = 320;
   const int height = 180;
   render::RenderTarget target(width, height);
