@@ -702,7 +702,7 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   terrain::ProceduralSpec spec = terrain::TerrainSource::defaultProcedural();
   spec.heightScale = 6.0f;
   spec.frequency = 1.0f / 150.0f;
-  terrain::QuadtreeConfig quadtree = TerrainFlags::defaultQuadtree();
+  terrain::QuadtreeConfig quadtree = terrain::TerrainSetup::defaultQuadtree();
   quadtree.rootSize = 128.0f;
   quadtree.maxDepth = 4;
   terrain::TerrainScene paperScene(library, terrain::generate(spec, 0.0, 0.0, 69, 879, 1.0f), quadtree);

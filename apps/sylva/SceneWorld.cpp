@@ -5,6 +5,7 @@
 #include <sylva/core/Log.hpp>
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Shadows.hpp>
+#include <sylva/scene/SceneTerrain.hpp>
 #include <sylva/scene/ShoreWater.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/trees/Forest.hpp>
@@ -12,7 +13,6 @@
 
 #include "GrassFlags.hpp"
 #include "GrassSim.hpp"
-#include "TerrainFlags.hpp"
 #include "TreeFlags.hpp"
 
 #include <fmt/format.h>
@@ -22,42 +22,6 @@
 
 namespace sylva::app {
 namespace {
-
-std::string number(double v) {
-  return fmt::format("{}", v);
-}
-
-/** The terrain through the same options and builder as `sylva render --dem/--seed`. */
-std::unique_ptr<terrain::TerrainScene> buildTerrain(const shader::Library& library,
-                                                    const scene::SceneDesc& s) {
-  const scene::TerrainDesc& t = s.terrain;
-  TerrainFlags flags;
-  CLI::App app;
-  flags.add(app);
-  std::vector<std::string> args;
-  if (!t.dem.empty()) {
-    args = {"--dem", t.dem};
-    if (t.spacingSet) {
-      args.insert(args.end(), {"--spacing", number(t.spacing)});
-    }
-  } else {
-    args = {"--seed",    std::to_string(t.seed), "--size",         std::to_string(t.size),
-            "--spacing", number(t.spacing),      "--height-scale", number(t.relief)};
-  }
-  args.insert(args.end(), {"--exaggeration", number(t.exaggeration), "--tess", std::to_string(t.tessLevel),
-                           "--lod-factor", number(t.lodFactor), "--sea-level",
-                           t.seaLevel ? number(*t.seaLevel) : std::string("none")});
-  if (t.maxDepth >= 0) {
-    args.insert(args.end(), {"--max-depth", std::to_string(t.maxDepth)});
-  }
-  std::reverse(args.begin(), args.end());
-  try {
-    app.parse(args);
-  } catch (const CLI::ParseError& e) {
-    fail("{}: /terrain: {}", s.path, e.what());
-  }
-  return flags.build(library);
-}
 
 /** A density or paint map as values in [0, 1] (the red channel, or luminance for grey images). */
 std::vector<float> mapValues(const std::string& path, int& width, int& height) {
@@ -83,7 +47,8 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
   mWind.gustStrength = mDesc.wind.gusts;
   mWind.seed = mDesc.wind.seed;
 
-  mTerrain = buildTerrain(library, mDesc);
+  mTerrain = terrain::TerrainScene::fromSetup(library, scene::terrainSetup(mDesc.terrain),
+                                              scene::sceneTerrainFieldName(mDesc.path));
   log::info("scene {}: terrain {}×{} samples, {:.0f}×{:.0f} m", mDesc.name, mTerrain->field().width(),
             mTerrain->field().height(), mTerrain->field().extentX(), mTerrain->field().extentZ());
 

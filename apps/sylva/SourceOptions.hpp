@@ -6,9 +6,9 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Log.hpp>
-#include <sylva/core/Progress.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
+#include <sylva/terrain/TerrainSetup.hpp>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -32,8 +32,6 @@ constexpr double kMaxSpacing = 1.0e5;
 constexpr double kMinSpacing = 1.0e-6;
 /** Largest accepted height scale (procedural or PNG), metres. */
 constexpr double kMaxHeightScale = 1.0e5;
-/** Procedural fields with more samples than this are generated in strips with a progress line. */
-constexpr std::size_t kProgressSamples = std::size_t{1} << 20;
 
 /** Parses "a,b,c" into exactly `count` finite numbers; throws naming the option. */
 inline std::vector<float> parseNumbers(const std::string& option, const std::string& text, std::size_t count,
@@ -255,12 +253,12 @@ struct SourceOptions {
   }
 
   /**
-   * Loads or generates the height field; throws sylva::Error naming the file or option. `report` (may be
-   * null) receives what the DEM loader assumed; a procedural field reports metres.
+   * The height source the options describe (checked: throws sylva::Error naming the option); warns about
+   * reading options that do not apply to the DEM's format.
    */
-  terrain::HeightField load(terrain::LoadReport* report = nullptr,
-                            const terrain::LoadOptions* limits = nullptr) const {
+  terrain::TerrainSource terrainSource() const {
     check();
+    terrain::TerrainSource source;
     if (!procedural()) {
       if (pngScaleOption->count() > 0 && lowerExtension(dem) != ".png") {
         log::warn("--png-scale {:g}: ignored, {} is not a PNG (only PNG heights are normalised)", pngScale,
@@ -269,7 +267,25 @@ struct SourceOptions {
       if (npzArrayOption->count() > 0 && lowerExtension(dem) != ".npz") {
         log::warn("--npz-array {}: ignored, {} is not an .npz archive", npzArray, dem);
       }
-      return terrain::loadHeightField(dem, limits != nullptr ? *limits : loadOptions(), report);
+      source.dem = dem;
+      source.load = loadOptions();
+      return source;
+    }
+    source.procedural = proceduralSpec();
+    source.proceduralSize = size;
+    source.proceduralSpacing = spacing;
+    return source;
+  }
+
+  /**
+   * Loads or generates the height field (terrain::loadTerrainSource); throws sylva::Error naming the file or
+   * option. `report` (may be null) receives what the DEM loader assumed; a procedural field reports metres.
+   */
+  terrain::HeightField load(terrain::LoadReport* report = nullptr,
+                            const terrain::LoadOptions* limits = nullptr) const {
+    const terrain::TerrainSource source = terrainSource();
+    if (!procedural()) {
+      return terrain::loadHeightField(source.dem, limits != nullptr ? *limits : source.load, report);
     }
     if (report != nullptr) {
       *report = terrain::LoadReport{};
@@ -277,28 +293,7 @@ struct SourceOptions {
       report->reason = fmt::format("procedural, --spacing {:g} m", spacing);
       report->orientation = "row 0 is north";
     }
-    const terrain::ProceduralSpec s = proceduralSpec();
-    const std::size_t samples = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
-    if (samples <= kProgressSamples) {
-      return terrain::generate(s, 0.0, 0.0, size, size, spacing);
-    }
-    // Strips whose origin lies on the sample lattice give bit-identical heights to one generate() call (see
-    // terrain::generate), so a large field can report progress without changing a single sample.
-    terrain::HeightField field(size, size, spacing, spacing);
-    const int strip = std::max(1, static_cast<int>(kProgressSamples / 4 / static_cast<std::size_t>(size)));
-    Progress progress("generating heights", static_cast<std::size_t>(size));
-    for (int row = 0; row < size; row += strip) {
-      if (progress.cancelled()) {
-        fail("generating heights: cancelled");
-      }
-      const int rows = std::min(strip, size - row);
-      const terrain::HeightField part = terrain::generate(
-          s, 0.0, static_cast<double>(row) * static_cast<double>(spacing), size, rows, spacing);
-      std::copy(part.samples().begin(), part.samples().end(),
-                field.samples().begin() + static_cast<std::ptrdiff_t>(row) * size);
-      progress.advance(static_cast<std::size_t>(rows));
-    }
-    return field;
+    return terrain::loadTerrainSource(source);
   }
 };
 

@@ -1,11 +1,6 @@
 #include "TerrainFlags.hpp"
 
-#include <epoxy/gl.h>
-
 #include <sylva/core/Error.hpp>
-#include <sylva/core/Limits.hpp>
-#include <sylva/core/Log.hpp>
-#include <sylva/core/Progress.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -13,15 +8,6 @@
 #include <fstream>
 
 namespace sylva::app {
-
-terrain::QuadtreeConfig TerrainFlags::defaultQuadtree() {
-  terrain::QuadtreeConfig config;
-  config.rootSize = 512.0f;
-  config.maxDepth = 5;
-  config.lodDistanceFactor = 2.0f;
-  config.patchTessLevel = 16;
-  return config;
-}
 
 terrain::CrackMethod parseCrackMethod(const std::string& name) {
   if (name == "paper") {
@@ -52,22 +38,6 @@ terrain::TerrainView parseTerrainView(const std::string& name) {
   fail("--view: unknown view '{}' (expected shaded, lod, normals or splat)", name);
 }
 
-std::size_t affordableSamples() {
-  // Unknown available memory (not Linux) = no limit beyond the loader's own.
-  const std::optional<std::size_t> bytes = availableMemoryBytes();
-  return bytes ? std::max<std::size_t>(4, *bytes / kRenderBytesPerSample) : terrain::kMaxHeightFieldSamples;
-}
-
-void checkMemoryFor(std::size_t samples, const std::string& option) {
-  const std::size_t affordable = affordableSamples();
-  if (samples > affordable) {
-    fail("{}: {} samples need about {:.1f} GiB to render ({} bytes each: heights, GPU textures), {:.1f} GiB "
-         "is available",
-         option, samples, static_cast<double>(samples) * kRenderBytesPerSample / (1u << 30),
-         kRenderBytesPerSample, static_cast<double>(affordable) * kRenderBytesPerSample / (1u << 30));
-  }
-}
-
 void SeaLevelFlag::add(CLI::App& command) {
   command
       .add_option(
@@ -77,19 +47,23 @@ void SeaLevelFlag::add(CLI::App& command) {
       ->capture_default_str();
 }
 
-std::optional<float> SeaLevelFlag::resolve(float minHeight) const {
+terrain::SeaLevelRule SeaLevelFlag::rule() const {
+  terrain::SeaLevelRule rule;
   if (text == "auto") {
-    return minHeight < 0.0f ? std::optional<float>(0.0f) : std::nullopt;
+    return rule;
   }
   if (text == "none") {
-    return std::nullopt;
+    rule.kind = terrain::SeaLevelRule::Kind::None;
+    return rule;
   }
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) > 1.0e5) {
     fail("--sea-level: expected metres in [-100000, 100000], 'auto' or 'none', got '{}'", text);
   }
-  return static_cast<float>(value);
+  rule.kind = terrain::SeaLevelRule::Kind::Metres;
+  rule.metres = static_cast<float>(value);
+  return rule;
 }
 
 namespace {
@@ -197,72 +171,45 @@ void TerrainFlags::add(CLI::App& command) {
                    "when they split or merge (default: off)");
 }
 
+std::string terrainOption(std::string_view field) {
+  if (field == "tess_level") {
+    return "--tess";
+  }
+  if (field == "relief") {
+    return "--height-scale";
+  }
+  std::string option = "--" + std::string(field);
+  std::replace(option.begin(), option.end(), '_', '-');
+  return option;
+}
+
+terrain::TerrainSetup TerrainFlags::layout() const {
+  terrain::TerrainSetup s;
+  s.quadtree = quadtree;
+  s.quadtree.method = parseCrackMethod(method);
+  s.roots = rootCount;
+  if (maxDepthOption != nullptr && maxDepthOption->count() > 0) {
+    s.maxDepth = quadtree.maxDepth;
+  }
+  return s;
+}
+
+terrain::TerrainSetup TerrainFlags::setup() const {
+  terrain::TerrainSetup s = layout();
+  s.layersFile = layers;
+  s.seaLevel = seaLevel.rule(); // a malformed --sea-level fails before the heights are loaded
+  s.source = source.terrainSource();
+  s.exaggeration = exaggeration;
+  s.geomorph = geomorph;
+  return s;
+}
+
 terrain::QuadtreeConfig TerrainFlags::configFor(const terrain::HeightField& field) const {
-  terrain::QuadtreeConfig config = quadtree;
-  if (rootCount > 0) {
-    const terrain::QuadtreeConfig layout =
-        terrain::QuadtreeConfig::forRootCount(rootCount, field.extentX(), field.extentZ());
-    config.rootsX = layout.rootsX;
-    config.rootsZ = layout.rootsZ;
-    config.rootSize = layout.rootSize;
-  } else {
-    // Four roots across the longer side, whatever the terrain's size (the demo's 2048 m gives 512 m roots).
-    config.rootSize = 0.25f * std::max(field.extentX(), field.extentZ());
-  }
-  if (maxDepthOption == nullptr || maxDepthOption->count() == 0) {
-    // Deep enough that the finest leaves put two tessellated vertices per height sample, and no deeper: finer
-    // leaves would only interpolate (the demo: 512 m roots, 2 m samples, level 16 → depth 5, 16 m leaves).
-    const float spacing = std::min(field.spacingX(), field.spacingZ());
-    const float leaf = 0.5f * spacing * static_cast<float>(config.patchTessLevel);
-    config.maxDepth = std::clamp(static_cast<int>(std::round(std::log2(config.rootSize / leaf))), 0, 12);
-  }
-  config.method = parseCrackMethod(method);
-  return config;
+  return terrain::quadtreeFor(layout(), field, terrainOption);
 }
 
 std::unique_ptr<terrain::TerrainScene> TerrainFlags::build(const shader::Library& library) const {
-  terrain::TerrainSceneOptions options;
-  options.geomorph = geomorph;
-  if (!layers.empty()) {
-    options.layers = terrain::loadSplatLayers(layers); // before loading: a bad rules file costs nothing
-  }
-  (void)seaLevel.resolve(0.0f); // a malformed --sea-level fails before the heights are loaded
-  // Limits known before any work: the GPU's largest texture, and memory for a procedural field.
-  GLint maxTexture = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  const std::string textureReason = fmt::format("the GPU's largest texture side is {}", maxTexture);
-  if (source.procedural()) {
-    if (source.size > maxTexture) {
-      fail("--size {}: larger than the GPU's largest texture side ({}); use --size {} or less", source.size,
-           maxTexture, maxTexture);
-    }
-    checkMemoryFor(static_cast<std::size_t>(source.size) * static_cast<std::size_t>(source.size), "--size");
-  }
-  terrain::LoadOptions limits = source.loadOptions();
-  limits.maxSide = maxTexture;
-  limits.maxSideReason = textureReason;
-  limits.maxSamples = std::min(limits.maxSamples, affordableSamples());
-  terrain::HeightField field = source.load(nullptr, &limits);
-  const terrain::HeightFieldInfo info = terrain::heightFieldInfo(field);
-  options.exaggeration = exaggeration;
-  options.seaLevel = seaLevel.resolve(info.minHeight);
-  const float relief = info.maxHeight - info.minHeight;
-  const float extent = std::max(field.extentX(), field.extentZ());
-  if (exaggeration == 1.0f && relief > 0.0f && relief < 0.002f * extent) {
-    log::info(
-        "relief {:.0f} m is {:.2g} % of the {:.0f} km extent and will look flat; try --exaggeration {:.0f}",
-        relief, 100.0 * relief / extent, extent / 1000.0, std::ceil(0.02f * extent / relief));
-  }
-  const terrain::QuadtreeConfig config = configFor(field);
-  std::optional<Progress> progress;
-  if (field.samples().size() > kProgressSamples) {
-    progress.emplace("building terrain (min/max tree, GPU normal and splat maps)", 1);
-  }
-  auto scene = std::make_unique<terrain::TerrainScene>(library, std::move(field), config, std::move(options));
-  if (progress) {
-    progress->advance();
-  }
-  return scene;
+  return terrain::TerrainScene::fromSetup(library, setup(), terrainOption);
 }
 
 } // namespace sylva::app

@@ -12,24 +12,14 @@
 namespace sylva::app {
 
 /**
- * Peak bytes per height sample of a render or viewer session (measured: `sylva render --size 8192` peaks at
- * 1.27 GiB for 67 M samples on llvmpipe, where GPU textures live in process memory).
- */
-inline constexpr std::size_t kRenderBytesPerSample = 20;
-/** Samples a render can afford with the memory available now (/proc/meminfo MemAvailable). */
-std::size_t affordableSamples();
-/** Throws `<option>: ... need about X GiB, Y GiB is available` when `samples` cannot be rendered. */
-void checkMemoryFor(std::size_t samples, const std::string& option);
-
-/**
  * --sea-level auto|none|METRES: where the water surface and the default coast line are. auto = 0 m when the
  * heights go below 0 m (bathymetry, coastal DEMs), else none.
  */
 struct SeaLevelFlag {
   std::string text = "auto";
   void add(CLI::App& command);
-  /** The sea level in metres for heights down to `minHeight`, or nullopt for none; throws on a bad value. */
-  std::optional<float> resolve(float minHeight) const;
+  /** The rule the text says; throws naming the option on a bad value. */
+  terrain::SeaLevelRule rule() const;
 };
 
 /** Command-line options that describe a terrain scene to render, view or benchmark. */
@@ -41,21 +31,27 @@ struct TerrainFlags {
   std::string layers;
   float exaggeration = 1.0f;
   SeaLevelFlag seaLevel;
-  terrain::QuadtreeConfig quadtree = defaultQuadtree();
+  terrain::QuadtreeConfig quadtree = terrain::TerrainSetup::defaultQuadtree();
   /** --terrain-geomorph / --no-terrain-geomorph: TerrainSceneOptions::geomorph (default off). */
   bool geomorph = false;
 
   /** Adds the source options (SourceOptions) and --layers, --exaggeration, --sea-level, --method, --tess,
    * --roots, --max-depth, --lod-factor, --terrain-geomorph. */
   void add(CLI::App& command);
-  /** Loads the heights and builds the scene (needs a GL context); errors name the file or option. */
+  /** The terrain the options describe (throws naming the option when they do not go together). */
+  terrain::TerrainSetup setup() const;
+  /** Loads the heights and builds the scene (TerrainScene::fromSetup; needs a GL context); errors name the
+   * file or option. */
   std::unique_ptr<terrain::TerrainScene> build(const shader::Library& library) const;
-  /** The quadtree layout for `field`: 512 m roots by default, or the --roots count. */
+  /** The quadtree layout for `field` (terrain::quadtreeFor): four roots across by default, or --roots. */
   terrain::QuadtreeConfig configFor(const terrain::HeightField& field) const;
 
   int rootCount = 0;
   CLI::Option* maxDepthOption = nullptr;
-  static terrain::QuadtreeConfig defaultQuadtree();
+
+private:
+  /** The quadtree part of setup(): tessellation, LOD factor, crack method, --roots, --max-depth. */
+  terrain::TerrainSetup layout() const;
 };
 
 /**
@@ -76,6 +72,9 @@ struct CameraFlags {
   /** The camera for `scene` at `aspect` (width / height), with clip planes fitted to the scene. */
   render::Camera camera(const terrain::TerrainScene& scene, float aspect) const;
 };
+
+/** The option a terrain setup field comes from: "sea_level" → "--sea-level", "tess_level" → "--tess". */
+std::string terrainOption(std::string_view field);
 
 /** "paper" | "ours" | "none" → CrackMethod; throws sylva::Error naming the option otherwise. */
 terrain::CrackMethod parseCrackMethod(const std::string& name);

@@ -2,6 +2,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/terrain/Quadtree.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -335,13 +336,13 @@ void readTerrain(const Node& n, TerrainDesc& t) {
     t.seaLevel = n["sea_level"].real(-20000.0, 20000.0);
   }
   if (n.has("tess_level")) {
-    t.tessLevel = n["tess_level"].integer(1, 64);
+    t.tessLevel = n["tess_level"].integer(1, terrain::kMaxPatchTessLevel);
   }
   if (n.has("lod_factor")) {
-    t.lodFactor = n["lod_factor"].realAbove(1.0, 100.0);
+    t.lodFactor = n["lod_factor"].real(terrain::kMinRestrictedLodFactor, 64.0);
   }
   if (n.has("max_depth")) {
-    t.maxDepth = n["max_depth"].integer(-1, 24);
+    t.maxDepth = n["max_depth"].integer(-1, 16);
   }
   if (n.has("geomorph")) {
     t.geomorph = n["geomorph"].boolean();

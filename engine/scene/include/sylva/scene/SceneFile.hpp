@@ -47,9 +47,9 @@ struct TerrainDesc {
   float relief = 120.0f;         ///< procedural height range, metres
   float exaggeration = 1.0f;     ///< vertical scale applied to the heights
   std::optional<float> seaLevel; ///< metres (data heights); below it the terrain reads as sea floor
-  int tessLevel = 16;            ///< tessellation level per patch edge, [1, 64]
-  float lodFactor = 2.0f;        ///< CDLOD distance factor (> 1)
-  int maxDepth = -1;             ///< quadtree depth limit; -1: automatic
+  int tessLevel = 16;            ///< tessellation level per patch edge, [1, 32]
+  float lodFactor = 2.0f;        ///< CDLOD distance factor, [1.05, 64]
+  int maxDepth = -1;             ///< quadtree depth limit, [0, 16]; -1: automatic
   bool geomorph = true;          ///< morph vertices across LOD boundaries
 };
 

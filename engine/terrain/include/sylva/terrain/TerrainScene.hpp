@@ -5,29 +5,13 @@
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/Quadtree.hpp>
 #include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/TerrainSetup.hpp>
 
 #include <filesystem>
 #include <memory>
 #include <optional>
 
 namespace sylva::terrain {
-
-/** Where a scene's heights come from: a DEM/heightmap file, or the seeded procedural generator. */
-struct TerrainSource {
-  /** Height file (PNG, GeoTIFF and other GDAL rasters, .npy/.npz); empty = procedural. */
-  std::filesystem::path dem;
-  LoadOptions load;
-  ProceduralSpec procedural = defaultProcedural();
-  /** Procedural field size in samples per side, and spacing in metres. */
-  int proceduralSize = 1025;
-  float proceduralSpacing = 2.0f;
-
-  /** The demo landscape: warped fBm, 400 m relief. */
-  static ProceduralSpec defaultProcedural();
-};
-
-/** Loads or generates the heights of `source`; errors name the file or the field. */
-HeightField loadTerrainSource(const TerrainSource& source);
 
 /** How a TerrainScene presents its heights. */
 struct TerrainSceneOptions {
@@ -57,6 +41,15 @@ public:
    * it. */
   TerrainScene(const shader::Library& library, HeightField field, const QuadtreeConfig& config,
                TerrainSceneOptions options);
+
+  /**
+   * Builds the terrain `setup` describes: the splat rules file, then limits known before any work (the GPU's
+   * largest texture side, the memory a procedural field needs), then the heights, the sea level and the
+   * quadtree (quadtreeFor). Errors name the file or the field through `name` (null: the scene-file names).
+   * Logs a hint when the relief will look flat; shows progress for large fields.
+   */
+  static std::unique_ptr<TerrainScene> fromSetup(const shader::Library& library, const TerrainSetup& setup,
+                                                 const TerrainFieldName& name = {});
 
   /** Runs LOD selection and neighbour levels for `camera` at `aspect`; returns the selection. */
   const QuadtreeSelection& update(const render::Camera& camera, float aspect);

@@ -1,0 +1,129 @@
+#include <sylva/terrain/TerrainSetup.hpp>
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Limits.hpp>
+#include <sylva/core/Progress.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::terrain {
+namespace {
+
+/** The scene-file name of a field when the caller gave no naming rule. */
+std::string nameOf(const TerrainFieldName& name, std::string_view field) {
+  return name ? name(field) : std::string(field);
+}
+
+} // namespace
+
+ProceduralSpec TerrainSource::defaultProcedural() {
+  return defaultLandscapeSpec();
+}
+
+HeightField loadTerrainSource(const TerrainSource& source, const LoadOptions* limits) {
+  if (!source.dem.empty()) {
+    return loadHeightField(source.dem, limits != nullptr ? *limits : source.load);
+  }
+  const int size = source.proceduralSize;
+  const float spacing = source.proceduralSpacing;
+  const std::size_t samples = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
+  if (samples <= kProgressSamples) {
+    return generate(source.procedural, 0.0, 0.0, size, size, spacing);
+  }
+  // Strips whose origin lies on the sample lattice give bit-identical heights to one generate() call (see
+  // generate), so a large field can report progress without changing a single sample.
+  HeightField field(size, size, spacing, spacing);
+  const int strip = std::max(1, static_cast<int>(kProgressSamples / 4 / static_cast<std::size_t>(size)));
+  Progress progress("generating heights", static_cast<std::size_t>(size));
+  for (int row = 0; row < size; row += strip) {
+    if (progress.cancelled()) {
+      fail("generating heights: cancelled");
+    }
+    const int rows = std::min(strip, size - row);
+    const HeightField part = generate(
+        source.procedural, 0.0, static_cast<double>(row) * static_cast<double>(spacing), size, rows, spacing);
+    std::copy(part.samples().begin(), part.samples().end(),
+              field.samples().begin() + static_cast<std::ptrdiff_t>(row) * size);
+    progress.advance(static_cast<std::size_t>(rows));
+  }
+  return field;
+}
+
+std::optional<float> SeaLevelRule::resolve(float minHeight) const {
+  switch (kind) {
+  case Kind::Auto:
+    return minHeight < 0.0f ? std::optional<float>(0.0f) : std::nullopt;
+  case Kind::None:
+    return std::nullopt;
+  case Kind::Metres:
+    return metres;
+  }
+  return std::nullopt;
+}
+
+QuadtreeConfig TerrainSetup::defaultQuadtree() {
+  QuadtreeConfig config;
+  config.rootSize = 512.0f;
+  config.maxDepth = 5;
+  config.lodDistanceFactor = 2.0f;
+  config.patchTessLevel = 16;
+  return config;
+}
+
+QuadtreeConfig quadtreeFor(const TerrainSetup& setup, const HeightField& field,
+                           const TerrainFieldName& name) {
+  QuadtreeConfig config = setup.quadtree;
+  if (config.patchTessLevel < 1 || config.patchTessLevel > kMaxPatchTessLevel) {
+    fail("{}: {} is not in [1, {}]", nameOf(name, "tess_level"), config.patchTessLevel, kMaxPatchTessLevel);
+  }
+  if (!(config.lodDistanceFactor >= kMinRestrictedLodFactor && config.lodDistanceFactor <= 64.0f)) {
+    fail("{}: {} is not in [{}, 64]", nameOf(name, "lod_factor"), config.lodDistanceFactor,
+         kMinRestrictedLodFactor);
+  }
+  if (setup.roots < 0 || setup.roots > 4096) {
+    fail("{}: {} is not in [0, 4096]", nameOf(name, "roots"), setup.roots);
+  }
+  if (setup.maxDepth && (*setup.maxDepth < 0 || *setup.maxDepth > 16)) {
+    fail("{}: {} is not in [0, 16]", nameOf(name, "max_depth"), *setup.maxDepth);
+  }
+  if (setup.roots > 0) {
+    const QuadtreeConfig layout = QuadtreeConfig::forRootCount(setup.roots, field.extentX(), field.extentZ());
+    config.rootsX = layout.rootsX;
+    config.rootsZ = layout.rootsZ;
+    config.rootSize = layout.rootSize;
+  } else {
+    // Four roots across the longer side, whatever the terrain's size (the demo's 2048 m gives 512 m roots).
+    config.rootSize = 0.25f * std::max(field.extentX(), field.extentZ());
+  }
+  if (setup.maxDepth) {
+    config.maxDepth = *setup.maxDepth;
+  } else {
+    // Deep enough that the finest leaves put two tessellated vertices per height sample, and no deeper: finer
+    // leaves would only interpolate (the demo: 512 m roots, 2 m samples, level 16 → depth 5, 16 m leaves).
+    const float spacing = std::min(field.spacingX(), field.spacingZ());
+    const float leaf = 0.5f * spacing * static_cast<float>(config.patchTessLevel);
+    config.maxDepth = std::clamp(static_cast<int>(std::round(std::log2(config.rootSize / leaf))), 0, 12);
+  }
+  return config;
+}
+
+std::size_t affordableSamples() {
+  // Unknown available memory (not Linux) = no limit beyond the loader's own.
+  const std::optional<std::size_t> bytes = availableMemoryBytes();
+  return bytes ? std::max<std::size_t>(4, *bytes / kRenderBytesPerSample) : kMaxHeightFieldSamples;
+}
+
+void checkMemoryFor(std::size_t samples, const std::string& what) {
+  const std::size_t affordable = affordableSamples();
+  if (samples > affordable) {
+    fail("{}: {} samples need about {:.1f} GiB to render ({} bytes each: heights, GPU textures), {:.1f} GiB "
+         "is available",
+         what, samples, static_cast<double>(samples) * kRenderBytesPerSample / (1u << 30),
+         kRenderBytesPerSample, static_cast<double>(affordable) * kRenderBytesPerSample / (1u << 30));
+  }
+}
+
+} // namespace sylva::terrain
