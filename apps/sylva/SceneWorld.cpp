@@ -5,6 +5,7 @@
 #include <sylva/core/Log.hpp>
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Shadows.hpp>
+#include <sylva/scene/SceneForest.hpp>
 #include <sylva/scene/SceneTerrain.hpp>
 #include <sylva/scene/ShoreWater.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
@@ -13,7 +14,6 @@
 
 #include "GrassFlags.hpp"
 #include "GrassSim.hpp"
-#include "TreeFlags.hpp"
 
 #include <fmt/format.h>
 
@@ -21,23 +21,6 @@
 #include <cmath>
 
 namespace sylva::app {
-namespace {
-
-/** A density or paint map as values in [0, 1] (the red channel, or luminance for grey images). */
-std::vector<float> mapValues(const std::string& path, int& width, int& height) {
-  const Image image = loadImage(path);
-  width = image.width();
-  height = image.height();
-  std::vector<float> values(static_cast<std::size_t>(width) * height);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      values[static_cast<std::size_t>(y) * width + x] = image.get(x, y, 0);
-    }
-  }
-  return values;
-}
-
-} // namespace
 
 SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
     : mLibrary(library), mDesc(std::move(desc)) {
@@ -79,57 +62,17 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
   const float e = mTerrain->exaggeration();
   for (std::size_t i = 0; i < mDesc.forests.size(); ++i) {
     const scene::ForestDesc& f = mDesc.forests[i];
-    const std::string where = fmt::format("{}: /forests/{}", mDesc.path, i);
-    TreeFlags flags;
-    flags.enabled = true;
-    trees::ForestSettings& s = flags.forest;
-    s.species.clear();
-    for (const auto& [name, weight] : f.species) {
-      try {
-        (void)trees::resolveSpecies(name);
-      } catch (const Error& error) {
-        fail("{}/species/{}: {}", where, name, error.what());
-      }
-      s.species.push_back(name);
-      s.speciesWeights.push_back(weight);
-    }
-    s.count = f.count;
-    s.seed = f.seed;
-    s.spacing = f.spacing;
-    s.maxSlope = f.maxSlope;
-    s.clusterSize = f.clusterSize;
-    s.bare = f.bare;
-    s.verticalScale = 1.0f; // the terrain scene's field is already exaggerated
-    if (f.minHeight) {
-      s.minHeight = *f.minHeight;
-    } else if (mTerrain->seaLevel()) {
-      s.minHeight = (*mTerrain->seaLevel() + 0.5f) * e;
-    }
-    if (f.maxHeight) {
-      s.maxHeight = *f.maxHeight;
-    }
-    if (f.regionCentre) {
-      s.regionCentre = *f.regionCentre;
-      s.regionRadius = f.regionRadius;
-    }
-    if (!f.densityMap.empty()) {
-      s.densityMap = mapValues(f.densityMap, s.densityWidth, s.densityHeight);
-    }
-    flags.bark = f.bark;
-    flags.foliage = f.foliage;
-    flags.farDistance = f.farDistance;
-    flags.farBand = f.farBand;
-    flags.farCount = f.farCount;
-    try {
-      flags.check();
-    } catch (const Error& error) {
-      fail("{}: {}", where, error.what());
-    }
+    const FieldName name = scene::sceneForestFieldName(mDesc.path, i);
+    const trees::ForestSettings s = scene::forestSettings(f, e, mTerrain->seaLevel(), name);
+    const trees::ForestLook look = scene::forestLook(f, name);
     auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), s));
     auto scene = std::make_unique<trees::ForestScene>(library, forest, true);
-    scene->setBark(flags.barkSources());
-    flags.applyFoliage(*scene);
-    flags.applyFarField(*scene, *mTerrain);
+    trees::FarGround ground;
+    ground.field = &mTerrain->field();
+    if (mTerrain->seaLevel()) {
+      ground.floor = (*mTerrain->seaLevel() + 0.5f) * e;
+    }
+    scene->applyLook(look, s, ground);
     log::info("scene {}: forest {}: {} trees", mDesc.name, i, forest->trees.size());
     mForests.push_back(std::move(scene));
   }

@@ -111,93 +111,32 @@ void TreeFlags::add(CLI::App& command) {
       ->capture_default_str();
 }
 
+trees::ForestLook TreeFlags::look() const {
+  trees::ForestLook l;
+  l.bark = bark;
+  l.barkPhotos = barkPhotos;
+  l.barkTile = barkTile;
+  l.barkVariants = barkVariants;
+  l.foliage = foliage;
+  l.leaves = leaves;
+  l.leafModel = leafModel;
+  l.farDistance = farDistance;
+  l.farBand = farBand;
+  l.farCount = farCount;
+  return l;
+}
+
+trees::FarGround farGround(const terrain::TerrainScene& terrain) {
+  trees::FarGround g;
+  g.field = &terrain.field();
+  if (terrain.seaLevel()) {
+    g.floor = (*terrain.seaLevel() + 0.5f) * terrain.exaggeration();
+  }
+  return g;
+}
+
 void TreeFlags::applyFarField(trees::ForestScene& scene, const terrain::TerrainScene& terrain) const {
-  if (farDistance <= 0.0f) {
-    scene.setFarField(glm::vec2(0.0f));
-    return;
-  }
-  std::vector<trees::FarTree> extra;
-  if (farCount > 0) {
-    const trees::Forest& f = scene.forest();
-    const std::vector<glm::vec4>& centres = scene.renderer().treeCentres();
-    trees::FarTreeFieldSettings s;
-    s.count = farCount;
-    s.seed = forest.seed + 17;
-    s.centre = glm::vec2(terrain.field().extentX(), terrain.field().extentZ()) * 0.5f;
-    s.innerRadius = forest.regionRadius;
-    s.outerRadius = 0.5f * std::hypot(terrain.field().extentX(), terrain.field().extentZ());
-    s.species = static_cast<int>(std::max<std::size_t>(f.species.size(), 1));
-    s.verticalScale = terrain.exaggeration();
-    s.firstId = static_cast<std::uint32_t>(f.trees.size());
-    if (!centres.empty()) {
-      s.minHeight = s.maxHeight = centres[0].w;
-      for (const glm::vec4& c : centres) {
-        s.minHeight = std::min(s.minHeight, c.w);
-        s.maxHeight = std::max(s.maxHeight, c.w);
-      }
-    }
-    const float floor = terrain.seaLevel() ? (*terrain.seaLevel() + 0.5f) * terrain.exaggeration() : -1e30f;
-    // Only where trees may grow: above the sea, not steeper than --trees-max-slope.
-    const float maxGrade = std::tan(glm::radians(forest.maxSlope));
-    const terrain::HeightField& field = terrain.field();
-    auto height = [&](float x, float z) {
-      return terrain::heightAt(field, std::clamp(x, 0.0f, field.extentX()),
-                               std::clamp(z, 0.0f, field.extentZ())) *
-             terrain.exaggeration();
-    };
-    for (const trees::FarTree& t : trees::farTreeField(s, &field)) {
-      const float step = 2.0f;
-      const float gx =
-          (height(t.position.x + step, t.position.z) - height(t.position.x - step, t.position.z)) /
-          (2.0f * step);
-      const float gz =
-          (height(t.position.x, t.position.z + step) - height(t.position.x, t.position.z - step)) /
-          (2.0f * step);
-      if (t.position.y >= floor && std::hypot(gx, gz) <= maxGrade) {
-        extra.push_back(t);
-      }
-    }
-  }
-  scene.setFarField(glm::vec2(farDistance, farDistance + farBand), extra);
-}
-
-void TreeFlags::applyFoliage(trees::ForestScene& scene) const {
-  if (!foliage) {
-    scene.setFoliage(false);
-    return;
-  }
-  std::optional<Image> image;
-  const std::filesystem::path autoLeaf = "data/external/ez-tree/leaves/oak_color.png";
-  if (leaves == "auto" && std::filesystem::exists(autoLeaf)) {
-    image = trees::loadLeafImage(autoLeaf);
-  } else if (leaves != "auto" && leaves != "procedural") {
-    image = trees::loadLeafImage(leaves);
-  }
-  std::optional<trees::LeafCloud> cloud;
-  if (!leafModel.empty()) {
-    cloud = trees::loadLeafCloud(leafModel);
-  }
-  scene.setFoliage(true, image ? &*image : nullptr, cloud ? &*cloud : nullptr);
-}
-
-std::optional<trees::BarkSources> TreeFlags::barkSources() const {
-  if (bark == "none") {
-    return std::nullopt;
-  }
-  trees::BarkSources s;
-  s.mode = bark;
-  s.photoDir = barkPhotos;
-  s.tiles.tileSize = barkTile;
-  s.variants = barkVariants;
-  // Synthesised sets are cached per user, as build tools cache their work.
-  const char* xdg = std::getenv("XDG_CACHE_HOME");
-  const char* home = std::getenv("HOME");
-  if (xdg != nullptr && *xdg != '\0') {
-    s.cacheDir = std::filesystem::path(xdg) / "sylva" / "bark";
-  } else if (home != nullptr && *home != '\0') {
-    s.cacheDir = std::filesystem::path(home) / ".cache" / "sylva" / "bark";
-  }
-  return s;
+  scene.applyFarField(look(), forest, farGround(terrain));
 }
 
 void TreeFlags::check() const {
@@ -210,15 +149,11 @@ void TreeFlags::check() const {
     }
   }
   (void)parseTreeView(view);
-  if (bark != "auto" && bark != "procedural" && bark != "none" && !std::filesystem::is_directory(bark)) {
-    fail("--trees-bark: '{}' is not auto, procedural, none or a tile-set directory", bark);
-  }
-  if (leaves != "auto" && leaves != "procedural" && !std::filesystem::is_regular_file(leaves)) {
-    fail("--trees-leaves: '{}' is not auto, procedural or an image file", leaves);
-  }
-  if (!leafModel.empty() && !std::filesystem::is_regular_file(leafModel)) {
-    fail("--trees-leaf-model: no file '{}'", leafModel);
-  }
+  trees::check(look(), [](std::string_view field) {
+    std::string option = "--trees-" + std::string(field);
+    std::replace(option.begin(), option.end(), '_', '-');
+    return option;
+  });
 }
 
 trees::TreeView parseTreeView(const std::string& name) {
@@ -242,7 +177,7 @@ trees::TreeView TreeFlags::treeView() const {
 std::shared_ptr<trees::Forest> TreeFlags::buildForest(const terrain::TerrainScene& scene) const {
   check();
   trees::ForestSettings settings = forest;
-  settings.verticalScale = scene.exaggeration();
+  settings.verticalScale = 1.0f; // the scene's field holds drawn (exaggerated) heights already
   settings.regionCentre = glm::vec2(scene.field().extentX(), scene.field().extentZ()) * 0.5f;
   if (scene.seaLevel()) {
     settings.minHeight = (*scene.seaLevel() + 0.5f) * scene.exaggeration();

@@ -50,10 +50,12 @@ struct TreeFlags {
   int farCount = 0;
 
   static trees::ForestSettings defaultForest();
+  /** Bark, foliage and far field as the flags say (the engine's description, trees::ForestLook). */
+  trees::ForestLook look() const;
   /** Where bark tiles come from; nullopt for --trees-bark none (flat bark colours). */
-  std::optional<trees::BarkSources> barkSources() const;
+  std::optional<trees::BarkSources> barkSources() const { return trees::barkSources(look()); }
   /** Puts foliage on `scene` as the flags say (none with --no-trees-foliage). */
-  void applyFoliage(trees::ForestScene& scene) const;
+  void applyFoliage(trees::ForestScene& scene) const { scene.applyFoliage(look()); }
   /** Sets up the far field of `scene` on `terrain` as the flags say (none without --trees-far). */
   void applyFarField(trees::ForestScene& scene, const terrain::TerrainScene& terrain) const;
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
@@ -65,6 +67,9 @@ struct TreeFlags {
   /** The forest on `scene`'s terrain (drawn heights), only above the sea level. */
   std::shared_ptr<trees::Forest> buildForest(const terrain::TerrainScene& scene) const;
 };
+
+/** The ground a far field stands on: `terrain`'s drawn heights, no tree below half a metre above its sea. */
+trees::FarGround farGround(const terrain::TerrainScene& terrain);
 
 /** "shaded" | "pieces" | "bones" | "lod" | "tiles" → TreeView; throws naming the option otherwise. */
 trees::TreeView parseTreeView(const std::string& name);

@@ -33,7 +33,7 @@ HeightField exaggerated(HeightField field, float factor) {
 std::unique_ptr<TerrainScene> TerrainScene::fromSetup(const shader::Library& library,
                                                       const TerrainSetup& setup,
                                                       const TerrainFieldName& name) {
-  const auto field = [&name](std::string_view f) { return name ? name(f) : std::string(f); };
+  const auto field = [&name](std::string_view f) { return fieldName(name, f); };
   if (!(setup.exaggeration > 0.0f && setup.exaggeration <= 1000.0f)) {
     fail("{}: {} is not in (0, 1000]", field("exaggeration"), setup.exaggeration);
   }

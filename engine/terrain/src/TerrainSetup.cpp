@@ -10,15 +10,6 @@
 #include <cmath>
 
 namespace sylva::terrain {
-namespace {
-
-/** The scene-file name of a field when the caller gave no naming rule. */
-std::string nameOf(const TerrainFieldName& name, std::string_view field) {
-  return name ? name(field) : std::string(field);
-}
-
-} // namespace
-
 ProceduralSpec TerrainSource::defaultProcedural() {
   return defaultLandscapeSpec();
 }
@@ -77,17 +68,18 @@ QuadtreeConfig quadtreeFor(const TerrainSetup& setup, const HeightField& field,
                            const TerrainFieldName& name) {
   QuadtreeConfig config = setup.quadtree;
   if (config.patchTessLevel < 1 || config.patchTessLevel > kMaxPatchTessLevel) {
-    fail("{}: {} is not in [1, {}]", nameOf(name, "tess_level"), config.patchTessLevel, kMaxPatchTessLevel);
+    fail("{}: {} is not in [1, {}]", fieldName(name, "tess_level"), config.patchTessLevel,
+         kMaxPatchTessLevel);
   }
   if (!(config.lodDistanceFactor >= kMinRestrictedLodFactor && config.lodDistanceFactor <= 64.0f)) {
-    fail("{}: {} is not in [{}, 64]", nameOf(name, "lod_factor"), config.lodDistanceFactor,
+    fail("{}: {} is not in [{}, 64]", fieldName(name, "lod_factor"), config.lodDistanceFactor,
          kMinRestrictedLodFactor);
   }
   if (setup.roots < 0 || setup.roots > 4096) {
-    fail("{}: {} is not in [0, 4096]", nameOf(name, "roots"), setup.roots);
+    fail("{}: {} is not in [0, 4096]", fieldName(name, "roots"), setup.roots);
   }
   if (setup.maxDepth && (*setup.maxDepth < 0 || *setup.maxDepth > 16)) {
-    fail("{}: {} is not in [0, 16]", nameOf(name, "max_depth"), *setup.maxDepth);
+    fail("{}: {} is not in [0, 16]", fieldName(name, "max_depth"), *setup.maxDepth);
   }
   if (setup.roots > 0) {
     const QuadtreeConfig layout = QuadtreeConfig::forRootCount(setup.roots, field.extentX(), field.extentZ());

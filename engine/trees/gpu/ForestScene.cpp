@@ -3,6 +3,7 @@
 #include <sylva/trees/Forest.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 
 namespace sylva::trees {
@@ -48,6 +49,42 @@ void ForestScene::setFoliage(bool enabled, const Image* leafImage, const LeafClo
     foliage->setLeafCloud(*cloud);
   }
   mFoliage = std::move(foliage);
+}
+
+void ForestScene::applyLook(const ForestLook& look, const ForestSettings& placement,
+                            const FarGround& ground) {
+  setBark(barkSources(look));
+  applyFoliage(look);
+  applyFarField(look, placement, ground);
+}
+
+void ForestScene::applyFoliage(const ForestLook& look) {
+  if (!look.foliage) {
+    setFoliage(false);
+    return;
+  }
+  std::optional<Image> image;
+  if (look.leaves == "auto" && std::filesystem::exists(kAutoLeafImage)) {
+    image = loadLeafImage(kAutoLeafImage);
+  } else if (look.leaves != "auto" && look.leaves != "procedural") {
+    image = loadLeafImage(look.leaves);
+  }
+  std::optional<LeafCloud> cloud;
+  if (!look.leafModel.empty()) {
+    cloud = loadLeafCloud(look.leafModel);
+  }
+  setFoliage(true, image ? &*image : nullptr, cloud ? &*cloud : nullptr);
+}
+
+void ForestScene::applyFarField(const ForestLook& look, const ForestSettings& placement,
+                                const FarGround& ground) {
+  if (look.farDistance <= 0.0f) {
+    setFarField(glm::vec2(0.0f));
+    return;
+  }
+  const std::vector<FarTree> extra =
+      farFieldTrees(look, placement, *mForest, mRenderer->treeCentres(), ground);
+  setFarField(glm::vec2(look.farDistance, look.farDistance + look.farBand), extra);
 }
 
 void ForestScene::setFarField(glm::vec2 range, std::span<const FarTree> extra) {

@@ -4,6 +4,7 @@
 // description (docs/scenes.md, "Grass"). CPU only: the field's blades, tiles and baked density; the renderer
 // is the caller's.
 
+#include <sylva/core/FieldName.hpp>
 #include <sylva/grass/GrassField.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/terrain/HeightField.hpp>
@@ -38,7 +39,7 @@ struct GrassGround {
  * "max_slope", …): "meadow.json: /grass/0/paint" for a scene file (sceneGrassFieldName), "--grass-paint" for
  * the command line.
  */
-using GrassFieldName = std::function<std::string(std::string_view field)>;
+using GrassFieldName = FieldName;
 
 /** "<file>: /grass/<index>/<field>": the names of scene file `file`'s grass layer `index`. */
 GrassFieldName sceneGrassFieldName(const std::filesystem::path& file, std::size_t index);

@@ -4,6 +4,7 @@
 // `--tess`, …) and scene files ("terrain") both fill. CPU: loading or generating the heights, resolving the
 // sea level, deriving the quadtree, the memory a render needs. The drawable scene is TerrainScene::fromSetup.
 
+#include <sylva/core/FieldName.hpp>
 #include <sylva/terrain/HeightField.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
@@ -11,7 +12,6 @@
 
 #include <cstddef>
 #include <filesystem>
-#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -46,7 +46,7 @@ HeightField loadTerrainSource(const TerrainSource& source, const LoadOptions* li
  * Names a setup field in an error message from its scene-file name ("size", "dem", "sea_level", "tess_level",
  * …): "--size" on the command line, "meadow.json: /terrain/size" for a scene file.
  */
-using TerrainFieldName = std::function<std::string(std::string_view field)>;
+using TerrainFieldName = FieldName;
 
 /** Where the sea is: from the data (0 m when the heights go below 0 m, else none), nowhere, or at a height.
  */

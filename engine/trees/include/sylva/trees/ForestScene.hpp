@@ -8,6 +8,7 @@
 #include <sylva/shader/Library.hpp>
 #include <sylva/trees/Bark.hpp>
 #include <sylva/trees/FoliageRenderer.hpp>
+#include <sylva/trees/ForestLook.hpp>
 #include <sylva/trees/ImpostorRenderer.hpp>
 #include <sylva/trees/JointWindGpu.hpp>
 #include <sylva/trees/TreeRenderer.hpp>
@@ -61,6 +62,16 @@ public:
   void setFarField(glm::vec2 range, std::span<const FarTree> extra = {});
   /** The impostor renderer, or null without a far field. */
   ImpostorRenderer* impostors() { return mImpostors.get(); }
+
+  /**
+   * Bark, foliage and far field as `look` says (check() it first): the far field's extra trees stand on
+   * `ground` around the forest `placement` placed (farFieldTrees).
+   */
+  void applyLook(const ForestLook& look, const ForestSettings& placement, const FarGround& ground);
+  /** Foliage as `look` says: off, or with its leaf image ("auto": kAutoLeafImage when fetched) and model. */
+  void applyFoliage(const ForestLook& look);
+  /** Far field as `look` says (off for farDistance 0; bakes the atlases: seconds on llvmpipe). */
+  void applyFarField(const ForestLook& look, const ForestSettings& placement, const FarGround& ground);
 
   /** Turns the wind on (building the springs on first use; they go on from their last state) or off. */
   void setWind(bool on);

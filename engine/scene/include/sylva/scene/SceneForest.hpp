@@ -1,0 +1,33 @@
+#pragma once
+// A scene file's forest (scene::ForestDesc) as the trees module's descriptions: where the trees stand
+// (trees::ForestSettings) and how they look (trees::ForestLook), the same descriptions `sylva render --trees`
+// fills from its options (docs/scenes.md, "Forests"). CPU only.
+
+#include <sylva/core/FieldName.hpp>
+#include <sylva/scene/SceneFile.hpp>
+#include <sylva/trees/Forest.hpp>
+#include <sylva/trees/ForestLook.hpp>
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+
+namespace sylva::scene {
+
+/** "<file>: /forests/<index>/<field>": the names of scene file `file`'s forest `index`. */
+FieldName sceneForestFieldName(const std::filesystem::path& file, std::size_t index);
+
+/**
+ * Where the trees of `forest` stand on a terrain drawn `exaggeration` × its true heights (the field placement
+ * reads holds drawn heights): species and weights (each resolved, or an error naming "species/<name>"),
+ * count, seed, spacing, max slope, clustering, bare fraction, height band (default floor: half a metre above
+ * `seaLevel`, true metres), the region (none: the whole terrain) and the density map (loaded here). Throws
+ * sylva::Error naming the field through `name` before any tree is placed.
+ */
+trees::ForestSettings forestSettings(const ForestDesc& forest, float exaggeration,
+                                     std::optional<float> seaLevel, const FieldName& name);
+
+/** How the trees of `forest` look: bark, foliage and far field (leaves "auto"). Checked (trees::check). */
+trees::ForestLook forestLook(const ForestDesc& forest, const FieldName& name);
+
+} // namespace sylva::scene
