@@ -1,8 +1,8 @@
 // `sylva bench scene [--scene FILE]`: a scene file's frames with every pass timed (docs/scenes.md
 // "Performance").
 #include "BenchRows.hpp"
-#include "SceneWorld.hpp"
 
+#include <sylva/scene/SceneWorld.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/gl/ContextInfo.hpp>
@@ -22,7 +22,7 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
   const auto buildStart = std::chrono::steady_clock::now();
   const std::uint64_t rssBefore = residentBytes();
   shader::Library library;
-  SceneWorld world(library, scene::loadScene(file));
+  scene::SceneWorld world(library, scene::loadScene(file));
   const scene::SceneDesc& desc = world.desc();
   render::RenderTarget target(width, height);
   glFinish();

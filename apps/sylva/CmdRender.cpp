@@ -183,10 +183,10 @@ void registerRender(CLI::App& app) {
           camera = forestCamera(*scene, *placed, glm::radians(o->camera.fovDegrees));
         }
       }
-      std::unique_ptr<GrassSimScene> simulation;
+      std::unique_ptr<scene::GrassSimulation> simulation;
       if (o->simulation.enabled()) {
-        simulation =
-            std::make_unique<GrassSimScene>(library, *scene, *grass, grass->fieldPointer(), o->simulation);
+        simulation = std::make_unique<scene::GrassSimulation>(
+            library, scene->field(), *grass, grass->fieldPointer(), o->simulation.settings());
         const glm::vec2 drop = ballDropPoint(scene->field(), grass->field(), camera);
         simulation->spawnBalls(drop, 1.5f, o->simulation.balls, o->simulation.seed, 0.5f);
         if (o->camera.cameraPos.empty()) {

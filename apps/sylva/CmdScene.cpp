@@ -2,6 +2,7 @@
 // (docs/scenes.md "Rendering sequences").
 #include "CmdScene.hpp"
 
+#include <sylva/scene/SceneWorld.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
@@ -10,8 +11,6 @@
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/scene/Sequence.hpp>
-
-#include "SceneWorld.hpp"
 
 #include <fmt/format.h>
 
@@ -133,7 +132,7 @@ void renderSceneFile(const SceneRenderOptions& o) {
   if (!todo.empty()) {
     auto context = platform::createHeadlessContext(o.context);
     shader::Library library(o.shaderDir);
-    SceneWorld world(library, desc);
+    scene::SceneWorld world(library, desc);
     render::RenderTarget target(width, height);
     Progress progress(fmt::format("render {}", desc.name), todo.size());
     for (int f : todo) {

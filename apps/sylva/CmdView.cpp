@@ -141,7 +141,7 @@ struct ViewerGrass {
    * the panel makes them. Registered with `renderer`: declared after it so it is destroyed first, and rebuilt
    * (empty) whenever the renderer is.
    */
-  std::unique_ptr<GrassSimScene> simulation;
+  std::unique_ptr<scene::GrassSimulation> simulation;
   /** Simulation time of `simulation`: seconds it has run since it was built (stops with the viewer's pause).
    */
   double simTime = 0.0;
@@ -166,8 +166,8 @@ struct ViewerGrass {
 void buildSimulation(ViewerGrass& g, const terrain::TerrainScene& scene) {
   g.simulation.reset(); // unregisters from the renderer before the new one registers
   g.simTime = 0.0;
-  g.simulation =
-      std::make_unique<GrassSimScene>(g.shaders, scene, *g.renderer, g.renderer->fieldPointer(), g.simFlags);
+  g.simulation = std::make_unique<scene::GrassSimulation>(g.shaders, scene.field(), *g.renderer,
+                                                          g.renderer->fieldPointer(), g.simFlags.settings());
   log::info("grass simulation: {} solver, pool of {} tiles", g.simulation->onGpu() ? "GPU" : "CPU",
             g.simFlags.pool);
 }

@@ -3,6 +3,7 @@
 #include "SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/scene/Ground.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
@@ -176,10 +177,6 @@ scene::GrassLayer GrassFlags::layerDesc() const {
   return l;
 }
 
-scene::GrassGround grassGround(const terrain::TerrainScene& scene) {
-  return {&scene.field(), scene.exaggeration(), scene.seaLevel(), scene.renderer().layers()};
-}
-
 std::shared_ptr<const grass::GrassField> GrassFlags::buildField(const terrain::TerrainScene& scene) const {
   check();
   // Errors name the option a layer field comes from.
@@ -195,7 +192,7 @@ std::shared_ptr<const grass::GrassField> GrassFlags::buildField(const terrain::T
     }
     return fmt::format("--grass-{}", f);
   };
-  return scene::buildGrassField(layerDesc(), grassGround(scene), option);
+  return scene::buildGrassField(layerDesc(), scene::grassGround(scene), option);
 }
 
 render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,

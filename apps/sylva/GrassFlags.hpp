@@ -54,9 +54,6 @@ struct GrassFlags {
   std::shared_ptr<const grass::GrassField> buildField(const terrain::TerrainScene& scene) const;
 };
 
-/** The facts of `scene`'s terrain a grass layer grows by (its splat layers live in its renderer). */
-scene::GrassGround grassGround(const terrain::TerrainScene& scene);
-
 /**
  * A camera at eye height (1.7 m) over the densest grass near the terrain's centre, looking along the wind
  * across the field, slightly down: the default view of a grass render.

@@ -1,11 +1,10 @@
 #pragma once
-// Grass simulation in the apps (docs/grass-simulation.md): a Bullet world on the terrain, the tile manager
-// and its solver (GPU or CPU reference), the bodies drawn: `sylva render --grass --physics balls`, `sylva
-// view`.
+// The command line of the grass simulation (docs/grass-simulation.md; the simulation itself is
+// scene::GrassSimulation): `sylva render --grass --physics balls`, `sylva view`, and where the demo drops its
+// balls and looks at them.
 
-#include <sylva/grass/GrassSimulator.hpp>
-#include <sylva/physics/BodyRenderer.hpp>
-#include <sylva/physics/World.hpp>
+#include <sylva/grass/GrassField.hpp>
+#include <sylva/scene/GrassSimulation.hpp>
 #include <sylva/terrain/TerrainScene.hpp>
 
 #include <CLI/CLI.hpp>
@@ -31,43 +30,8 @@ struct SimulationFlags {
   bool enabled() const { return physics != "none"; }
   grass::SolverSettings solverSettings() const;
   grass::PoolSettings poolSettings() const;
-};
-
-/** The world, the simulated tiles and the drawing of bodies. */
-class GrassSimScene {
-public:
-  GrassSimScene(const shader::Library& library, const terrain::TerrainScene& scene,
-                grass::GrassRenderer& grass, std::shared_ptr<const grass::GrassField> field,
-                const SimulationFlags& flags);
-  ~GrassSimScene();
-
-  /** Drops `count` seeded balls over a disc of `radius` metres around world (x, z) `centre`. */
-  void spawnBalls(glm::vec2 centre, float radius, int count, std::uint64_t seed, float drop = 1.0f);
-  /** Adds a body (`where` names it in errors). */
-  void addBody(const physics::BodySpec& spec, const std::string& where);
-  /** Adds one ball (world metres, m/s, kg). */
-  void spawnBall(const glm::vec3& position, const glm::vec3& velocity, float radius = 0.35f,
-                 float mass = 30.0f);
-  /** Advances the bodies and the grass to `seconds` (fixed steps; the grass draws the result). */
-  void advance(double seconds, const wind::WindSettings& wind);
-  /** Draws the bodies into the bound framebuffer. */
-  void drawBodies(const render::Camera& camera, int width, int height, double time,
-                  const render::Environment& environment);
-  void reloadShaders(const shader::Library& library);
-
-  const grass::SimStats& stats() const { return mTiles->stats(); }
-  std::size_t bodies() const { return mWorld->bodyCount(); }
-  double time() const { return mTime; }
-  bool onGpu() const { return mGpu; }
-
-private:
-  grass::GrassRenderer& mGrass;
-  std::unique_ptr<physics::World> mWorld;
-  std::unique_ptr<grass::TileSimulation> mTiles;
-  std::unique_ptr<grass::GrassSimulator> mSimulator;
-  physics::BodyRenderer mBodies;
-  bool mGpu = true;
-  double mTime = 0.0;
+  /** The engine's description (checked: throws for bad settings). */
+  scene::GrassSimSettings settings() const { return {poolSettings(), solverSettings(), solver == "gpu"}; }
 };
 
 /**

@@ -1,6 +1,7 @@
 #include "TreeFlags.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/scene/Ground.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 
 #include "SourceOptions.hpp"
@@ -126,17 +127,8 @@ trees::ForestLook TreeFlags::look() const {
   return l;
 }
 
-trees::FarGround farGround(const terrain::TerrainScene& terrain) {
-  trees::FarGround g;
-  g.field = &terrain.field();
-  if (terrain.seaLevel()) {
-    g.floor = (*terrain.seaLevel() + 0.5f) * terrain.exaggeration();
-  }
-  return g;
-}
-
 void TreeFlags::applyFarField(trees::ForestScene& scene, const terrain::TerrainScene& terrain) const {
-  scene.applyFarField(look(), forest, farGround(terrain));
+  scene.applyFarField(look(), forest, scene::farGround(terrain));
 }
 
 void TreeFlags::check() const {

@@ -68,9 +68,6 @@ struct TreeFlags {
   std::shared_ptr<trees::Forest> buildForest(const terrain::TerrainScene& scene) const;
 };
 
-/** The ground a far field stands on: `terrain`'s drawn heights, no tree below half a metre above its sea. */
-trees::FarGround farGround(const terrain::TerrainScene& terrain);
-
 /** "shaded" | "pieces" | "bones" | "lod" | "tiles" → TreeView; throws naming the option otherwise. */
 trees::TreeView parseTreeView(const std::string& name);
 

@@ -4,8 +4,8 @@
 #include "ViewScene.hpp"
 
 #include "ImGuiLayer.hpp"
-#include "SceneWorld.hpp"
 
+#include <sylva/scene/SceneWorld.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/gl/ContextInfo.hpp>
@@ -87,7 +87,7 @@ struct SceneViewer {
  * Throws a ball from `camera`: 1 m ahead of the eye (at least resting on the ground when the camera looks
  * steeply down), 8 m/s along the view and 1 m/s up. Returns the status line.
  */
-std::string throwBall(SceneWorld& world, const render::Camera& camera) {
+std::string throwBall(scene::SceneWorld& world, const render::Camera& camera) {
   const glm::vec3 forward = camera.forward();
   glm::vec3 at = camera.position + forward;
   const float ground = world.groundHeight(at.x, at.z);
@@ -136,7 +136,7 @@ void runSceneViewer(const SceneViewOptions& o) {
   window.setVsync(o.frames == 0);
   const gl::ContextInfo info = gl::queryContextInfo();
   const shader::Library library(o.shaderDir); // outlives the world (it rebuilds its simulation from it)
-  SceneWorld world(library, std::move(desc));
+  scene::SceneWorld world(library, std::move(desc));
   scene::ScenePasses& passes = world.passes();
 
   SceneViewer v;

@@ -1,4 +1,5 @@
-// The scene's water with the folding-textured shore band (docs/scenes.md "Water with a folding-textured shore").
+// The scene's water with the folding-textured shore band (docs/scenes.md "Water with a folding-textured
+// shore").
 #include <sylva/scene/ShoreWater.hpp>
 
 #include <sylva/core/Error.hpp>

@@ -1,5 +1,6 @@
-// The shore rule (docs/scenes.md "Water with a folding-textured shore"): water depth, band weight, slope and swash texture coordinates. The
-// water shader (shaders/scene/water.frag) evaluates the same expressions in float.
+// The shore rule (docs/scenes.md "Water with a folding-textured shore"): water depth, band weight, slope and
+// swash texture coordinates. The water shader (shaders/scene/water.frag) evaluates the same expressions in
+// float.
 #include <sylva/scene/Shore.hpp>
 
 #include <sylva/core/Error.hpp>

@@ -5,6 +5,7 @@
 // is the caller's.
 
 #include <sylva/core/FieldName.hpp>
+#include <sylva/grass/Cull.hpp>
 #include <sylva/grass/GrassField.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/terrain/HeightField.hpp>
@@ -59,6 +60,13 @@ grass::FieldSettings grassFieldSettings(const GrassLayer& layer, const GrassGrou
 /** The blade types of `layer`: every blade of its blade-model files in order, or the procedural set when it
  * names none. Throws sylva::Error naming the field ("blades") for a file without blades. */
 std::vector<grass::BladeType> grassBladeTypes(const GrassLayer& layer, const GrassFieldName& name);
+
+/**
+ * How far `layer`'s grass is drawn: to its distance, with the LOD bands at 20 % and 55 % of it (the defaults
+ * 12 and 35 m suit 60 m) and the fades shortened to fit, so every distance in a scene file is valid. Throws
+ * naming the field ("distance").
+ */
+grass::CullSettings grassCullSettings(const GrassLayer& layer, const GrassFieldName& name);
 
 /** The field of `layer` over ground.field: grassBladeTypes and grassFieldSettings. */
 std::shared_ptr<const grass::GrassField> buildGrassField(const GrassLayer& layer, const GrassGround& ground,

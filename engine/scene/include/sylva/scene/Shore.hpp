@@ -9,9 +9,9 @@
 namespace sylva::scene {
 
 /**
- * A lake or sea surface at a level with a folding-textured shore band (docs/scenes.md "Water with a folding-textured shore"). Heights are
- * those of the drawn height field (world metres, already multiplied by the terrain's vertical exaggeration);
- * depths, `band` and `wet` are true metres (divided by it).
+ * A lake or sea surface at a level with a folding-textured shore band (docs/scenes.md "Water with a
+ * folding-textured shore"). Heights are those of the drawn height field (world metres, already multiplied by
+ * the terrain's vertical exaggeration); depths, `band` and `wet` are true metres (divided by it).
  */
 struct ShoreSettings {
   /** World height of the water surface, metres (same vertical scale as the drawn height field). */

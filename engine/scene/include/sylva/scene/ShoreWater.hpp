@@ -23,13 +23,13 @@ enum class ShoreWaterView : int {
 };
 
 /**
- * The scene's water (docs/scenes.md "Water with a folding-textured shore"): a surface at ShoreSettings::level over the terrain's footprint
- * with depth colour, Fresnel towards the sky colour and a sun glint, and in the shore band (shoreBand) a
- * folding texture animating the swash, laid with its advance direction up the slope (swashCoords). The
- * folding project is loaded and synthesised on the CPU at construction (like `sylva fold render`); update()
- * renders its frame for the scene time into a small RGBA8 texture with folding::gpu::FoldRenderer.
- * Deterministic: the same time gives the same pixels. Needs a current GL 4.5 context for every call,
- * including construction and destruction.
+ * The scene's water (docs/scenes.md "Water with a folding-textured shore"): a surface at ShoreSettings::level
+ * over the terrain's footprint with depth colour, Fresnel towards the sky colour and a sun glint, and in the
+ * shore band (shoreBand) a folding texture animating the swash, laid with its advance direction up the slope
+ * (swashCoords). The folding project is loaded and synthesised on the CPU at construction (like `sylva fold
+ * render`); update() renders its frame for the scene time into a small RGBA8 texture with
+ * folding::gpu::FoldRenderer. Deterministic: the same time gives the same pixels. Needs a current GL 4.5
+ * context for every call, including construction and destruction.
  */
 class ShoreWater {
 public:

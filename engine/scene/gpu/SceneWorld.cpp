@@ -1,28 +1,29 @@
-#include "SceneWorld.hpp"
+#include <sylva/scene/SceneWorld.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Shadows.hpp>
+#include <sylva/scene/GrassSimulation.hpp>
+#include <sylva/scene/Ground.hpp>
 #include <sylva/scene/SceneForest.hpp>
+#include <sylva/scene/SceneGrass.hpp>
+#include <sylva/trees/ForestScene.hpp>
 #include <sylva/scene/SceneTerrain.hpp>
 #include <sylva/scene/ShoreWater.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/Species.hpp>
 
-#include "GrassFlags.hpp"
-#include "GrassSim.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace sylva::app {
+namespace sylva::scene {
 
-SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
+SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
     : mLibrary(library), mDesc(std::move(desc)) {
   const float a = glm::radians(mDesc.wind.direction);
   mWind.direction = {std::sin(a), -std::cos(a)}; // clockwise from north (−z), the way it blows
@@ -30,21 +31,16 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
   mWind.gustStrength = mDesc.wind.gusts;
   mWind.seed = mDesc.wind.seed;
 
-  mTerrain = terrain::TerrainScene::fromSetup(library, scene::terrainSetup(mDesc.terrain),
-                                              scene::sceneTerrainFieldName(mDesc.path));
+  mTerrain = terrain::TerrainScene::fromSetup(library, terrainSetup(mDesc.terrain),
+                                              sceneTerrainFieldName(mDesc.path));
   log::info("scene {}: terrain {}×{} samples, {:.0f}×{:.0f} m", mDesc.name, mTerrain->field().width(),
             mTerrain->field().height(), mTerrain->field().extentX(), mTerrain->field().extentZ());
 
   for (std::size_t i = 0; i < mDesc.grass.size(); ++i) {
-    const scene::GrassLayer& layer = mDesc.grass[i];
-    GrassFlags g;
-    g.cull.maxDistance = layer.distance;
-    // LOD bands scale with the draw distance (the defaults 12 and 35 m suit 60 m), so every distance is
-    // valid.
-    g.lod = fmt::format("{:.3g},{:.3g}", 0.2f * layer.distance, 0.55f * layer.distance);
-    const grass::CullSettings cull = g.cullSettings();
-    auto field =
-        scene::buildGrassField(layer, grassGround(*mTerrain), scene::sceneGrassFieldName(mDesc.path, i));
+    const GrassLayer& layer = mDesc.grass[i];
+    const GrassFieldName name = sceneGrassFieldName(mDesc.path, i);
+    const grass::CullSettings cull = grassCullSettings(layer, name);
+    auto field = buildGrassField(layer, grassGround(*mTerrain), name);
     mGrass.push_back(std::make_unique<grass::GrassRenderer>(library, field, cull));
     if (layer.simulate) {
       if (mSimulatedGrass >= 0) {
@@ -61,43 +57,38 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
 
   const float e = mTerrain->exaggeration();
   for (std::size_t i = 0; i < mDesc.forests.size(); ++i) {
-    const scene::ForestDesc& f = mDesc.forests[i];
-    const FieldName name = scene::sceneForestFieldName(mDesc.path, i);
-    const trees::ForestSettings s = scene::forestSettings(f, e, mTerrain->seaLevel(), name);
-    const trees::ForestLook look = scene::forestLook(f, name);
+    const ForestDesc& f = mDesc.forests[i];
+    const FieldName name = sceneForestFieldName(mDesc.path, i);
+    const trees::ForestSettings s = forestSettings(f, e, mTerrain->seaLevel(), name);
+    const trees::ForestLook look = forestLook(f, name);
     auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), s));
     auto scene = std::make_unique<trees::ForestScene>(library, forest, true);
-    trees::FarGround ground;
-    ground.field = &mTerrain->field();
-    if (mTerrain->seaLevel()) {
-      ground.floor = (*mTerrain->seaLevel() + 0.5f) * e;
-    }
-    scene->applyLook(look, s, ground);
+    scene->applyLook(look, s, farGround(*mTerrain));
     log::info("scene {}: forest {}: {} trees", mDesc.name, i, forest->trees.size());
     mForests.push_back(std::move(scene));
   }
 
-  for (const scene::WaterDesc& w : mDesc.water) {
-    scene::ShoreSettings settings;
+  for (const WaterDesc& w : mDesc.water) {
+    ShoreSettings settings;
     settings.level = w.level * e;
     settings.band = w.band;
     settings.tile = w.tile;
     settings.folding = w.folding;
-    mWater.push_back(std::make_unique<scene::ShoreWater>(library, mTerrain->field(), e, settings));
+    mWater.push_back(std::make_unique<ShoreWater>(library, mTerrain->field(), e, settings));
   }
 
-  const scene::GroundHeight ground = [this](float x, float z) {
+  const GroundHeight ground = [this](float x, float z) {
     const float h = groundHeight(x, z);
     return std::isnan(h) ? 0.0f : h;
   };
   for (const auto& [name, camera] : mDesc.cameras) {
-    mCameras[name] = scene::resolveKeys(camera, ground);
+    mCameras[name] = resolveKeys(camera, ground);
   }
 
-  mPasses = std::make_unique<scene::ScenePasses>(library, mDesc);
+  mPasses = std::make_unique<ScenePasses>(library, mDesc);
   mPasses->set(
-      scene::Pass::Terrain,
-      [this](const scene::PassInput& in) {
+      Pass::Terrain,
+      [this](const PassInput& in) {
         const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
         if (in.timers != nullptr) {
           in.timers->begin("lod (cpu)");
@@ -115,7 +106,7 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
         }
         mTerrain->draw(in.camera, in.width, in.height, in.time, in.timers, options);
       },
-      [this](const scene::PassInput& in) {
+      [this](const PassInput& in) {
         // Patches chosen for the viewer (as fine as those the shadows fall on), culled by the cascade.
         mTerrain->setFrozenFrustum(in.camera.frustum(1.0f));
         mTerrain->update(*in.viewer, 1.0f);
@@ -128,7 +119,7 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
         mTerrain->draw(in.camera, in.width, in.height, in.time, nullptr, options);
       });
   if (!mForests.empty()) {
-    auto drawTrees = [this](const scene::PassInput& in) {
+    auto drawTrees = [this](const PassInput& in) {
       trees::TreeDrawOptions options;
       options.environment = in.environment;
       // Shadow draws: the distance rule measured from the sun camera (outside the casters) gives the coarsest
@@ -143,10 +134,10 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
         forest->draw(in.camera, in.width, in.height, in.time, lod, options, in.timers);
       }
     };
-    mPasses->set(scene::Pass::Trees, drawTrees, drawTrees);
+    mPasses->set(Pass::Trees, drawTrees, drawTrees);
   }
   if (!mGrass.empty()) {
-    mPasses->set(scene::Pass::Grass, [this](const scene::PassInput& in) {
+    mPasses->set(Pass::Grass, [this](const PassInput& in) {
       const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
       grass::GrassDrawOptions options;
       options.environment = in.environment;
@@ -158,9 +149,9 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
     });
   }
   if (mSimulatedGrass >= 0) {
-    mPasses->set(scene::Pass::Bodies, [this](const scene::PassInput& in) {
+    mPasses->set(Pass::Bodies, [this](const PassInput& in) {
       if (in.timers != nullptr) {
-        in.timers->begin(scene::passName(scene::Pass::Bodies));
+        in.timers->begin(passName(Pass::Bodies));
       }
       mSimulation->drawBodies(in.camera, in.width, in.height, in.time, in.environment);
       if (in.timers != nullptr) {
@@ -169,9 +160,9 @@ SceneWorld::SceneWorld(const shader::Library& library, scene::SceneDesc desc)
     });
   }
   if (!mWater.empty()) {
-    mPasses->set(scene::Pass::Water, [this](const scene::PassInput& in) {
+    mPasses->set(Pass::Water, [this](const PassInput& in) {
       if (in.timers != nullptr) {
-        in.timers->begin(scene::passName(scene::Pass::Water));
+        in.timers->begin(passName(Pass::Water));
       }
       for (auto& w : mWater) {
         w->update(in.time);
@@ -195,15 +186,14 @@ float SceneWorld::groundHeight(float x, float z) const {
 void SceneWorld::buildSimulation() {
   mSimulation.reset();
   if (mSimulatedGrass >= 0) {
-    SimulationFlags flags;
-    flags.physics = "balls";
     grass::GrassRenderer& g = *mGrass[static_cast<std::size_t>(mSimulatedGrass)];
-    mSimulation = std::make_unique<GrassSimScene>(mLibrary, *mTerrain, g, g.fieldPointer(), flags);
+    mSimulation = std::make_unique<GrassSimulation>(mLibrary, mTerrain->field(), g, g.fieldPointer(),
+                                                    GrassSimSettings{});
     for (std::size_t i = 0; i < mDesc.bodies.size(); ++i) {
-      const scene::BodyDesc& b = mDesc.bodies[i];
+      const BodyDesc& b = mDesc.bodies[i];
       physics::BodySpec spec;
-      spec.shape = b.shape == scene::BodyDesc::Shape::Ball ? physics::Shape::Sphere : physics::Shape::Box;
-      spec.size = b.shape == scene::BodyDesc::Shape::Ball ? glm::vec3(b.radius) : b.halfExtents;
+      spec.shape = b.shape == BodyDesc::Shape::Ball ? physics::Shape::Sphere : physics::Shape::Box;
+      spec.size = b.shape == BodyDesc::Shape::Ball ? glm::vec3(b.radius) : b.halfExtents;
       spec.position = b.position.p;
       if (b.position.aboveGround) {
         spec.position.y += groundHeight(spec.position.x, spec.position.z);
@@ -212,7 +202,7 @@ void SceneWorld::buildSimulation() {
       spec.mass = b.mass;
       mSimulation->addBody(spec, fmt::format("{}: /bodies/{}", mDesc.path, i));
     }
-    for (const scene::BodyDrop& d : mDesc.drops) {
+    for (const BodyDrop& d : mDesc.drops) {
       mSimulation->spawnBalls(d.centre, d.radius, d.count, d.seed, d.height);
     }
   }
@@ -261,7 +251,7 @@ render::Camera SceneWorld::camera(const std::string& name, double time, float as
     fail("{}: no camera '{}' (the file has: {})", mDesc.path, name, names);
   }
   const auto c = mDesc.cameras.find(name);
-  const scene::CameraSample s = scene::evaluate(it->second, time, c->second.loop);
+  const CameraSample s = evaluate(it->second, time, c->second.loop);
   render::Camera camera;
   camera.position = s.position;
   camera.target = s.target;
@@ -326,4 +316,4 @@ void SceneWorld::reloadShaders(const shader::Library& library) {
   }
 }
 
-} // namespace sylva::app
+} // namespace sylva::scene

@@ -1,7 +1,8 @@
 #pragma once
-// A scene file made drawable (`sylva render scene.json`, `sylva view scene.json`, `sylva bench scene`): the
-// subsystems the file names, built with the same builders as the per-subsystem flags, composed frame by frame
-// in the scene module's pass order (scene::ScenePasses). docs/scenes.md.
+// A scene made drawable (`sylva render scene.json`, `sylva view scene.json`, `sylva bench scene`): the engine
+// composes the world a scene description names (terrain, grass layers, forests, simulated grass and bodies,
+// lakes, cameras) with the same builders as the per-subsystem options, and draws it frame by frame in the
+// scene's pass order (ScenePasses). docs/scenes.md. GL side.
 
 #include <sylva/grass/GrassRenderer.hpp>
 #include <sylva/render/Camera.hpp>
@@ -14,20 +15,19 @@
 #include <sylva/terrain/TerrainScene.hpp>
 #include <sylva/wind/Wind.hpp>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
-namespace sylva::scene {
-class ShoreWater;
-}
 namespace sylva::trees {
 class ForestScene;
 }
 
-namespace sylva::app {
+namespace sylva::scene {
 
-class GrassSimScene;
+class GrassSimulation;
+class ShoreWater;
 
 /**
  * Every subsystem of one scene file, on the GPU, with its simulations. Frame f of a sequence is a pure
@@ -37,12 +37,14 @@ class GrassSimScene;
  */
 class SceneWorld {
 public:
-  SceneWorld(const shader::Library& library, scene::SceneDesc desc);
+  /** Builds every subsystem of `desc`; errors name the scene file and field (before the expensive work where
+   * the description allows it). */
+  SceneWorld(const shader::Library& library, SceneDesc desc);
   ~SceneWorld();
   SceneWorld(const SceneWorld&) = delete;
   SceneWorld& operator=(const SceneWorld&) = delete;
 
-  const scene::SceneDesc& desc() const { return mDesc; }
+  const SceneDesc& desc() const { return mDesc; }
   /** Seconds of frame `frame` on the scene's fixed clock (frame / fps). */
   double frameTime(int frame) const { return static_cast<double>(frame) / mDesc.output.fps; }
 
@@ -67,7 +69,7 @@ public:
 
   /** The frame environment (sun, sky, fog) the passes share; shadows are filled per frame. */
   const render::Environment& environment() const { return mPasses->environment(); }
-  scene::ScenePasses& passes() { return *mPasses; }
+  ScenePasses& passes() { return *mPasses; }
   const wind::WindSettings& wind() const { return mWind; }
   terrain::TerrainScene& terrain() { return *mTerrain; }
   /** Drawn terrain height at world (x, z) (exaggerated metres); NaN outside or over nodata. */
@@ -89,18 +91,18 @@ private:
   void stepTo(double time);
 
   const shader::Library& mLibrary;
-  scene::SceneDesc mDesc;
+  SceneDesc mDesc;
   wind::WindSettings mWind;
   std::unique_ptr<terrain::TerrainScene> mTerrain;
   std::vector<std::unique_ptr<grass::GrassRenderer>> mGrass;
   int mSimulatedGrass = -1;
-  std::unique_ptr<GrassSimScene> mSimulation;
+  std::unique_ptr<GrassSimulation> mSimulation;
   std::vector<std::unique_ptr<trees::ForestScene>> mForests;
-  std::vector<std::unique_ptr<scene::ShoreWater>> mWater;
-  std::unique_ptr<scene::ScenePasses> mPasses;
-  std::map<std::string, std::vector<scene::WorldCameraKey>> mCameras;
+  std::vector<std::unique_ptr<ShoreWater>> mWater;
+  std::unique_ptr<ScenePasses> mPasses;
+  std::map<std::string, std::vector<WorldCameraKey>> mCameras;
   int mFrame = -1;
   double mTime = 0.0;
 };
 
-} // namespace sylva::app
+} // namespace sylva::scene
