@@ -7,6 +7,9 @@
 #include <sylva/folding/Export.hpp>
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/scene/GrassSimulation.hpp>
+#include <sylva/scene/SceneWorld.hpp>
+#include <sylva/trees/ForestScene.hpp>
 
 #include "CmdScene.hpp"
 #include "GrassFlags.hpp"
@@ -14,39 +17,102 @@
 #include "TerrainFlags.hpp"
 #include "TreeFlags.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace sylva::app {
 
+namespace {
+
+/** The options of `sylva render`. */
+struct Options {
+  ContextFlags context;
+  std::string scene = "terrain";
+  TerrainFlags terrain;
+  CameraFlags camera;
+  GrassFlags grass;
+  SimulationFlags simulation;
+  TreeFlags trees;
+  std::string frames;
+  SceneRenderOptions sceneFile;
+  CLI::Option* outOption = nullptr;
+  CLI::Option* widthOption = nullptr;
+  CLI::Option* heightOption = nullptr;
+  double fps = 30.0;
+  std::string gif;
+  std::string view = "shaded";
+  std::string out = "out/terrain.png";
+  int width = 1280;
+  int height = 720;
+  double time = 1.0;
+  render::DemoSettings demo;
+  bool wireframe = false;
+  std::string shaderDir;
+};
+
+/** The world `sylva render --grass/--trees/--physics` draws: the terrain, grass and forest options as a scene
+ * description (errors name the options). */
+scene::SceneDesc worldDesc(const Options& o) {
+  scene::SceneDesc d;
+  d.path = "sylva render";
+  d.name = "render";
+  d.terrain.setup = o.terrain.setup();
+  if (o.grass.enabled) {
+    scene::GrassLayer layer = o.grass.layerDesc();
+    layer.simulate = o.simulation.enabled();
+    d.grass.push_back(layer);
+  }
+  if (o.trees.enabled) {
+    d.forests.push_back(o.trees.forestDesc());
+  }
+  // The wind options blow along (cos a, sin a); a scene's direction is clockwise from north: a + 90°.
+  d.wind.speed = o.grass.windSpeed;
+  d.wind.direction = std::fmod(o.grass.windDirection + 90.0f, 360.0f);
+  d.wind.gusts = o.grass.gusts;
+  d.wind.seed = o.grass.windSeed;
+  d.fog.farSide = o.camera.fog;
+  if (o.simulation.enabled()) {
+    d.grassSim = o.simulation.settings();
+  }
+  d.fieldNames = [](std::string_view pointer) -> std::string {
+    const auto field = [&pointer](std::string_view prefix) {
+      return pointer.substr(pointer.find('/', prefix.size()) + 1);
+    };
+    if (pointer.starts_with("/terrain/")) {
+      return terrainOption(pointer.substr(std::string_view("/terrain/").size()));
+    }
+    if (pointer.starts_with("/grass/")) {
+      return GrassFlags::option(field("/grass/"));
+    }
+    if (pointer.starts_with("/forests/")) {
+      std::string option = "--trees-" + std::string(field("/forests/"));
+      std::replace(option.begin(), option.end(), '_', '-');
+      return option;
+    }
+    return std::string(pointer);
+  };
+  return d;
+}
+
+/** Writes --gif (all frames) and -o (the last frame), when frames were kept. */
+void writeFrames(const Options& o, const std::vector<Image>& frames) {
+  if (!o.gif.empty()) {
+    folding::writeGif(o.gif, frames, std::max(1, static_cast<int>(std::lround(100.0 / o.fps))));
+    std::printf("%s\n", o.gif.c_str());
+  }
+  if (!frames.empty()) {
+    saveImage(o.out, frames.back());
+    std::printf("%s\n", o.out.c_str());
+  }
+}
+
+} // namespace
+
 void registerRender(CLI::App& app) {
   auto* command = app.add_subcommand(
       "render", "Render a scene headless into PNG images: a scene file (docs/scenes.md: a still, "
                 "or a resumable frame sequence with --frames), or terrain with --grass/--trees");
-  struct Options {
-    ContextFlags context;
-    std::string scene = "terrain";
-    TerrainFlags terrain;
-    CameraFlags camera;
-    GrassFlags grass;
-    SimulationFlags simulation;
-    TreeFlags trees;
-    std::string frames;
-    SceneRenderOptions sceneFile;
-    CLI::Option* outOption = nullptr;
-    CLI::Option* widthOption = nullptr;
-    CLI::Option* heightOption = nullptr;
-    double fps = 30.0;
-    std::string gif;
-    std::string view = "shaded";
-    std::string out = "out/terrain.png";
-    int width = 1280;
-    int height = 720;
-    double time = 1.0;
-    render::DemoSettings demo;
-    bool wireframe = false;
-    std::string shaderDir;
-  };
   auto o = std::make_shared<Options>();
   o->context.add(*command);
   command
@@ -148,97 +214,100 @@ void registerRender(CLI::App& app) {
       target.begin(glm::vec4(environment.fogColor, 1.0f));
       render::DemoScene scene(library, o->demo);
       scene.render(scene.defaultCamera(), o->width, o->height, o->time, nullptr, o->wireframe);
-    } else {
+    } else if (!o->grass.enabled && !o->trees.enabled) {
+      // Terrain alone: the terrain's own frame (its debugging views, sea and fog by --fog).
       auto scene = o->terrain.build(library);
-      std::unique_ptr<grass::GrassRenderer> grass;
-      render::Camera camera = o->camera.camera(*scene, target.aspect());
+      const render::Camera camera = o->camera.camera(*scene, target.aspect());
+      terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->camera.fog);
+      options.view = parseTerrainView(o->view);
+      options.wireframe = o->wireframe;
+      std::vector<Image> frames;
+      Progress progress("render", static_cast<std::size_t>(frameCount));
+      for (int f = 0; f < frameCount; ++f) {
+        const double time = o->time + f / o->fps;
+        target.begin(glm::vec4(options.environment.fogColor, 1.0f));
+        scene->update(camera, target.aspect());
+        scene->draw(camera, o->width, o->height, time, nullptr, options);
+        if (frameCount > 1) {
+          frames.push_back(target.readColor());
+        }
+        progress.advance(1);
+      }
+      writeFrames(*o, frames);
+      if (!frames.empty()) {
+        return;
+      }
+    } else {
+      // Grass, trees, bodies: the world the options describe, drawn by the scene's one frame path (sun
+      // shadows, sky, aerial perspective), as a scene file would be.
+      scene::SceneWorld world(library, worldDesc(*o));
+      terrain::TerrainScene& terrain = world.terrain();
+      render::Camera camera = o->camera.camera(terrain, target.aspect());
+      const float fov = glm::radians(o->camera.fovDegrees);
       if (o->grass.enabled) {
-        auto field = o->grass.buildField(*scene);
-        grass = std::make_unique<grass::GrassRenderer>(library, field, o->grass.cullSettings());
+        const grass::GrassField& field = world.grass(0).field();
         log::info(
             "grass: {} blade types, {} tiles of {} m, about {:.3g} blades in the field, patch {:.2f} MB",
-            field->types().size(), static_cast<long long>(field->layout().tilesX) * field->layout().tilesZ,
-            field->layout().tileSize, field->estimateBlades(),
-            static_cast<double>(grass::patchBytes(field->patch().size(), field->types().size())) / 1e6);
+            field.types().size(), static_cast<long long>(field.layout().tilesX) * field.layout().tilesZ,
+            field.layout().tileSize, field.estimateBlades(),
+            static_cast<double>(grass::patchBytes(field.patch().size(), field.types().size())) / 1e6);
         if (o->camera.cameraPos.empty()) {
-          camera = grassCamera(*scene, *field, glm::radians(o->camera.fovDegrees), o->grass.windDirection);
-          const float e = scene->exaggeration();
+          camera = grassCamera(terrain, field, fov, o->grass.windDirection);
+          const float e = terrain.exaggeration();
           log::info("grass: camera at {:.1f},{:.1f},{:.1f} looking at {:.1f},{:.1f},{:.1f} (--camera-pos, "
                     "--look-at)",
                     camera.position.x, camera.position.y / e, camera.position.z, camera.target.x,
                     camera.target.y / e, camera.target.z);
         }
       }
-      std::unique_ptr<trees::ForestScene> forest;
       if (o->trees.enabled) {
-        std::shared_ptr<trees::Forest> placed = o->trees.buildForest(*scene);
-        forest = std::make_unique<trees::ForestScene>(library, placed, o->trees.wind);
-        forest->setBark(o->trees.barkSources());
-        o->trees.applyFoliage(*forest);
-        o->trees.applyFarField(*forest, *scene);
-        log::info("trees: {} trees, {} pieces, {} joints, {}", placed->trees.size(),
-                  forest->renderer().instances().instances.size(), placed->jointCount,
+        trees::ForestScene& forest = world.forest(0);
+        log::info("trees: {} trees, {} pieces, {} joints, {}", forest.forest().trees.size(),
+                  forest.renderer().instances().instances.size(), forest.forest().jointCount,
                   o->trees.wind ? "in the wind (--no-trees-wind: rest pose)" : "rest pose");
         if (o->camera.cameraPos.empty() && !o->grass.enabled) {
-          camera = forestCamera(*scene, *placed, glm::radians(o->camera.fovDegrees));
+          camera = forestCamera(terrain, forest.forest(), fov);
         }
       }
-      std::unique_ptr<scene::GrassSimulation> simulation;
       if (o->simulation.enabled()) {
-        simulation = std::make_unique<scene::GrassSimulation>(
-            library, scene->field(), *grass, grass->fieldPointer(), o->simulation.settings());
-        const glm::vec2 drop = ballDropPoint(scene->field(), grass->field(), camera);
-        simulation->spawnBalls(drop, 1.5f, o->simulation.balls, o->simulation.seed, 0.5f);
+        scene::BodyDrop drop;
+        drop.centre = ballDropPoint(terrain.field(), world.grass(0).field(), camera);
+        drop.radius = 1.5f;
+        drop.count = o->simulation.balls;
+        drop.seed = o->simulation.seed;
+        drop.height = 0.5f;
+        world.addDrop(drop);
         if (o->camera.cameraPos.empty()) {
-          camera = ballCamera(*scene, drop, glm::radians(o->camera.fovDegrees));
+          camera = ballCamera(terrain, drop.centre, fov);
         }
       }
-      terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->camera.fog);
-      options.view = parseTerrainView(o->view);
-      options.wireframe = o->wireframe;
-      grass::GrassDrawOptions grassOptions;
-      grassOptions.view = o->grass.grassView();
-      grassOptions.wind = o->grass.wind();
+      scene::SceneDrawOptions draw;
+      draw.terrainView = parseTerrainView(o->view);
+      draw.wireframe = o->wireframe;
+      draw.grassView = o->grass.grassView();
+      draw.treeView = o->trees.treeView();
+      draw.treeLod = o->trees.lod;
+      world.setDrawOptions(draw);
       std::vector<Image> frames;
       Progress progress("render", static_cast<std::size_t>(frameCount));
       for (int f = 0; f < frameCount; ++f) {
         const double time = o->time + f / o->fps;
-        if (simulation) {
-          simulation->advance(time - o->time, grassOptions.wind);
-        }
-        target.begin(glm::vec4(environment.fogColor, 1.0f));
-        drawTerrainWithGrass(*scene, grass.get(), camera, o->width, o->height, time, options, grassOptions);
-        if (forest) {
-          // Fixed steps from --time on (the first frame after the same warm-up): the same image for the same
-          // --time, and enough steps per frame for any --fps.
-          forest->advance(time, grassOptions.wind,
-                          static_cast<int>(std::ceil(1.0 / (o->fps * trees::kForestWindStep))) + 1);
-          trees::TreeDrawOptions treeOptions;
-          treeOptions.view = o->trees.treeView();
-          treeOptions.environment = options.environment;
-          forest->draw(camera, o->width, o->height, time, o->trees.lod, treeOptions);
-        }
-        if (simulation) {
-          simulation->drawBodies(camera, o->width, o->height, time, options.environment);
-        }
+        world.advanceTo(time);
+        target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        world.draw(camera, o->width, o->height, time, &target.depth(), nullptr);
         if (frameCount > 1) {
           frames.push_back(target.readColor());
         }
         progress.advance(1);
       }
-      if (simulation) {
+      if (const scene::GrassSimulation* simulation = world.simulation()) {
         const grass::SimStats& s = simulation->stats();
         log::info(
             "grass simulation: {} bodies, {} tiles ({} blades) simulated at the end, {} refused (pool full)",
             simulation->bodies(), s.activeTiles, s.simulatedBlades, s.refusedTiles);
       }
-      if (!o->gif.empty()) {
-        folding::writeGif(o->gif, frames, std::max(1, static_cast<int>(std::lround(100.0 / o->fps))));
-        std::printf("%s\n", o->gif.c_str());
-      }
+      writeFrames(*o, frames);
       if (!frames.empty()) {
-        saveImage(o->out, frames.back());
-        std::printf("%s\n", o->out.c_str());
         return;
       }
     }

@@ -174,24 +174,26 @@ scene::GrassLayer GrassFlags::layerDesc() const {
   l.patchBlades = field.patch.blades;
   l.tileSize = field.patch.tileSize;
   l.bladesPerTile = field.bladesPerTile;
+  l.cull = cullSettings();
   return l;
+}
+
+std::string GrassFlags::option(std::string_view field) {
+  if (field == "blades") {
+    return "--grass-types";
+  }
+  if (field == "blades_per_tile") {
+    return "--grass-per-tile";
+  }
+  if (field == "max_slope") {
+    return "--grass-max-slope";
+  }
+  return fmt::format("--grass-{}", field);
 }
 
 std::shared_ptr<const grass::GrassField> GrassFlags::buildField(const terrain::TerrainScene& scene) const {
   check();
   // Errors name the option a layer field comes from.
-  const scene::GrassFieldName option = [](std::string_view f) -> std::string {
-    if (f == "blades") {
-      return "--grass-types";
-    }
-    if (f == "blades_per_tile") {
-      return "--grass-per-tile";
-    }
-    if (f == "max_slope") {
-      return "--grass-max-slope";
-    }
-    return fmt::format("--grass-{}", f);
-  };
   return scene::buildGrassField(layerDesc(), scene::grassGround(scene), option);
 }
 

@@ -44,8 +44,11 @@ struct GrassFlags {
   grass::CullSettings cullSettings() const;
   wind::WindSettings wind() const;
   grass::GrassView grassView() const;
-  /** The grass layer these options describe (what a scene file's grass entry holds). */
+  /** The grass layer these options describe (what a scene file's grass entry holds, with --grass-lod's
+   * culling). */
   scene::GrassLayer layerDesc() const;
+  /** The option a grass layer field comes from: "blades" → "--grass-types", "paint" → "--grass-paint". */
+  static std::string option(std::string_view field);
   /**
    * The field over `scene`'s terrain (heights as drawn) as the engine builds a scene's grass layer
    * (scene::buildGrassField): blade types, patch, density with the paint mask and the scene's splat layer

@@ -166,6 +166,24 @@ trees::TreeView TreeFlags::treeView() const {
   return parseTreeView(view);
 }
 
+scene::ForestDesc TreeFlags::forestDesc() const {
+  scene::ForestDesc f;
+  for (const std::string& species : forest.species) {
+    f.species[species] = 1.0f;
+  }
+  f.count = forest.count;
+  f.seed = forest.seed;
+  f.spacing = forest.spacing;
+  f.maxSlope = forest.maxSlope;
+  f.clusterSize = forest.clusterSize;
+  f.bare = forest.bare;
+  f.regionRadius = forest.regionRadius;
+  f.regionAroundCentre = forest.regionRadius > 0.0f;
+  f.look = look();
+  f.wind = wind;
+  return f;
+}
+
 std::shared_ptr<trees::Forest> TreeFlags::buildForest(const terrain::TerrainScene& scene) const {
   check();
   trees::ForestSettings settings = forest;

@@ -3,6 +3,7 @@
 
 #include <sylva/core/Geometry.hpp>
 #include <sylva/render/GpuTimers.hpp>
+#include <sylva/scene/SceneFile.hpp>
 #include <sylva/terrain/TerrainScene.hpp>
 #include <sylva/trees/FoliageRenderer.hpp>
 #include <sylva/trees/ForestScene.hpp>
@@ -64,6 +65,9 @@ struct TreeFlags {
   /** Throws naming the option when a value is malformed (before any work is done). */
   void check() const;
   trees::TreeView treeView() const;
+  /** The forest these options describe (what a scene file's forest holds, with every look setting): the
+   * species weighted equally, around the terrain's centre within --trees-radius. */
+  scene::ForestDesc forestDesc() const;
   /** The forest on `scene`'s terrain (drawn heights), only above the sea level. */
   std::shared_ptr<trees::Forest> buildForest(const terrain::TerrainScene& scene) const;
 };

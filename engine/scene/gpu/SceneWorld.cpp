@@ -32,13 +32,13 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
   mWind.seed = mDesc.wind.seed;
 
   mTerrain = terrain::TerrainScene::fromSetup(library, terrainSetup(mDesc.terrain),
-                                              sceneTerrainFieldName(mDesc.path));
+                                              sceneFieldName(mDesc, "/terrain"));
   log::info("scene {}: terrain {}×{} samples, {:.0f}×{:.0f} m", mDesc.name, mTerrain->field().width(),
             mTerrain->field().height(), mTerrain->field().extentX(), mTerrain->field().extentZ());
 
   for (std::size_t i = 0; i < mDesc.grass.size(); ++i) {
     const GrassLayer& layer = mDesc.grass[i];
-    const GrassFieldName name = sceneGrassFieldName(mDesc.path, i);
+    const GrassFieldName name = sceneFieldName(mDesc, "/grass/" + std::to_string(i));
     const grass::CullSettings cull = grassCullSettings(layer, name);
     auto field = buildGrassField(layer, grassGround(*mTerrain), name);
     mGrass.push_back(std::make_unique<grass::GrassRenderer>(library, field, cull));
@@ -58,11 +58,13 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
   const float e = mTerrain->exaggeration();
   for (std::size_t i = 0; i < mDesc.forests.size(); ++i) {
     const ForestDesc& f = mDesc.forests[i];
-    const FieldName name = sceneForestFieldName(mDesc.path, i);
-    const trees::ForestSettings s = forestSettings(f, e, mTerrain->seaLevel(), name);
+    const FieldName name = sceneFieldName(mDesc, "/forests/" + std::to_string(i));
+    const trees::ForestSettings s =
+        forestSettings(f, e, mTerrain->seaLevel(), name,
+                       glm::vec2(mTerrain->field().extentX(), mTerrain->field().extentZ()));
     const trees::ForestLook look = forestLook(f, name);
     auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), s));
-    auto scene = std::make_unique<trees::ForestScene>(library, forest, true);
+    auto scene = std::make_unique<trees::ForestScene>(library, forest, f.wind);
     scene->applyLook(look, s, farGround(*mTerrain));
     log::info("scene {}: forest {}: {} trees", mDesc.name, i, forest->trees.size());
     mForests.push_back(std::move(scene));
@@ -100,8 +102,10 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
         terrain::TerrainDrawOptions options = mTerrain->drawOptions(in.camera);
         options.environment = in.environment;
         options.waterLevel.reset(); // the scene's water pass draws the lakes
-        options.geomorph = mDesc.terrain.geomorph;
-        if (!mGrass.empty()) {
+        options.geomorph = mDesc.terrain.setup ? mDesc.terrain.setup->geomorph : mDesc.terrain.geomorph;
+        options.view = mDrawOptions.terrainView;
+        options.wireframe = mDrawOptions.wireframe;
+        if (!mGrass.empty() && options.view == terrain::TerrainView::Shaded) {
           options.groundTint = mGrass.front()->groundTint();
         }
         mTerrain->draw(in.camera, in.width, in.height, in.time, in.timers, options);
@@ -114,7 +118,7 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
         terrain::TerrainDrawOptions options = mTerrain->drawOptions(in.camera);
         options.environment = in.environment;
         options.waterLevel.reset();
-        options.geomorph = mDesc.terrain.geomorph;
+        options.geomorph = mDesc.terrain.setup ? mDesc.terrain.setup->geomorph : mDesc.terrain.geomorph;
         options.view = terrain::TerrainView::Depth; // depth is all a cascade keeps
         mTerrain->draw(in.camera, in.width, in.height, in.time, nullptr, options);
       });
@@ -125,7 +129,8 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
       // Shadow draws: the distance rule measured from the sun camera (outside the casters) gives the coarsest
       // pieces, which is what a shadow map of this resolution can show; depth is all a cascade keeps, and
       // pieces under the shadow filter's footprint are skipped.
-      trees::TreeLod lod;
+      options.view = mDrawOptions.treeView;
+      trees::TreeLod lod = mDrawOptions.treeLod;
       if (in.shadow) {
         options.view = trees::TreeView::Depth;
         lod.minPixels = render::kCasterMinTexels;
@@ -140,6 +145,7 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
     mPasses->set(Pass::Grass, [this](const PassInput& in) {
       const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
       grass::GrassDrawOptions options;
+      options.view = mDrawOptions.grassView;
       options.environment = in.environment;
       options.wind = mWind;
       for (auto& g : mGrass) {
@@ -187,8 +193,8 @@ void SceneWorld::buildSimulation() {
   mSimulation.reset();
   if (mSimulatedGrass >= 0) {
     grass::GrassRenderer& g = *mGrass[static_cast<std::size_t>(mSimulatedGrass)];
-    mSimulation = std::make_unique<GrassSimulation>(mLibrary, mTerrain->field(), g, g.fieldPointer(),
-                                                    GrassSimSettings{});
+    mSimulation =
+        std::make_unique<GrassSimulation>(mLibrary, mTerrain->field(), g, g.fieldPointer(), mDesc.grassSim);
     for (std::size_t i = 0; i < mDesc.bodies.size(); ++i) {
       const BodyDesc& b = mDesc.bodies[i];
       physics::BodySpec spec;
@@ -268,7 +274,19 @@ void SceneWorld::draw(const render::Camera& camera, int width, int height, doubl
     casters.min = glm::min(casters.min, forest->bounds().min);
     casters.max = glm::max(casters.max, forest->bounds().max);
   }
+  if (mDesc.fog.farSide) {
+    mPasses->setFogDensity(render::fogDensityFor(camera.position, mTerrain->bounds(), *mDesc.fog.farSide));
+  }
   mPasses->render(camera, width, height, time, casters, depth, timers);
+}
+
+void SceneWorld::addDrop(const BodyDrop& drop) {
+  if (mSimulatedGrass < 0) {
+    fail("{}: /drops: balls need a grass layer with \"simulate\": true (the physics world moves the grass)",
+         mDesc.path);
+  }
+  mDesc.drops.push_back(drop);
+  buildSimulation();
 }
 
 bool SceneWorld::spawnBall(const glm::vec3& position, const glm::vec3& velocity) {

@@ -937,4 +937,11 @@ SceneDesc loadScene(const std::filesystem::path& file) {
   return parseScene(readTextFile(file), file);
 }
 
+FieldName sceneFieldName(const SceneDesc& scene, const std::string& prefix) {
+  return [names = scene.fieldNames, path = scene.path, prefix](std::string_view field) {
+    const std::string pointer = prefix + "/" + std::string(field);
+    return names ? names(pointer) : path + ": " + pointer;
+  };
+}
+
 } // namespace sylva::scene

@@ -15,7 +15,7 @@ FieldName sceneForestFieldName(const std::filesystem::path& file, std::size_t in
 }
 
 trees::ForestSettings forestSettings(const ForestDesc& f, float exaggeration, std::optional<float> seaLevel,
-                                     const FieldName& name) {
+                                     const FieldName& name, glm::vec2 footprint) {
   trees::ForestSettings s;
   s.species.clear();
   for (const auto& [species, weight] : f.species) {
@@ -45,6 +45,9 @@ trees::ForestSettings forestSettings(const ForestDesc& f, float exaggeration, st
   if (f.regionCentre) {
     s.regionCentre = *f.regionCentre;
     s.regionRadius = f.regionRadius;
+  } else if (f.regionAroundCentre) {
+    s.regionCentre = 0.5f * footprint;
+    s.regionRadius = f.regionRadius;
   } else {
     s.regionRadius = 0.0f; // no region: the whole terrain
   }
@@ -65,6 +68,10 @@ trees::ForestSettings forestSettings(const ForestDesc& f, float exaggeration, st
 }
 
 trees::ForestLook forestLook(const ForestDesc& f, const FieldName& name) {
+  if (f.look) {
+    trees::check(*f.look, name);
+    return *f.look;
+  }
   trees::ForestLook look;
   look.bark = f.bark;
   look.foliage = f.foliage;

@@ -31,8 +31,12 @@ GrassFieldName sceneGrassFieldName(const std::filesystem::path& file, std::size_
 
 grass::CullSettings grassCullSettings(const GrassLayer& layer, const GrassFieldName& name) {
   grass::CullSettings c;
-  c.maxDistance = layer.distance;
-  c.lodDistances = {0.2f * layer.distance, 0.55f * layer.distance};
+  if (layer.cull) {
+    c = *layer.cull;
+  } else {
+    c.maxDistance = layer.distance;
+    c.lodDistances = {0.2f * layer.distance, 0.55f * layer.distance};
+  }
   c.farFade = std::min(c.farFade, 0.25f * c.maxDistance);
   c.orientationDistance = std::min(c.orientationDistance, c.maxDistance);
   try {

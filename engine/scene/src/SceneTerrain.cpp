@@ -5,6 +5,9 @@
 namespace sylva::scene {
 
 terrain::TerrainSetup terrainSetup(const TerrainDesc& t) {
+  if (t.setup) {
+    return *t.setup;
+  }
   terrain::TerrainSetup s;
   if (!t.dem.empty()) {
     s.source.dem = t.dem;

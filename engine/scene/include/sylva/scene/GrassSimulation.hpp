@@ -10,6 +10,7 @@
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Camera.hpp>
 #include <sylva/render/FrameUniforms.hpp>
+#include <sylva/scene/SceneFile.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/terrain/HeightField.hpp>
 #include <sylva/wind/Wind.hpp>
@@ -22,14 +23,6 @@
 #include <string>
 
 namespace sylva::scene {
-
-/** How the grass is simulated: the tile pool, the solver's settings, and where it runs. */
-struct GrassSimSettings {
-  grass::PoolSettings pool;
-  grass::SolverSettings solver;
-  /** True: the compute-shader solver; false: the CPU reference. */
-  bool gpu = true;
-};
 
 /**
  * The physics world on a terrain, the simulated tiles of one grass renderer's field and the drawing of the

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -11,6 +12,13 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <sylva/core/FieldName.hpp>
+#include <sylva/grass/Cull.hpp>
+#include <sylva/grass/Simulation.hpp>
+#include <sylva/grass/TileSimulation.hpp>
+#include <sylva/terrain/TerrainSetup.hpp>
+#include <sylva/trees/ForestLook.hpp>
+
 /**
  * The scene file (docs/scenes.md): one versioned JSON document that composes terrain, grass, forests,
  * folding-textured water, physics bodies, sun, sky, fog, wind, shadows, cameras and the output sequence.
@@ -18,6 +26,10 @@
  * All positions are world metres: x east, y up, z south; the terrain covers [0, extentX] × [0, extentZ] with
  * its minimum corner at the origin. Angles are degrees in JSON (and in these structs). Paths held here are
  * already resolved (absolute, against the scene file's directory) and were checked to exist when loaded.
+ *
+ * A description built in code (the command line: `sylva render --grass --trees`) may also set the fields
+ * marked "code only", which say what a file cannot (a DEM's reading options, LOD bands, leaf images, ...);
+ * files never set them.
  */
 namespace sylva::scene {
 
@@ -51,6 +63,8 @@ struct TerrainDesc {
   float lodFactor = 2.0f;        ///< CDLOD distance factor, [1.05, 64]
   int maxDepth = -1;             ///< quadtree depth limit, [0, 16]; -1: automatic
   bool geomorph = true;          ///< morph vertices across LOD boundaries
+  /** Code only: the terrain as the terrain module describes it, used instead of the fields above. */
+  std::optional<terrain::TerrainSetup> setup;
 };
 
 /** One grass layer: blades on the terrain where the splat layer / paint map allow. */
@@ -68,6 +82,8 @@ struct GrassLayer {
   int patchBlades = 16384; ///< blades in the patch every tile draws from
   float tileSize = 2.0f;   ///< tile (and patch) side, metres
   int bladesPerTile = 256; ///< blades a tile draws at density 1 (at most patchBlades)
+  /** Code only: draw distance, LOD bands and fades, instead of those derived from `distance`. */
+  std::optional<grass::CullSettings> cull;
 };
 
 /** One forest: a species mix placed by rules evaluated from the terrain. */
@@ -89,6 +105,13 @@ struct ForestDesc {
   float farDistance = 0.0f;              ///< metres beyond which trees become far-field impostors; 0: off
   float farBand = 25.0f;                 ///< cross-fade band width at farDistance, metres
   int farCount = 0;                      ///< extra far-field-only trees, [0, kMaxForestCount]
+  /** Code only: bark, foliage and far field with every setting (leaf images, bark photos, ...), instead of
+   * bark, foliage and far_*. */
+  std::optional<trees::ForestLook> look;
+  /** Code only: false draws the trees in their rest pose (no joint springs). */
+  bool wind = true;
+  /** Code only: a region radius without a centre is centred on the terrain's footprint. */
+  bool regionAroundCentre = false;
 };
 
 /** A water plane at a level; its shore band can use a folding texture (wave swash). */
@@ -139,6 +162,9 @@ struct SkyDesc {
 /** Aerial perspective. */
 struct FogDesc {
   float density = 0.0012f; ///< extinction per metre, ≥ 0
+  /** Code only: instead of `density`, the fog of the farthest point of the terrain seen from the camera,
+   * [0, 0.95] (`sylva render --fog`: the same look whatever the terrain's size). */
+  std::optional<float> farSide;
 };
 
 /** The one wind field shared by grass and trees. */
@@ -155,6 +181,14 @@ struct ShadowDesc {
   int size = 2048;         ///< shadow-map side, texels, [64, 8192]
   float distance = 300.0f; ///< metres covered by the cascades
   float lambda = 0.7f;     ///< practical split: 0 uniform, 1 logarithmic
+};
+
+/** How simulated grass runs (code only: `--grass-sim`, `--grass-pool`, `--trample-recovery`). */
+struct GrassSimSettings {
+  grass::PoolSettings pool;
+  grass::SolverSettings solver;
+  /** True: the compute-shader solver; false: the CPU reference. */
+  bool gpu = true;
 };
 
 /** A camera key. */
@@ -196,6 +230,10 @@ struct SceneDesc {
   FogDesc fog;
   WindDesc wind;
   ShadowDesc shadows;
+  GrassSimSettings grassSim; ///< code only
+  /** Code only: names a field in errors from its JSON pointer ("/grass/0/paint" → "--grass-paint"); empty:
+   * "<path>: <pointer>", as for a file. */
+  std::function<std::string(std::string_view pointer)> fieldNames;
   std::map<std::string, CameraDesc> cameras; ///< at least the output camera
   OutputDesc output;
 };
@@ -212,6 +250,12 @@ SceneDesc loadScene(const std::filesystem::path& file);
  * directory resolves relative paths (it need not exist).
  */
 SceneDesc parseScene(std::string_view json, const std::filesystem::path& fileForErrorsAndPaths);
+
+/**
+ * Names the fields under JSON pointer `prefix` ("/terrain", "/grass/0", "/forests/1") of `scene` in errors:
+ * through scene.fieldNames when code set it, else "<file>: <prefix>/<field>".
+ */
+FieldName sceneFieldName(const SceneDesc& scene, const std::string& prefix);
 
 /** The closest of `candidates` to `key` by edit distance, or "" when none is plausibly a typo of it. */
 std::string closestKey(std::string_view key, const std::vector<std::string>& candidates);

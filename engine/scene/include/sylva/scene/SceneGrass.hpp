@@ -63,8 +63,8 @@ std::vector<grass::BladeType> grassBladeTypes(const GrassLayer& layer, const Gra
 
 /**
  * How far `layer`'s grass is drawn: to its distance, with the LOD bands at 20 % and 55 % of it (the defaults
- * 12 and 35 m suit 60 m) and the fades shortened to fit, so every distance in a scene file is valid. Throws
- * naming the field ("distance").
+ * 12 and 35 m suit 60 m) and the fades shortened to fit, so every distance in a scene file is valid (or the
+ * layer's own `cull`, fades shortened the same way). Throws naming the field ("distance").
  */
 grass::CullSettings grassCullSettings(const GrassLayer& layer, const GrassFieldName& name);
 

@@ -81,6 +81,8 @@ public:
   void render(const render::Camera& camera, int width, int height, double time, const Aabb& casters,
               const gl::Texture* depth, render::GpuTimers* timers = nullptr);
 
+  /** Fog (extinction per metre, ≥ 0) of the next frames, instead of the scene's. */
+  void setFogDensity(float density) { mBase.fogDensity = density; }
   /** The environment of the last frame (with its shadow cascades). */
   const render::Environment& environment() const { return mEnvironment; }
   /** GPU bytes of the shared resources (shadow maps). */

@@ -14,7 +14,8 @@ namespace sylva::scene {
 /**
  * The terrain setup of `terrain`: a DEM (its own spacing unless the file sets one) or the demo landscape's
  * procedural spec with the file's seed, size, spacing and relief; exaggeration, sea level (none when the file
- * gives none), geomorphing, tessellation level, LOD factor and depth (automatic for -1). Pure.
+ * gives none), geomorphing, tessellation level, LOD factor and depth (automatic for -1); or the description's
+ * own `setup` when code gave one. Pure.
  */
 terrain::TerrainSetup terrainSetup(const TerrainDesc& terrain);
 

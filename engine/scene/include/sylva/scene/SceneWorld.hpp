@@ -13,6 +13,7 @@
 #include <sylva/scene/ScenePasses.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/trees/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include <map>
@@ -28,6 +29,17 @@ namespace sylva::scene {
 
 class GrassSimulation;
 class ShoreWater;
+
+/** How a world is shown: the debugging views of each subsystem and the trees' level of detail. */
+struct SceneDrawOptions {
+  terrain::TerrainView terrainView = terrain::TerrainView::Shaded;
+  bool wireframe = false;
+  grass::GrassView grassView = grass::GrassView::Shaded;
+  trees::TreeView treeView = trees::TreeView::Shaded;
+  /** The trees' tessellation rule in the view (shadow draws keep it, with pieces under
+   * render::kCasterMinTexels skipped). */
+  trees::TreeLod treeLod;
+};
 
 /**
  * Every subsystem of one scene file, on the GPU, with its simulations. Frame f of a sequence is a pure
@@ -59,6 +71,13 @@ public:
   void advanceToFrame(int frame);
   /** Interactive use (viewer): advances the simulations to `time` seconds directly (not frame-exact). */
   void advanceTo(double time);
+  /** Adds a drop of balls (it becomes part of the description; the simulation restarts from time 0). Throws
+   * without a simulated grass layer. */
+  void addDrop(const BodyDrop& drop);
+
+  /** Views and tree LOD of the next frames (default: shaded, the default TreeLod). */
+  void setDrawOptions(const SceneDrawOptions& options) { mDrawOptions = options; }
+  const SceneDrawOptions& drawOptions() const { return mDrawOptions; }
 
   /**
    * Draws one frame for `camera` into the bound framebuffer (`width` × `height`), all passes in order;
@@ -82,6 +101,12 @@ public:
   std::size_t bodies() const;
   /** Trees in every forest. */
   std::size_t treeCount() const;
+  /** Grass layer `i`'s renderer (its field: fieldPointer()), in the description's order. */
+  grass::GrassRenderer& grass(std::size_t i) { return *mGrass.at(i); }
+  /** Forest `i`, in the description's order. */
+  trees::ForestScene& forest(std::size_t i) { return *mForests.at(i); }
+  /** The grass simulation, or null without a simulated layer. */
+  GrassSimulation* simulation() { return mSimulation.get(); }
   /** Bytes of GPU memory the scene's subsystems hold (those that report it). */
   std::size_t gpuBytes() const;
   void reloadShaders(const shader::Library& library);
@@ -101,6 +126,7 @@ private:
   std::vector<std::unique_ptr<ShoreWater>> mWater;
   std::unique_ptr<ScenePasses> mPasses;
   std::map<std::string, std::vector<WorldCameraKey>> mCameras;
+  SceneDrawOptions mDrawOptions;
   int mFrame = -1;
   double mTime = 0.0;
 };
