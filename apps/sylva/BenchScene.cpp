@@ -3,13 +3,13 @@
 #include "BenchRows.hpp"
 
 #include <sylva/scene/SceneWorld.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/scene/SceneFile.hpp>
 
-#include <epoxy/gl.h>
 #include <fmt/format.h>
 
 #include <chrono>
@@ -25,7 +25,7 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
   scene::SceneWorld world(library, scene::loadScene(file));
   const scene::SceneDesc& desc = world.desc();
   render::RenderTarget target(width, height);
-  glFinish();
+  gl::finish();
   const double buildS = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
   render::GpuTimers timers(3, true); // synchronous: every pass finished before its end, wall times recorded
   std::map<std::string, std::vector<double>> cpu;
@@ -46,7 +46,7 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
     target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     world.draw(camera, width, height, time, &target.depth(), &timers);
     timers.endFrame();
-    glFinish();
+    gl::finish();
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (i >= warmup) {

@@ -5,6 +5,7 @@
 #include "BenchRows.hpp"
 
 #include <sylva/core/Log.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
@@ -54,7 +55,7 @@ render::Camera overview(const trees::Forest& forest, float aspect) {
 double medianMs(int frames, const std::function<void()>& frame) {
   const std::vector<double> runs = timeRuns(1, frames, [&] {
     frame();
-    glFinish();
+    gl::finish();
   });
   std::vector<double> ms;
   for (double s : runs) {
@@ -278,7 +279,7 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report) {
       time += 1.0f / 60.0f;
       gpuWind.step(wind::toUniforms(settings, time), 1.0f / 60.0f);
       gpuWind.updateFrames();
-      glFinish();
+      gl::finish();
     });
     auto ms = [](const std::vector<double>& s) {
       std::vector<double> v;

@@ -5,6 +5,7 @@
 #include "TerrainFlags.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
@@ -392,7 +393,7 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
     quadtree.select(camera.position, &frustum, selection);
     target.begin(glm::vec4(draw.environment.fogColor, 1.0f));
     scene->renderer().draw(selection, camera, o.width, o.height, 0.05 * i, nullptr, draw);
-    glFinish();
+    gl::finish();
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     for (const std::string& e : gl::drainGlErrors()) {
@@ -633,7 +634,7 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
         renderer.updateRegion(*dragSession->textures(), region);
         fb.bindForDraw(w, h);
         renderer.draw(t);
-        glFinish();
+        gl::finish();
       };
     };
     dragRow("drag: edit + re-synthesis + GPU upload + preview frame (1 MP)",
@@ -645,7 +646,7 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
     pane.checkComplete();
     dragRow(fmt::format("drag as above, 1 MP image in a {}x{} preview pane", kPane, kPane),
             dragGpu(pane, kPane, kPane), "");
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    gl::bindWindowFramebuffer();
   } catch (const Error& e) {
     if (gpuJson.is_null()) {
       rows.push_back({"GPU preview at 1 MP", std::nan(""), "frames/s", 30.0, false, 0,
@@ -935,11 +936,11 @@ void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nl
     sim.setBackend(&gpu);
     std::vector<std::vector<grass::BladeCollider>> colliders;
     setUp(sim, tiles, bodies, colliders);
-    glFinish();
+    gl::finish();
     return render::Stats::of(timeRuns(kWarmup, kRuns,
                                       [&] {
                                         sim.stepSolver(colliders, wind);
-                                        glFinish();
+                                        gl::finish();
                                       }))
                .median *
            1e3;

@@ -7,6 +7,7 @@
 #include "SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Parallel.hpp>
@@ -464,12 +465,11 @@ void runFoldViewer(const ViewOptions& o) {
     const AtlasEntry& entry = textures.atlas.entries[static_cast<std::size_t>(index)];
     const Rect region = entry.atlasRect();
     gl::bindDefaultFramebuffer(size.x, size.y);
-    glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
+    gl::clear(glm::vec4(0.12f, 0.12f, 0.13f, 1.0f));
     const glm::ivec4 view = letterbox(size, {region.width(), region.height()});
-    glViewport(view.x, view.y, view.z, view.w);
+    gl::setViewport({view.x, view.y}, {view.z, view.w});
     renderer.draw(t, region);
-    glViewport(0, 0, size.x, size.y);
+    gl::setViewport({0, 0}, size);
     if (showUi) {
       ui.begin();
       const float avg = beginPanel("Fold", info.renderer, frameTimes);

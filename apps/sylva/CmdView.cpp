@@ -2,6 +2,7 @@
 #include "ImGuiLayer.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/gl/ContextInfo.hpp>
@@ -1053,10 +1054,9 @@ void runViewer(const ViewOptions& o) {
       }
     }
     gl::bindDefaultFramebuffer(size.x, size.y);
-    glEnable(GL_DEPTH_TEST);
+    gl::setDepthTest(true);
     const glm::vec3 sky = v.terrain ? v.draw.environment.fogColor : glm::vec3(0.62f, 0.72f, 0.85f);
-    glClearColor(sky.r, sky.g, sky.b, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl::clear(glm::vec4(sky, 1.0f), true);
     if (v.terrain) {
       drawTerrainWithGrass(*v.terrain, grass.active(), camera, size.x, size.y, sceneTime, v.draw,
                            grass.drawOptions(), &timers);

@@ -9,6 +9,7 @@
 #include "ImGuiLayer.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
@@ -1949,7 +1950,7 @@ void FoldEditor::drawPreview(ImVec2 pos, ImVec2 size) {
     }
     mPreviewFbo.bindForDraw(want.x, want.y);
     mRenderer.draw(mTime, region);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::bindWindowFramebuffer();
     // draw() puts the region's row 0 at the top of the viewport (GL's last row): flip v.
     ImGui::Image(textureId(mPreviewTex), ImVec2(static_cast<float>(shown.x), static_cast<float>(shown.y)),
                  ImVec2(0, 1), ImVec2(1, 0));
@@ -2584,8 +2585,7 @@ void FoldEditor::run() {
       mSession->history().endCoalescing();
     }
     gl::bindDefaultFramebuffer(size.x, size.y);
-    glClearColor(0.1f, 0.1f, 0.11f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
+    gl::clear(glm::vec4(0.1f, 0.1f, 0.11f, 1.0f));
     ui.end();
     if (endWindowFrame(mWindow, size, mOptions.screenshot, mOptions.frames, frame, dt, mFrameTimes)) {
       break;

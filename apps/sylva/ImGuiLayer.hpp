@@ -4,10 +4,9 @@
 // windowed commands (view, fold view).
 
 #include <sylva/core/Image.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/platform/GlfwWindow.hpp>
 #include <sylva/render/RenderTarget.hpp>
-
-#include <epoxy/gl.h>
 
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -76,8 +75,8 @@ inline float beginPanel(const char* title, const std::string& renderer, const st
 inline bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::string& screenshot,
                            int frames, int& frame, double dtSeconds, std::deque<float>& frameTimes) {
   if (!screenshot.empty() && frames > 0 && frame + 1 == frames) {
-    glFinish();
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl::finish();
+    gl::bindWindowFramebuffer();
     saveImage(screenshot, render::readFramebuffer(size.x, size.y));
     std::printf("%s\n", screenshot.c_str());
   }

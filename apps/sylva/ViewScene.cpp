@@ -6,6 +6,7 @@
 #include "ImGuiLayer.hpp"
 
 #include <sylva/scene/SceneWorld.hpp>
+#include <sylva/gl/State.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/gl/ContextInfo.hpp>
@@ -277,8 +278,7 @@ void runSceneViewer(const SceneViewOptions& o) {
     target->begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     world.draw(camera, size.x, size.y, v.time, &target->depth(), &timers);
     timers.begin("blit");
-    glBlitNamedFramebuffer(target->framebuffer().id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y,
-                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl::blitToWindow(target->framebuffer(), size);
     timers.end();
     gl::bindDefaultFramebuffer(size.x, size.y);
 
