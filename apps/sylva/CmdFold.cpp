@@ -152,7 +152,7 @@ int imageOption(const Project& project, const std::string& id) {
   return index;
 }
 
-void requireExtension(const std::string& option, const std::string& path, const std::string& ext) {
+void requireExtensionIfGiven(const std::string& option, const std::string& path, const std::string& ext) {
   if (!path.empty() && lowerExtension(path) != ext) {
     fail("{} {}: expected a {} file", option, path, ext);
   }
@@ -264,10 +264,10 @@ std::vector<Image> renderFrames(const RenderOptions& o, const Loaded& l, const T
 
 void runRender(const RenderOptions& o) {
   // Everything that can be wrong with the options is found before any work.
-  requireExtension("--gif", o.gif, ".gif");
-  requireExtension("--mp4", o.mp4, ".mp4");
-  requireExtension("--webm", o.webm, ".webm");
-  requireExtension("--sprites", o.sprites, ".png");
+  requireExtensionIfGiven("--gif", o.gif, ".gif");
+  requireExtensionIfGiven("--mp4", o.mp4, ".mp4");
+  requireExtensionIfGiven("--webm", o.webm, ".webm");
+  requireExtensionIfGiven("--sprites", o.sprites, ".png");
   if ((!o.mp4.empty() || !o.webm.empty()) && !ffmpegAvailable()) {
     fail("ffmpeg not found on PATH: install it (apt install ffmpeg) or write --gif/--sprites/--frames "
          "instead");

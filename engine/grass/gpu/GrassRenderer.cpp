@@ -385,7 +385,7 @@ GrassRenderer::captureExpansion(const std::vector<VisibleBlade>& instances, cons
 
 terrain::GroundTint GrassRenderer::groundTint(float strength) const {
   terrain::GroundTint tint;
-  tint.texture = mDensity.id();
+  tint.texture = &mDensity;
   tint.spacing = mField->density().spacing();
   tint.size = {mField->density().width(), mField->density().height()};
   // The ground between blades is partly shaded by them: a little darker than the blades' own colour.

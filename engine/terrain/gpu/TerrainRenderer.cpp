@@ -283,9 +283,9 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
     }
     const auto surfaces = static_cast<GLsizei>(selection.nodes.size());
     surface.setUniform("uNodeOffset", 0);
-    if (options.groundTint && options.groundTint->texture != 0) {
+    if (options.groundTint && options.groundTint->texture != nullptr) {
       const GroundTint& tint = *options.groundTint;
-      glBindTextureUnit(5, tint.texture);
+      tint.texture->bind(5);
       surface.setUniform("uGroundTint", glm::vec4(tint.colour, std::clamp(tint.strength, 0.0f, 1.0f)));
       surface.setUniform("uGroundTintMap",
                          glm::vec4(1.0f / tint.spacing.x, 1.0f / tint.spacing.y,

@@ -42,9 +42,9 @@ enum class TerrainView : int {
  * keeps the field's colour where blades thin out with distance.
  */
 struct GroundTint {
-  /** GL texture (first channel 0..1, linear filtering) whose sample (i, j) sits at world (i·spacing.x,
-   * j·spacing.y). */
-  GLuint texture = 0;
+  /** Texture (first channel 0..1, linear filtering) whose sample (i, j) sits at world (i·spacing.x,
+   * j·spacing.y); not owned, must outlive the draw; null: no tint. */
+  const gl::Texture* texture = nullptr;
   glm::vec2 spacing{1.0f};
   glm::ivec2 size{1};
   /** Linear colour the ground moves towards, and how far (0..1) where the map is 1. */
