@@ -2,7 +2,7 @@
 // "Performance").
 #include "BenchRows.hpp"
 
-#include <sylva/scene/SceneWorld.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>

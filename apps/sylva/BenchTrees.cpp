@@ -11,10 +11,10 @@
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/trees/Bark.hpp>
-#include <sylva/trees/FoliageRenderer.hpp>
-#include <sylva/trees/ImpostorRenderer.hpp>
-#include <sylva/trees/JointWindGpu.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/FoliageRenderer.hpp>
+#include <sylva/trees/gpu/ImpostorRenderer.hpp>
+#include <sylva/trees/gpu/JointWindGpu.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include "TreeFlags.hpp"

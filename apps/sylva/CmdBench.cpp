@@ -15,7 +15,7 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
-#include <sylva/terrain/TerrainPopping.hpp>
+#include <sylva/terrain/gpu/TerrainPopping.hpp>
 
 #ifdef SYLVA_HAVE_FOLDING
 #include <folding/FoldingCase.hpp>

@@ -7,9 +7,9 @@
 #include <sylva/folding/Export.hpp>
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/scene/GrassSimulation.hpp>
-#include <sylva/scene/SceneWorld.hpp>
-#include <sylva/trees/ForestScene.hpp>
+#include <sylva/scene/gpu/GrassSimulation.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
+#include <sylva/trees/gpu/ForestScene.hpp>
 
 #include "CmdScene.hpp"
 #include "GrassFlags.hpp"

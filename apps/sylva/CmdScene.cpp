@@ -2,7 +2,7 @@
 // (docs/scenes.md "Rendering sequences").
 #include "CmdScene.hpp"
 
-#include <sylva/scene/SceneWorld.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>

@@ -17,7 +17,7 @@
 #include <sylva/trees/Export.hpp>
 #include <sylva/trees/Foliage.hpp>
 #include <sylva/trees/Forest.hpp>
-#include <sylva/trees/ImpostorRenderer.hpp>
+#include <sylva/trees/gpu/ImpostorRenderer.hpp>
 #include <sylva/trees/Import.hpp>
 #include <sylva/trees/Pieces.hpp>
 #include <sylva/trees/Skeleton.hpp>

@@ -3,7 +3,7 @@
 #include "SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
-#include <sylva/scene/Ground.hpp>
+#include <sylva/scene/gpu/Ground.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/terrain/HeightQuery.hpp>

@@ -2,9 +2,9 @@
 // Command-line options for the grass field on a terrain (`sylva render --grass`, `sylva view --grass`,
 // `sylva bench grass`), and the shared frame that draws terrain and grass together.
 
-#include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/grass/gpu/GrassRenderer.hpp>
 #include <sylva/scene/SceneGrass.hpp>
-#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include <CLI/CLI.hpp>
 

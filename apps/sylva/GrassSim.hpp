@@ -4,8 +4,8 @@
 // balls and looks at them.
 
 #include <sylva/grass/GrassField.hpp>
-#include <sylva/scene/GrassSimulation.hpp>
-#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/scene/gpu/GrassSimulation.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include <CLI/CLI.hpp>
 

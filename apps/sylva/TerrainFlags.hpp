@@ -1,6 +1,6 @@
 #pragma once
 
-#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include "SourceOptions.hpp"
 

@@ -1,7 +1,7 @@
 #include "TreeFlags.hpp"
 
 #include <sylva/core/Error.hpp>
-#include <sylva/scene/Ground.hpp>
+#include <sylva/scene/gpu/Ground.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 
 #include "SourceOptions.hpp"

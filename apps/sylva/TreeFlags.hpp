@@ -4,12 +4,12 @@
 #include <sylva/core/Geometry.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/scene/SceneFile.hpp>
-#include <sylva/terrain/TerrainScene.hpp>
-#include <sylva/trees/FoliageRenderer.hpp>
-#include <sylva/trees/ForestScene.hpp>
-#include <sylva/trees/ImpostorRenderer.hpp>
-#include <sylva/trees/JointWindGpu.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
+#include <sylva/trees/gpu/FoliageRenderer.hpp>
+#include <sylva/trees/gpu/ForestScene.hpp>
+#include <sylva/trees/gpu/ImpostorRenderer.hpp>
+#include <sylva/trees/gpu/JointWindGpu.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include <CLI/CLI.hpp>

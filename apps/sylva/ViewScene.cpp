@@ -5,7 +5,7 @@
 
 #include "ImGuiLayer.hpp"
 
-#include <sylva/scene/SceneWorld.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>

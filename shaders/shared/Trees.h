@@ -150,7 +150,7 @@ struct FoliageUniforms {
 };
 SYLVA_ASSERT_SIZE(FoliageUniforms, 272);
 
-// ---- Far field: octahedral impostors (sylva/trees/ImpostorRenderer.hpp; shaders/trees/impostor.*) ---------
+// ---- Far field: octahedral impostors (sylva/trees/gpu/ImpostorRenderer.hpp; shaders/trees/impostor.*) ---------
 // Storage at SYLVA_TREE_IMPOSTOR_BINDING holds ImpostorInstanceGpu[] (one per far tree). The atlas is two
 // sampler2DArray, one layer per species, views × views cells (hemi-octahedral grid, FarField.hpp): colour at
 // SYLVA_TREE_IMPOSTOR_UNIT (SRGB8_ALPHA8: albedo premultiplied by coverage, a coverage) and normal + depth at

@@ -1,5 +1,5 @@
-#include <sylva/grass/GrassRenderer.hpp>
-#include <sylva/grass/GrassSimulator.hpp>
+#include <sylva/grass/gpu/GrassRenderer.hpp>
+#include <sylva/grass/gpu/GrassSimulator.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Geometry.hpp>

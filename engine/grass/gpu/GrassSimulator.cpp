@@ -1,4 +1,4 @@
-#include <sylva/grass/GrassSimulator.hpp>
+#include <sylva/grass/gpu/GrassSimulator.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/shader/Compiler.hpp>

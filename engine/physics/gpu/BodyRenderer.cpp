@@ -1,4 +1,4 @@
-#include <sylva/physics/BodyRenderer.hpp>
+#include <sylva/physics/gpu/BodyRenderer.hpp>
 
 #include <sylva/shader/Compiler.hpp>
 

@@ -1,4 +1,4 @@
-#include <sylva/scene/GrassSimulation.hpp>
+#include <sylva/scene/gpu/GrassSimulation.hpp>
 
 #include <utility>
 #include <vector>

@@ -1,4 +1,4 @@
-#include <sylva/scene/Ground.hpp>
+#include <sylva/scene/gpu/Ground.hpp>
 
 namespace sylva::scene {
 

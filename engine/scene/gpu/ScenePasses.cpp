@@ -1,4 +1,4 @@
-#include <sylva/scene/ScenePasses.hpp>
+#include <sylva/scene/gpu/ScenePasses.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/render/ShadowMaps.hpp>

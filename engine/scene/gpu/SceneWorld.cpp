@@ -1,17 +1,17 @@
-#include <sylva/scene/SceneWorld.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Shadows.hpp>
-#include <sylva/scene/GrassSimulation.hpp>
-#include <sylva/scene/Ground.hpp>
+#include <sylva/scene/gpu/GrassSimulation.hpp>
+#include <sylva/scene/gpu/Ground.hpp>
 #include <sylva/scene/SceneForest.hpp>
 #include <sylva/scene/SceneGrass.hpp>
-#include <sylva/trees/ForestScene.hpp>
+#include <sylva/trees/gpu/ForestScene.hpp>
 #include <sylva/scene/SceneTerrain.hpp>
-#include <sylva/scene/ShoreWater.hpp>
+#include <sylva/scene/gpu/ShoreWater.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/Species.hpp>

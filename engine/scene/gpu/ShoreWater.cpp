@@ -1,6 +1,6 @@
 // The scene's water with the folding-textured shore band (docs/scenes.md "Water with a folding-textured
 // shore").
-#include <sylva/scene/ShoreWater.hpp>
+#include <sylva/scene/gpu/ShoreWater.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/folding/Project.hpp>

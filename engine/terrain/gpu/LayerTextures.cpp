@@ -1,6 +1,6 @@
 // Procedural, tileable albedo textures for splat layers: the seed paper's multi-texturing needs one texture
 // per layer, and Sylva ships no third-party textures. Colours are chosen by keywords in the layer's name.
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
 #include <sylva/core/Random.hpp>
 

@@ -1,4 +1,4 @@
-#include <sylva/terrain/TerrainPopping.hpp>
+#include <sylva/terrain/gpu/TerrainPopping.hpp>
 
 #include <sylva/core/Error.hpp>
 

@@ -1,4 +1,4 @@
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>

@@ -1,4 +1,4 @@
-#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>

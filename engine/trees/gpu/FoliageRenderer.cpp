@@ -1,4 +1,4 @@
-#include <sylva/trees/FoliageRenderer.hpp>
+#include <sylva/trees/gpu/FoliageRenderer.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>
@@ -184,8 +184,8 @@ bool FoliageRenderer::bake(const render::Camera& camera, const render::Environme
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE); // leaves are two-sided
-    // A bake can run inside a depth-only pass (a shadow cascade turns colour writes off): the cloud texture must
-    // be written whatever the caller's mask, or it keeps an older view's leaves.
+    // A bake can run inside a depth-only pass (a shadow cascade turns colour writes off): the cloud texture
+    // must be written whatever the caller's mask, or it keeps an older view's leaves.
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     mTarget.clearColor(0, glm::vec4(0.0f));
     mTarget.clearDepth(1.0f);

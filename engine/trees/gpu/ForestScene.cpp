@@ -1,4 +1,4 @@
-#include <sylva/trees/ForestScene.hpp>
+#include <sylva/trees/gpu/ForestScene.hpp>
 
 #include <sylva/trees/Forest.hpp>
 

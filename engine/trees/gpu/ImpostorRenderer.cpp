@@ -1,12 +1,12 @@
-#include <sylva/trees/ImpostorRenderer.hpp>
+#include <sylva/trees/gpu/ImpostorRenderer.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/shader/Compiler.hpp>
-#include <sylva/trees/FoliageRenderer.hpp>
+#include <sylva/trees/gpu/FoliageRenderer.hpp>
 #include <sylva/trees/Tree.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 

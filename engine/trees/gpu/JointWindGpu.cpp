@@ -1,4 +1,4 @@
-#include <sylva/trees/JointWindGpu.hpp>
+#include <sylva/trees/gpu/JointWindGpu.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/shader/Compiler.hpp>

@@ -1,4 +1,4 @@
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>

@@ -1,7 +1,7 @@
 // The grass field on the GPU against its CPU references: culling counts and the instances themselves, root
 // heights, the vertex shader's blade expansion, blade counts from pipeline statistics, determinism.
 #include <sylva/core/Error.hpp>
-#include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/grass/gpu/GrassRenderer.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/Noise.hpp>

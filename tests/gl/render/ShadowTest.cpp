@@ -13,7 +13,7 @@
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/Quadtree.hpp>
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
 #include "GlTest.hpp"
 #include "TempDir.hpp"

@@ -3,8 +3,8 @@
 // around the trees and brightens nothing), the code-only fields reach the world (the region around the
 // terrain's centre, the look), and the same time gives the same pixels.
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/scene/SceneWorld.hpp>
-#include <sylva/trees/ForestScene.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
+#include <sylva/trees/gpu/ForestScene.hpp>
 
 #include "GlTest.hpp"
 

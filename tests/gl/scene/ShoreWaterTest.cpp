@@ -4,8 +4,8 @@
 // times give equal pixels.
 #include <sylva/core/Error.hpp>
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/scene/ShoreWater.hpp>
-#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/scene/gpu/ShoreWater.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include "GlTest.hpp"
 #include "TempDir.hpp"

@@ -8,7 +8,7 @@
 #include <sylva/core/Random.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightSources.hpp>
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
 #include "ExternalData.hpp"
 #include "GlTest.hpp"

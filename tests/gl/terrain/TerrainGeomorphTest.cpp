@@ -7,8 +7,8 @@
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
-#include <sylva/terrain/TerrainPopping.hpp>
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainPopping.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
 #include "GlTest.hpp"
 

@@ -6,7 +6,7 @@
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
 #include <sylva/render/RenderTarget.hpp>
 

@@ -3,7 +3,7 @@
 // is deterministic and differs from the flat colours; invalid tile sets are refused.
 #include <sylva/core/Error.hpp>
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include "GlTest.hpp"
 

@@ -4,8 +4,8 @@
 // hides the back card only; a billboard behind another is hidden exactly where the first has leaves. The bake
 // runs again only for a new view direction, and the far-field dissolve drops foliage like its tree's pieces.
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/trees/FoliageRenderer.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/FoliageRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include "ExternalData.hpp"
 #include "GlTest.hpp"

@@ -2,7 +2,7 @@
 // resetWind, and in a second scene), the wind moves the trees (the control), its bounds hold every tree, and
 // the depth-only view used by shadow casters draws the foliage too.
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/trees/ForestScene.hpp>
+#include <sylva/trees/gpu/ForestScene.hpp>
 
 #include "GlTest.hpp"
 

@@ -5,8 +5,8 @@
 // surfaces.
 #include <sylva/gl/Query.hpp>
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/trees/ImpostorRenderer.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/ImpostorRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include "GlTest.hpp"
 

@@ -4,7 +4,7 @@
 // take for a forest of 100,000 joints (20,000 on llvmpipe).
 #include <sylva/core/Error.hpp>
 #include <sylva/render/GpuTimers.hpp>
-#include <sylva/trees/JointWindGpu.hpp>
+#include <sylva/trees/gpu/JointWindGpu.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include "GlTest.hpp"

@@ -5,7 +5,7 @@
 // writes the shaded view's depth.
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/trees/Tessellation.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include "GlTest.hpp"
 

@@ -10,7 +10,7 @@
 // With the rims broken by 3 % the same check must find cracks, so it is known to work.
 #include <sylva/core/Random.hpp>
 #include <sylva/render/RenderTarget.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include "GlTest.hpp"
 #include "TempDir.hpp"

@@ -1,7 +1,7 @@
 // Terrain images: a small procedural terrain in each debug view, and the real Jacksboro DEM shaded.
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightSources.hpp>
-#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include "ExternalData.hpp"
 #include "GlTest.hpp"

@@ -3,10 +3,10 @@
 // (GPU, or the CPU reference) moving one grass layer, and the bodies drawn. Scene files ("simulate": true,
 // "bodies", "drops"), `sylva render --grass --physics balls` and `sylva view` use it. GL side.
 
-#include <sylva/grass/GrassRenderer.hpp>
-#include <sylva/grass/GrassSimulator.hpp>
+#include <sylva/grass/gpu/GrassRenderer.hpp>
+#include <sylva/grass/gpu/GrassSimulator.hpp>
 #include <sylva/grass/TileSimulation.hpp>
-#include <sylva/physics/BodyRenderer.hpp>
+#include <sylva/physics/gpu/BodyRenderer.hpp>
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Camera.hpp>
 #include <sylva/render/FrameUniforms.hpp>

@@ -7,11 +7,11 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/trees/Bark.hpp>
-#include <sylva/trees/FoliageRenderer.hpp>
+#include <sylva/trees/gpu/FoliageRenderer.hpp>
 #include <sylva/trees/ForestLook.hpp>
-#include <sylva/trees/ImpostorRenderer.hpp>
-#include <sylva/trees/JointWindGpu.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/ImpostorRenderer.hpp>
+#include <sylva/trees/gpu/JointWindGpu.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include <memory>

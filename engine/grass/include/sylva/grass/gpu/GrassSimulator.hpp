@@ -7,7 +7,7 @@
 
 #include <sylva/gl/Buffer.hpp>
 #include <sylva/gl/Program.hpp>
-#include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/grass/gpu/GrassRenderer.hpp>
 #include <sylva/grass/TileSimulation.hpp>
 #include <sylva/shader/Library.hpp>
 

@@ -17,7 +17,7 @@
 #include <sylva/render/FrameUniforms.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include <shared/Grass.h>

@@ -2,7 +2,7 @@
 // What grass and forests read of a drawn terrain: the same facts for scene files and the command line.
 
 #include <sylva/scene/SceneGrass.hpp>
-#include <sylva/terrain/TerrainScene.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 #include <sylva/trees/ForestLook.hpp>
 
 namespace sylva::scene {

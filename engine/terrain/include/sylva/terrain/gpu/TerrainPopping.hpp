@@ -4,7 +4,7 @@
 #include <sylva/render/Camera.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/Quadtree.hpp>
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
 namespace sylva::terrain {
 

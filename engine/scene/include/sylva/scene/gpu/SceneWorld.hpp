@@ -4,16 +4,16 @@
 // lakes, cameras) with the same builders as the per-subsystem options, and draws it frame by frame in the
 // scene's pass order (ScenePasses). docs/scenes.md. GL side.
 
-#include <sylva/grass/GrassRenderer.hpp>
+#include <sylva/grass/gpu/GrassRenderer.hpp>
 #include <sylva/render/Camera.hpp>
 #include <sylva/render/FrameUniforms.hpp>
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/scene/CameraPath.hpp>
 #include <sylva/scene/SceneFile.hpp>
-#include <sylva/scene/ScenePasses.hpp>
+#include <sylva/scene/gpu/ScenePasses.hpp>
 #include <sylva/shader/Library.hpp>
-#include <sylva/terrain/TerrainScene.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include <map>

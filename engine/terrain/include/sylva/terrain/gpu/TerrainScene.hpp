@@ -4,7 +4,7 @@
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/Quadtree.hpp>
-#include <sylva/terrain/TerrainRenderer.hpp>
+#include <sylva/terrain/gpu/TerrainRenderer.hpp>
 #include <sylva/terrain/TerrainSetup.hpp>
 
 #include <filesystem>

@@ -20,7 +20,7 @@
 #include <sylva/render/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/trees/Foliage.hpp>
-#include <sylva/trees/TreeRenderer.hpp>
+#include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include <cstddef>
 #include <memory>
