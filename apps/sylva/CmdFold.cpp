@@ -6,7 +6,9 @@
 #include "Commands.hpp"
 #include "SourceOptions.hpp"
 
+#include <imgui.h>
 #include <sylva/core/Error.hpp>
+#include <sylva/ui/ImGuiLayer.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
@@ -29,7 +31,6 @@
 #include <sylva/shader/Library.hpp>
 
 #include "FoldEditor.hpp"
-#include "ImGuiLayer.hpp"
 
 #include <GLFW/glfw3.h>
 #endif
@@ -449,7 +450,7 @@ void runFoldViewer(const ViewOptions& o) {
       glfwSetWindowShouldClose(window.handle(), GLFW_TRUE);
     }
   });
-  ImGuiLayer ui(window);
+  ui::ImGuiLayer ui(window);
   render::FrameClock clock(o.fixedStep);
   std::deque<float> frameTimes;
   int frame = 0;
@@ -472,7 +473,7 @@ void runFoldViewer(const ViewOptions& o) {
     gl::setViewport({0, 0}, size);
     if (showUi) {
       ui.begin();
-      const float avg = beginPanel("Fold", info.renderer, frameTimes);
+      const float avg = ui::beginPanel("Fold", info.renderer, frameTimes);
       ImGui::Text("frame %.2f ms (%.0f fps), %dx%d", avg, avg > 0.0f ? 1000.0f / avg : 0.0f, region.width(),
                   region.height());
       bool changed = false;
@@ -501,7 +502,7 @@ void runFoldViewer(const ViewOptions& o) {
       ImGui::End();
       ui.end();
     }
-    if (endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes)) {
+    if (ui::endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes)) {
       break;
     }
   }

@@ -1,7 +1,7 @@
 #include "Commands.hpp"
-#include "ImGuiLayer.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/ui/ImGuiLayer.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
@@ -963,7 +963,7 @@ void runViewer(const ViewOptions& o) {
     }
   });
 
-  ImGuiLayer ui(window);
+  ui::ImGuiLayer ui(window);
   int frame = 0;
   render::Camera camera = start;
   while (window.pollEvents()) {
@@ -1088,7 +1088,7 @@ void runViewer(const ViewOptions& o) {
     if (showUi) {
       timers.begin("ui");
       ui.begin();
-      const float avg = beginPanel("Sylva", info.renderer, frameTimes);
+      const float avg = ui::beginPanel("Sylva", info.renderer, frameTimes);
       ImGui::Text("frame %.2f ms (%.0f fps)", avg, avg > 0.0f ? 1000.0f / avg : 0.0f);
       std::vector<float> plot(frameTimes.begin(), frameTimes.end());
       ImGui::PlotLines("##frametimes", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, 50.0f,
@@ -1118,7 +1118,7 @@ void runViewer(const ViewOptions& o) {
       timers.end();
     }
     timers.endFrame();
-    if (endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes)) {
+    if (ui::endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes)) {
       break;
     }
   }

@@ -6,9 +6,9 @@
 #include "FoldEditor.hpp"
 
 #include "Commands.hpp"
-#include "ImGuiLayer.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/ui/ImGuiLayer.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
@@ -2527,7 +2527,7 @@ void FoldEditor::drawHelp() {
 }
 
 void FoldEditor::run() {
-  ImGuiLayer ui(mWindow);
+  ui::ImGuiLayer ui(mWindow);
   ImGui::GetStyle().WindowRounding = 0.0f;
   int frame = 0;
   auto frameStart = std::chrono::steady_clock::now();
@@ -2587,7 +2587,7 @@ void FoldEditor::run() {
     gl::bindDefaultFramebuffer(size.x, size.y);
     gl::clear(glm::vec4(0.1f, 0.1f, 0.11f, 1.0f));
     ui.end();
-    if (endWindowFrame(mWindow, size, mOptions.screenshot, mOptions.frames, frame, dt, mFrameTimes)) {
+    if (ui::endWindowFrame(mWindow, size, mOptions.screenshot, mOptions.frames, frame, dt, mFrameTimes)) {
       break;
     }
   }

@@ -3,9 +3,8 @@
 // the sun flare can test the depth), then blitted to the window under the ImGui panel.
 #include "ViewScene.hpp"
 
-#include "ImGuiLayer.hpp"
-
 #include <sylva/scene/gpu/SceneWorld.hpp>
+#include <sylva/ui/ImGuiLayer.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
@@ -194,7 +193,7 @@ void runSceneViewer(const SceneViewOptions& o) {
     }
   });
 
-  ImGuiLayer ui(window);
+  ui::ImGuiLayer ui(window);
   std::optional<render::RenderTarget> target;
   render::GpuTimers timers;
   render::FrameClock clock(o.fixedStep);
@@ -285,7 +284,7 @@ void runSceneViewer(const SceneViewOptions& o) {
     if (v.showUi) {
       timers.begin("ui");
       ui.begin();
-      const float avg = beginPanel("Sylva scene", info.renderer, frameTimes);
+      const float avg = ui::beginPanel("Sylva scene", info.renderer, frameTimes);
       ImGui::Text("%s  (%s)", world.desc().name.c_str(),
                   std::filesystem::path(world.desc().path).filename().c_str());
       ImGui::Text("frame %.2f ms (%.0f fps)", avg, avg > 0.0f ? 1000.0f / avg : 0.0f);
@@ -359,7 +358,7 @@ void runSceneViewer(const SceneViewOptions& o) {
       timers.end();
     }
     timers.endFrame();
-    const bool last = endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes);
+    const bool last = ui::endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes);
     // One line a frame at debug level, once swapped: the GUI end-to-end test waits on it (frames take
     // seconds on llvmpipe).
     log::debug("scene viewer: frame {} shown, scene time {:.3f} s", shownFrames, v.time);

@@ -1,0 +1,43 @@
+#pragma once
+// The ui module (docs/engine.md): Dear ImGui bound to a GLFW window (the GLFW and OpenGL 3 backends), the
+// viewer-style panel and the end of a windowed frame (scripted screenshots, the frame-time ring), shared by
+// the windowed commands (view, scene viewer, fold view, fold editor).
+
+#include <sylva/platform/GlfwWindow.hpp>
+
+#include <glm/glm.hpp>
+
+#include <deque>
+#include <string>
+
+namespace sylva::ui {
+
+/** An ImGui context bound to `window` for its lifetime; torn down in reverse order. One per window. */
+class ImGuiLayer {
+public:
+  explicit ImGuiLayer(platform::GlfwWindow& window);
+  ~ImGuiLayer();
+  ImGuiLayer(const ImGuiLayer&) = delete;
+  ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+  /** Starts an ImGui frame (call after polling events). */
+  void begin();
+  /** Renders the frame's widgets into the bound framebuffer. */
+  void end();
+};
+
+/**
+ * Opens the viewer-style panel: top-left, translucent, sized to its content (labels are never cut off), 220
+ * px controls, the GL renderer string first. Returns the mean of `frameTimes` (ms, 0 when empty). Close it
+ * with ImGui::PopItemWidth() and ImGui::End().
+ */
+float beginPanel(const char* title, const std::string& renderer, const std::deque<float>& frameTimes);
+
+/**
+ * Ends one frame of a windowed command: with `screenshot` set, saves the window's framebuffer (size pixels)
+ * after the last of `frames` scripted frames and prints its path; swaps; keeps the last 120 frame times (ms)
+ * in `frameTimes`. Returns true when `frames` > 0 frames have been shown (the command should stop).
+ */
+bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::string& screenshot, int frames,
+                    int& frame, double dtSeconds, std::deque<float>& frameTimes);
+
+} // namespace sylva::ui

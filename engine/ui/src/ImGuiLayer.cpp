@@ -1,0 +1,70 @@
+#include <sylva/ui/ImGuiLayer.hpp>
+
+#include <sylva/core/Image.hpp>
+#include <sylva/gl/State.hpp>
+#include <sylva/render/RenderTarget.hpp>
+
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <cstdio>
+
+namespace sylva::ui {
+
+ImGuiLayer::ImGuiLayer(platform::GlfwWindow& window) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
+  ImGui_ImplOpenGL3_Init("#version 450 core");
+}
+
+ImGuiLayer::~ImGuiLayer() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void ImGuiLayer::begin() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+}
+
+void ImGuiLayer::end() {
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+float beginPanel(const char* title, const std::string& renderer, const std::deque<float>& frameTimes) {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.8f);
+  ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushItemWidth(220.0f);
+  ImGui::Text("%s", renderer.c_str());
+  float sum = 0.0f;
+  for (float ms : frameTimes) {
+    sum += ms;
+  }
+  return frameTimes.empty() ? 0.0f : sum / static_cast<float>(frameTimes.size());
+}
+
+bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::string& screenshot, int frames,
+                    int& frame, double dtSeconds, std::deque<float>& frameTimes) {
+  if (!screenshot.empty() && frames > 0 && frame + 1 == frames) {
+    gl::finish();
+    gl::bindWindowFramebuffer();
+    saveImage(screenshot, render::readFramebuffer(size.x, size.y));
+    std::printf("%s\n", screenshot.c_str());
+  }
+  window.swapBuffers();
+  frameTimes.push_back(static_cast<float>(dtSeconds * 1000.0));
+  if (frameTimes.size() > 120) {
+    frameTimes.pop_front();
+  }
+  return frames > 0 && ++frame >= frames;
+}
+
+} // namespace sylva::ui
