@@ -14,7 +14,7 @@
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
-#include <sylva/folding/Export.hpp>
+#include <sylva/media/Export.hpp>
 #include <sylva/folding/Project.hpp>
 #include <sylva/folding/Renderer.hpp>
 #include <sylva/folding/Session.hpp>
@@ -55,6 +55,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace sylva::folding;
+using namespace sylva::media;
 
 constexpr const char* kFunctionNames[] = {"linear", "piecewise", "exponential", "sigmoid", "sine"};
 /** Largest total size of the frames a render keeps in memory before writing, bytes. */

@@ -4,7 +4,7 @@
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
-#include <sylva/folding/Export.hpp>
+#include <sylva/media/Export.hpp>
 #include <sylva/render/DemoScene.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/scene/gpu/GrassSimulation.hpp>
@@ -98,7 +98,7 @@ scene::SceneDesc worldDesc(const Options& o) {
 /** Writes --gif (all frames) and -o (the last frame), when frames were kept. */
 void writeFrames(const Options& o, const std::vector<Image>& frames) {
   if (!o.gif.empty()) {
-    folding::writeGif(o.gif, frames, std::max(1, static_cast<int>(std::lround(100.0 / o.fps))));
+    media::writeGif(o.gif, frames, std::max(1, static_cast<int>(std::lround(100.0 / o.fps))));
     std::printf("%s\n", o.gif.c_str());
   }
   if (!frames.empty()) {

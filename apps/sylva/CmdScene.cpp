@@ -7,7 +7,7 @@
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
-#include <sylva/folding/Export.hpp>
+#include <sylva/media/Export.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/scene/Sequence.hpp>
@@ -184,7 +184,7 @@ void renderSceneFile(const SceneRenderOptions& o) {
     for (int f : range.frames()) {
       images.push_back(loadImage(out / scene::frameName(f)));
     }
-    folding::writeGif(o.gif, images, std::max(1, static_cast<int>(std::lround(100.0 / fps))));
+    media::writeGif(o.gif, images, std::max(1, static_cast<int>(std::lround(100.0 / fps))));
     std::printf("%s\n", o.gif.c_str());
   }
   if (!o.mp4.empty()) {

@@ -16,7 +16,7 @@
 #include <sylva/core/Progress.hpp>
 #include <sylva/folding/Canvas.hpp>
 #include <sylva/folding/Edit.hpp>
-#include <sylva/folding/Export.hpp>
+#include <sylva/media/Export.hpp>
 #include <sylva/folding/Flow.hpp>
 #include <sylva/folding/Handles.hpp>
 #include <sylva/folding/Renderer.hpp>
@@ -58,6 +58,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace sylva::folding;
+using namespace sylva::media;
 
 // ---------------------------------------------------------------------------------------------------------
 // Tools

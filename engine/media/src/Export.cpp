@@ -1,6 +1,6 @@
 // Exports of rendered frames: animated GIF (giflib), sprite sheet (PNG + JSON) and video through the `ffmpeg`
 // program. Every output is written to a temporary file and renamed, so a failure leaves nothing behind.
-#include <sylva/folding/Export.hpp>
+#include <sylva/media/Export.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -29,7 +29,7 @@
 
 extern char** environ;
 
-namespace sylva::folding {
+namespace sylva::media {
 
 namespace {
 
@@ -489,4 +489,4 @@ void writeVideo(const std::filesystem::path& path, std::span<const Image> frames
   });
 }
 
-} // namespace sylva::folding
+} // namespace sylva::media

@@ -6,7 +6,7 @@
 #include <span>
 #include <string>
 
-namespace sylva::folding {
+namespace sylva::media {
 
 /**
  * Writes an animated GIF89a of `frames` (RGBA8, all the same size; alpha is ignored). One global palette of
@@ -44,4 +44,4 @@ bool ffmpegAvailable();
  */
 void writeVideo(const std::filesystem::path& path, std::span<const Image> frames, double fps);
 
-} // namespace sylva::folding
+} // namespace sylva::media
