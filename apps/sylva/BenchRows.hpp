@@ -1,17 +1,68 @@
 #pragma once
 
-// Target tables of `sylva bench <area>` for CPU work: each row is a measured value against a target from the
-// specs, printed as a table and returned as JSON.
+// `sylva bench <area>` (docs/cli.md): one file per area (BenchTerrain.cpp, BenchGrass.cpp, BenchTrees.cpp,
+// BenchScene.cpp, BenchFold.cpp, BenchCapture.cpp; the demo and the command in CmdBench.cpp), the options and
+// GPU-timed frame loop they share, and the target tables: each row is a measured value against a target from
+// the specs, printed as a table and returned as JSON.
+
+#include <sylva/platform/GlContext.hpp>
+#include <sylva/render/GpuTimers.hpp>
+
+#include "Commands.hpp"
+#include "TerrainFlags.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace sylva::app {
+
+/** The options of `sylva bench`. */
+struct BenchOptions {
+  ContextFlags context;
+  TerrainFlags terrain;
+  int frames = 60;
+  int warmup = 5;
+  int width = 1280;
+  int height = 720;
+  std::string out;
+  std::string area = "demo";
+  double maxGrowthPercent = 1.0;
+  std::string sceneFile = "data/scenes/meadow.json";
+};
+
+/** Samples of one measured run: per-pass CPU/GPU milliseconds, wall time per frame, extra per-frame series.
+ */
+struct Samples {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> cpu;
+  std::map<std::string, std::vector<double>> gpu;
+  std::map<std::string, std::vector<double>> wall;
+  std::vector<double> frame;
+  std::map<std::string, std::vector<double>> extra;
+
+  nlohmann::json passesJson() const {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const std::string& pass : order) {
+      passes.push_back({{"name", pass},
+                        {"cpu_ms", render::Stats::of(cpu.at(pass)).toJson()},
+                        {"gpu_ms", render::Stats::of(gpu.at(pass)).toJson()},
+                        {"wall_ms", render::Stats::of(wall.at(pass)).toJson()}});
+    }
+    return passes;
+  }
+};
+
+/** Runs `frame(timers, index)` warmup + frames times with synchronous GPU timers and collects samples. */
+Samples measure(const BenchOptions& o, const std::function<void(render::GpuTimers&, int, Samples&)>& frame);
+
+/** The report's common head: area name, renderer, size, frames. */
+nlohmann::json header(const BenchOptions& o, const std::string& name, const platform::GlContext& context);
 
 /** One measured metric against its target. */
 struct BenchRow {
@@ -54,5 +105,18 @@ void benchCapture(nlohmann::json& report);
  * divided by 10 (at least 3) per configuration: a forest frame on llvmpipe is slow.
  */
 void benchTrees(int frames, int width, int height, nlohmann::json& report);
+
+/** `bench demo`: the built-in pipeline scene. */
+void benchDemo(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
+/** `bench terrain`: the paper's Table 8, both crack methods, popping (BenchTerrain.cpp). */
+void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
+/** `bench soak`: memory, GL errors and frame-time drift over a long orbit (BenchTerrain.cpp). */
+void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
+/** `bench grass`: the paper's field, memory, popping (BenchGrass.cpp). */
+void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
+/** `bench grass-sim`: the paper's Table 1 solver workloads (BenchGrass.cpp). */
+void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
+/** `bench fold`: the folding targets (BenchFold.cpp; without the folding module, not built). */
+void benchFold(const BenchOptions& o, nlohmann::json& report);
 
 } // namespace sylva::app

@@ -652,7 +652,7 @@ void runSynth(const SynthOptions& o) {
               o.count, o.shape.c_str(), o.count == 1 ? "" : "s");
 }
 
-void registerSynth(CLI::App& capture) {
+void registerCaptureSynth(CLI::App& capture) {
   auto* command = capture.add_subcommand(
       "synth",
       "Draw a synthetic blade cluster of known shape into a depth frame with Kinect-like noise: a 16-bit "
@@ -818,7 +818,7 @@ void registerCapture(CLI::App& app) {
   command->add_flag(
       "--explain", o->explain,
       "Also print each cluster's centre, junctions and the segments that were not blades, and why");
-  registerSynth(*command);
+  registerCaptureSynth(*command);
   command->callback([o, command] {
     if (command->get_subcommands().empty()) {
       runCapture(*o);

@@ -163,7 +163,7 @@ void requireExtensionIfGiven(const std::string& option, const std::string& path,
 // ---------------------------------------------------------------------------------------------------------
 // synth
 
-void registerSynth(CLI::App& fold) {
+void registerFoldSynth(CLI::App& fold) {
   auto* command = fold.add_subcommand(
       "synth",
       "Synthesise the folding textures of a project: colour atlas, init and jump textures (16-bit PNG "
@@ -750,7 +750,7 @@ void registerFold(CLI::App& app) {
   auto* command = app.add_subcommand(
       "fold", "Folding textures: animate still images from a project file (docs/folding.md)");
   command->require_subcommand(1);
-  registerSynth(*command);
+  registerFoldSynth(*command);
   registerFoldRender(*command);
   registerFoldView(*command);
   registerExportShader(*command);
