@@ -3,7 +3,7 @@
 // Canny contour), refining 128 -> 16 knots (heap, one frame and 60 frames of motion; the paper's O(n^2) loop
 // beside it), a whole blade model (three levels over a 60-frame simulated sway) and the synthetic generator.
 // Inputs are the synthetic clusters of the accuracy tests. Medians of 9 runs after 2 warm-ups.
-#include "BenchRows.hpp"
+#include "Bench.hpp"
 #include "Commands.hpp"
 
 #include <sylva/capture/Extract.hpp>

@@ -1,4 +1,4 @@
-#include "BenchRows.hpp"
+#include "Bench.hpp"
 
 #include <folding/FoldingCase.hpp>
 #include <sylva/core/Error.hpp>

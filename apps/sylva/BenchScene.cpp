@@ -1,6 +1,6 @@
 // `sylva bench scene [--scene FILE]`: a scene file's frames with every pass timed (docs/scenes.md
 // "Performance").
-#include "BenchRows.hpp"
+#include "Bench.hpp"
 
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/gl/State.hpp>

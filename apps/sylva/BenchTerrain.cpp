@@ -1,4 +1,4 @@
-#include "BenchRows.hpp"
+#include "Bench.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>

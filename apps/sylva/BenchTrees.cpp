@@ -2,7 +2,7 @@
 // instancing (one cull pass, one multi-draw) beside the per-piece-draw baseline in the same run, the cost of
 // tessellation levels 1 and 10, the foliage passes, 1,000 animated trees with 100,000 far impostors,
 // generation of 1,000 trees on one thread, wind on 100,000 joints, bark tile-set synthesis and GPU memory.
-#include "BenchRows.hpp"
+#include "Bench.hpp"
 
 #include <sylva/core/Log.hpp>
 #include <sylva/gl/State.hpp>

@@ -1,4 +1,4 @@
-#include "BenchRows.hpp"
+#include "Bench.hpp"
 
 #include <unistd.h>
 
