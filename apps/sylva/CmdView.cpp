@@ -979,13 +979,7 @@ void runViewer(const ViewOptions& o) {
     const platform::InputState& in = window.input();
     const bool mouseFree = !ImGui::GetIO().WantCaptureMouse;
     if (flyMode) {
-      glm::vec3 move(0.0f);
-      move.z += window.keyDown(GLFW_KEY_W) ? 1.0f : 0.0f;
-      move.z -= window.keyDown(GLFW_KEY_S) ? 1.0f : 0.0f;
-      move.x += window.keyDown(GLFW_KEY_D) ? 1.0f : 0.0f;
-      move.x -= window.keyDown(GLFW_KEY_A) ? 1.0f : 0.0f;
-      move.y += window.keyDown(GLFW_KEY_E) ? 1.0f : 0.0f;
-      move.y -= window.keyDown(GLFW_KEY_Q) ? 1.0f : 0.0f;
+      const glm::vec3 move = ui::flyKeys(window);
       const bool look = mouseFree && in.mouseLeft;
       fly.update(move, look ? static_cast<float>(in.cursorDelta.x) : 0.0f,
                  look ? static_cast<float>(in.cursorDelta.y) : 0.0f, static_cast<float>(dt));

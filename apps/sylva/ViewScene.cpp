@@ -226,16 +226,7 @@ void runSceneViewer(const SceneViewOptions& o) {
     // The camera: a file camera at the scene time, or the fly/walk camera.
     const platform::InputState& in = window.input();
     const bool mouseFree = !ImGui::GetIO().WantCaptureMouse;
-    const bool keysFree = !ImGui::GetIO().WantCaptureKeyboard;
-    glm::vec3 move(0.0f);
-    if (keysFree) {
-      move.z += window.keyDown(GLFW_KEY_W) ? 1.0f : 0.0f;
-      move.z -= window.keyDown(GLFW_KEY_S) ? 1.0f : 0.0f;
-      move.x += window.keyDown(GLFW_KEY_D) ? 1.0f : 0.0f;
-      move.x -= window.keyDown(GLFW_KEY_A) ? 1.0f : 0.0f;
-      move.y += window.keyDown(GLFW_KEY_E) && !v.walk ? 1.0f : 0.0f;
-      move.y -= window.keyDown(GLFW_KEY_Q) && !v.walk ? 1.0f : 0.0f;
-    }
+    const glm::vec3 move = ui::flyKeys(window, !v.walk);
     const bool look = mouseFree && in.mouseLeft && (in.cursorDelta.x != 0.0 || in.cursorDelta.y != 0.0);
     if (move != glm::vec3(0.0f) || look) {
       v.goFree(fly, camera); // flying or looking around leaves the file's camera

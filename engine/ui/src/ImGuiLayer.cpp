@@ -4,6 +4,7 @@
 #include <sylva/gl/State.hpp>
 #include <sylva/render/RenderTarget.hpp>
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
@@ -65,6 +66,20 @@ bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::st
     frameTimes.pop_front();
   }
   return frames > 0 && ++frame >= frames;
+}
+
+glm::vec3 flyKeys(const platform::GlfwWindow& window, bool vertical) {
+  glm::vec3 move(0.0f);
+  if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureKeyboard) {
+    return move;
+  }
+  const auto key = [&window](int k) { return window.keyDown(k) ? 1.0f : 0.0f; };
+  move.z = key(GLFW_KEY_W) - key(GLFW_KEY_S);
+  move.x = key(GLFW_KEY_D) - key(GLFW_KEY_A);
+  if (vertical) {
+    move.y = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
+  }
+  return move;
 }
 
 } // namespace sylva::ui

@@ -40,4 +40,11 @@ float beginPanel(const char* title, const std::string& renderer, const std::dequ
 bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::string& screenshot, int frames,
                     int& frame, double dtSeconds, std::deque<float>& frameTimes);
 
+/**
+ * The fly keys as a move in camera axes (x right, y up, z forward, each −1, 0 or 1): W/S forward and back,
+ * D/A right and left, E/Q up and down (with `vertical`; walking keeps to the ground). Zero while an ImGui
+ * widget has the keyboard, so typing into the panel does not move the camera.
+ */
+glm::vec3 flyKeys(const platform::GlfwWindow& window, bool vertical = true);
+
 } // namespace sylva::ui
