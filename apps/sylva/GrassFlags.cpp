@@ -243,12 +243,9 @@ void drawTerrainWithGrass(terrain::TerrainScene& scene, grass::GrassRenderer* gr
                           terrain::TerrainDrawOptions terrainOptions,
                           const grass::GrassDrawOptions& grassOptions, render::GpuTimers* timers) {
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  if (timers != nullptr) {
-    timers->begin("lod (cpu)");
-  }
-  scene.update(camera, aspect);
-  if (timers != nullptr) {
-    timers->end();
+  {
+    const render::GpuTimerScope timed(timers, "lod (cpu)");
+    scene.update(camera, aspect);
   }
   if (grass != nullptr && terrainOptions.view == terrain::TerrainView::Shaded) {
     terrainOptions.groundTint = grass->groundTint();

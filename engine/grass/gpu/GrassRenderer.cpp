@@ -227,9 +227,7 @@ void GrassRenderer::bindCommon() const {
 }
 
 void GrassRenderer::cull(const render::Camera& camera, float aspect, render::GpuTimers* timers) {
-  if (timers != nullptr) {
-    timers->begin("grass cull");
-  }
+  const render::GpuTimerScope timed(timers, "grass cull");
   uploadUniforms(camera, aspect, {}, 0.0, GrassView::Shaded);
   gpu::GrassCounters reset{};
   std::uint32_t base = 0;
@@ -262,16 +260,11 @@ void GrassRenderer::cull(const render::Camera& camera, float aspect, render::Gpu
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
                   GL_SHADER_STORAGE_BARRIER_BIT);
-  if (timers != nullptr) {
-    timers->end();
-  }
 }
 
 void GrassRenderer::draw(const render::Camera& camera, int width, int height, double time,
                          render::GpuTimers* timers, const GrassDrawOptions& options) {
-  if (timers != nullptr) {
-    timers->begin("grass");
-  }
+  const render::GpuTimerScope timed(timers, "grass");
   wind::validate(options.wind);
   // The cull's frustum and distances stay; the wind time and the view change per draw.
   gpu::GrassUniforms& u = mLast;
@@ -300,9 +293,6 @@ void GrassRenderer::draw(const render::Camera& camera, int width, int height, do
   }
   if (culling == GL_TRUE) {
     glEnable(GL_CULL_FACE);
-  }
-  if (timers != nullptr) {
-    timers->end();
   }
 }
 

@@ -81,19 +81,16 @@ void DemoScene::render(const Camera& camera, int width, int height, double time,
   mFrame.update(camera, width, height, time);
   mFrame.bind();
 
-  if (timers != nullptr) {
-    timers->begin("heights");
+  {
+    const GpuTimerScope timed(timers, "heights");
+    mCompute.use();
+    mHeights.bindImage(0, GL_WRITE_ONLY);
+    const GLuint groups =
+        static_cast<GLuint>((mSettings.fieldSize + SYLVA_DEMO_GROUP_SIZE - 1) / SYLVA_DEMO_GROUP_SIZE);
+    glDispatchCompute(groups, groups, 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
-  mCompute.use();
-  mHeights.bindImage(0, GL_WRITE_ONLY);
-  const GLuint groups =
-      static_cast<GLuint>((mSettings.fieldSize + SYLVA_DEMO_GROUP_SIZE - 1) / SYLVA_DEMO_GROUP_SIZE);
-  glDispatchCompute(groups, groups, 1);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-  if (timers != nullptr) {
-    timers->end();
-    timers->begin("surface");
-  }
+  const GpuTimerScope timed(timers, "surface");
   mSurface.use();
   mHeights.bind(0);
   mVao.bind();
@@ -101,9 +98,6 @@ void DemoScene::render(const Camera& camera, int width, int height, double time,
   glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
   glDrawArraysInstanced(GL_PATCHES, 0, 4, mSettings.patches * mSettings.patches);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  if (timers != nullptr) {
-    timers->end();
-  }
 }
 
 } // namespace sylva::render

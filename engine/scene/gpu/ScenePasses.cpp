@@ -89,9 +89,7 @@ void ScenePasses::renderShadows(const render::Camera& camera, float aspect, doub
   settings.lambda = mScene.shadows.lambda;
   const render::ShadowCascades cascades =
       render::fitCascades(camera, aspect, mBase.sunDirection, settings, casters);
-  if (timers != nullptr) {
-    timers->begin(passName(Pass::Shadows));
-  }
+  const render::GpuTimerScope timed(timers, passName(Pass::Shadows));
   render::Environment casterEnvironment = mBase; // casters draw unshadowed (their colour is not kept)
   for (int i = 0; i < static_cast<int>(cascades.cascades.size()); ++i) {
     const render::ShadowCascade& c = cascades.cascades[static_cast<std::size_t>(i)];
@@ -104,9 +102,6 @@ void ScenePasses::renderShadows(const render::Camera& camera, float aspect, doub
       }
     }
     mShadowMaps->end();
-  }
-  if (timers != nullptr) {
-    timers->end();
   }
   mEnvironment.shadows = render::toFrame(cascades, settings);
   mShadowMaps->bind();
@@ -129,26 +124,16 @@ void ScenePasses::render(const render::Camera& camera, int width, int height, do
     }
   }
   if (enabled(Pass::Sky)) {
-    if (timers != nullptr) {
-      timers->begin(passName(Pass::Sky));
-    }
+    const render::GpuTimerScope timed(timers, passName(Pass::Sky));
     mFrame.update(camera, width, height, time, mEnvironment);
     mFrame.bind();
     mSky->drawSky();
-    if (timers != nullptr) {
-      timers->end();
-    }
   }
   if (enabled(Pass::Flare) && depth != nullptr) {
-    if (timers != nullptr) {
-      timers->begin(passName(Pass::Flare));
-    }
+    const render::GpuTimerScope timed(timers, passName(Pass::Flare));
     mFrame.update(camera, width, height, time, mEnvironment);
     mFrame.bind();
     mSky->drawFlare(*depth);
-    if (timers != nullptr) {
-      timers->end();
-    }
   }
   render::ShadowMaps::unbind();
 }

@@ -92,12 +92,9 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
       Pass::Terrain,
       [this](const PassInput& in) {
         const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
-        if (in.timers != nullptr) {
-          in.timers->begin("lod (cpu)");
-        }
-        mTerrain->update(in.camera, aspect);
-        if (in.timers != nullptr) {
-          in.timers->end();
+        {
+          const render::GpuTimerScope timed(in.timers, "lod (cpu)");
+          mTerrain->update(in.camera, aspect);
         }
         terrain::TerrainDrawOptions options = mTerrain->drawOptions(in.camera);
         options.environment = in.environment;
@@ -156,26 +153,16 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
   }
   if (mSimulatedGrass >= 0) {
     mPasses->set(Pass::Bodies, [this](const PassInput& in) {
-      if (in.timers != nullptr) {
-        in.timers->begin(passName(Pass::Bodies));
-      }
+      const render::GpuTimerScope timed(in.timers, passName(Pass::Bodies));
       mSimulation->drawBodies(in.camera, in.width, in.height, in.time, in.environment);
-      if (in.timers != nullptr) {
-        in.timers->end();
-      }
     });
   }
   if (!mWater.empty()) {
     mPasses->set(Pass::Water, [this](const PassInput& in) {
-      if (in.timers != nullptr) {
-        in.timers->begin(passName(Pass::Water));
-      }
+      const render::GpuTimerScope timed(in.timers, passName(Pass::Water));
       for (auto& w : mWater) {
         w->update(in.time);
         w->draw(in.camera, in.width, in.height, in.time, in.environment);
-      }
-      if (in.timers != nullptr) {
-        in.timers->end();
       }
     });
   }

@@ -221,9 +221,7 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
                            const TerrainDrawOptions& options) {
   const std::vector<gpu::TerrainNode> nodes =
       packTerrainNodes(selection, mField.extentX, mField.extentZ, options.skirts);
-  if (timers != nullptr) {
-    timers->begin("terrain");
-  }
+  const render::GpuTimerScope timed(timers, "terrain");
   if (!nodes.empty()) {
     const std::size_t bytes = nodes.size() * sizeof(gpu::TerrainNode);
     if (!mNodes || mNodes.size() < bytes) {
@@ -327,9 +325,6 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
       glDepthMask(GL_TRUE);
       glDisable(GL_BLEND);
     }
-  }
-  if (timers != nullptr) {
-    timers->end();
   }
 }
 

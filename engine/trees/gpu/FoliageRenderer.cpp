@@ -169,9 +169,7 @@ bool FoliageRenderer::bake(const render::Camera& camera, const render::Environme
       environment.sunIntensity == mBakedSunIntensity) {
     return false;
   }
-  if (timers != nullptr) {
-    timers->begin("foliage bake");
-  }
+  const render::GpuTimerScope timed(timers, "foliage bake");
   mBasis = basis;
   mBakedSun = sun;
   mBakedSunIntensity = environment.sunIntensity;
@@ -198,9 +196,6 @@ bool FoliageRenderer::bake(const render::Camera& camera, const render::Environme
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
   mDirty = false;
   ++mBakes;
-  if (timers != nullptr) {
-    timers->end();
-  }
   return true;
 }
 
@@ -217,9 +212,7 @@ void FoliageRenderer::draw(const render::Camera& camera, int width, int height, 
     // Never draw an unbaked (undefined) texture.
     bake(camera, environment, timers);
   }
-  if (timers != nullptr) {
-    timers->begin("foliage");
-  }
+  const render::GpuTimerScope timed(timers, "foliage");
   uploadUniforms(environment, lod);
   mFrame.update(camera, width, height, time, environment);
   {
@@ -237,9 +230,6 @@ void FoliageRenderer::draw(const render::Camera& camera, int width, int height, 
     mDraw.use();
     mEmptyVao.bind();
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(mAnchors.size()));
-  }
-  if (timers != nullptr) {
-    timers->end();
   }
 }
 

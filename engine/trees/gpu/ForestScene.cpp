@@ -140,18 +140,13 @@ void ForestScene::advance(double time, const wind::WindSettings& wind, int maxSt
   if (steps == 0) {
     return;
   }
-  if (timers != nullptr) {
-    timers->begin("trees wind");
-  }
+  const render::GpuTimerScope timed(timers, "trees wind");
   // Step i runs at the wind time clock − (n − 1 − i)·dt (fixedSteps' contract).
   for (int i = 0; i < steps; ++i) {
     const double at = *mClock - static_cast<double>(steps - 1 - i) * kForestWindStep;
     mWind->step(wind::toUniforms(wind, static_cast<float>(at)), static_cast<float>(kForestWindStep));
   }
   mWind->updateFrames();
-  if (timers != nullptr) {
-    timers->end();
-  }
   mSteps = steps;
 }
 

@@ -321,39 +321,37 @@ void ImpostorRenderer::draw(const render::Camera& camera, int width, int height,
   if (mTreeCount == 0 || mSpecies == 0) {
     return;
   }
-  if (timers != nullptr) {
-    timers->begin("impostors cull");
+  {
+    const render::GpuTimerScope timed(timers, "impostors cull");
+    gpu::ImpostorUniforms u{};
+    u.atlas = glm::vec4(static_cast<float>(mSettings.layout.views), static_cast<float>(mSettings.layout.cell),
+                        mSettings.alphaThreshold, mSettings.depthParallax ? 1.0f : 0.0f);
+    u.far = glm::vec4(farRange, 0.0f, 0.0f);
+    u.info = glm::uvec4(static_cast<unsigned>(mTreeCount), static_cast<unsigned>(mSpecies), 0u, 0u);
+    for (std::size_t s = 0; s < SYLVA_TREE_MAX_SPECIES; ++s) {
+      u.sphere[s] = mSpheres[s];
+    }
+    const Frustum frustum =
+        camera.frustum(static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
+    for (std::size_t p = 0; p < 6; ++p) {
+      u.frustum[p] = frustum.planes()[p];
+    }
+    mUniforms.setSubData(0, sizeof(u), &u);
+    mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TREE_IMPOSTOR_UNIFORM_BINDING);
+    mFrame.update(camera, width, height, time, environment);
+    mFrame.bind();
+    mInstances.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_BINDING);
+    mVisible.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_VISIBLE_BINDING);
+    mCommand.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_COMMAND_BINDING);
+    const std::uint32_t reset[4] = {4u, 0u, 0u, 0u};
+    mCommand.setSubData(0, sizeof(reset), reset);
+    mCull.use();
+    glDispatchCompute(static_cast<GLuint>((mTreeCount + SYLVA_TREE_IMPOSTOR_CULL_GROUP - 1) /
+                                          SYLVA_TREE_IMPOSTOR_CULL_GROUP),
+                      1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   }
-  gpu::ImpostorUniforms u{};
-  u.atlas = glm::vec4(static_cast<float>(mSettings.layout.views), static_cast<float>(mSettings.layout.cell),
-                      mSettings.alphaThreshold, mSettings.depthParallax ? 1.0f : 0.0f);
-  u.far = glm::vec4(farRange, 0.0f, 0.0f);
-  u.info = glm::uvec4(static_cast<unsigned>(mTreeCount), static_cast<unsigned>(mSpecies), 0u, 0u);
-  for (std::size_t s = 0; s < SYLVA_TREE_MAX_SPECIES; ++s) {
-    u.sphere[s] = mSpheres[s];
-  }
-  const Frustum frustum = camera.frustum(static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
-  for (std::size_t p = 0; p < 6; ++p) {
-    u.frustum[p] = frustum.planes()[p];
-  }
-  mUniforms.setSubData(0, sizeof(u), &u);
-  mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TREE_IMPOSTOR_UNIFORM_BINDING);
-  mFrame.update(camera, width, height, time, environment);
-  mFrame.bind();
-  mInstances.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_BINDING);
-  mVisible.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_VISIBLE_BINDING);
-  mCommand.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_COMMAND_BINDING);
-  const std::uint32_t reset[4] = {4u, 0u, 0u, 0u};
-  mCommand.setSubData(0, sizeof(reset), reset);
-  mCull.use();
-  glDispatchCompute(
-      static_cast<GLuint>((mTreeCount + SYLVA_TREE_IMPOSTOR_CULL_GROUP - 1) / SYLVA_TREE_IMPOSTOR_CULL_GROUP),
-      1, 1);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-  if (timers != nullptr) {
-    timers->end();
-    timers->begin("impostors");
-  }
+  const render::GpuTimerScope timed(timers, "impostors");
   mColour.bind(SYLVA_TREE_IMPOSTOR_UNIT);
   mNormal.bind(SYLVA_TREE_IMPOSTOR_NORMAL_UNIT);
   const GLboolean culling = glIsEnabled(GL_CULL_FACE);
@@ -366,9 +364,6 @@ void ImpostorRenderer::draw(const render::Camera& camera, int width, int height,
   glDrawArraysIndirect(GL_TRIANGLE_STRIP, nullptr);
   if (culling == GL_TRUE) {
     glEnable(GL_CULL_FACE);
-  }
-  if (timers != nullptr) {
-    timers->end();
   }
 }
 

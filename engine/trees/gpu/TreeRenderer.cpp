@@ -303,9 +303,7 @@ void TreeRenderer::cull(const render::Camera& camera, int width, int height, con
 
 void TreeRenderer::runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec2 sizeCull,
                            render::GpuTimers* timers) {
-  if (timers != nullptr) {
-    timers->begin("trees cull");
-  }
+  const render::GpuTimerScope timed(timers, "trees cull");
   useQuadsPerCommand(quadsPerCommand(lod.fixedLevel > 0.0f ? lod.fixedLevel : lod.maxLevel));
   uploadUniforms(camera, aspect, lod, TreeView::Shaded, false, sizeCull);
   mFrame.update(camera, 1, 1, 0.0, {});
@@ -319,9 +317,6 @@ void TreeRenderer::runCull(const render::Camera& camera, float aspect, const Tre
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
                   GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
-  if (timers != nullptr) {
-    timers->end();
-  }
 }
 
 void TreeRenderer::submit(const TreeDrawOptions& options, bool perPiece) {
@@ -386,14 +381,9 @@ void TreeRenderer::prepareDraw(const render::Camera& camera, int width, int heig
 
 void TreeRenderer::draw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
                         render::GpuTimers* timers, const TreeDrawOptions& options) {
-  if (timers != nullptr) {
-    timers->begin("trees");
-  }
+  const render::GpuTimerScope timed(timers, "trees");
   prepareDraw(camera, width, height, time, lod, options);
   submit(options, false);
-  if (timers != nullptr) {
-    timers->end();
-  }
 }
 
 void TreeRenderer::drawPerPiece(const render::Camera& camera, int width, int height, double time,

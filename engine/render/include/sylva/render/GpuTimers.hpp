@@ -57,6 +57,29 @@ private:
   bool mInPass = false;
 };
 
+/**
+ * Times the enclosing scope as pass `name` of `timers`: begin() on construction, end() on destruction (early
+ * returns included); nothing when `timers` is null, so a pass can be timed or not with one line.
+ */
+class GpuTimerScope {
+public:
+  GpuTimerScope(GpuTimers* timers, const std::string& name) : mTimers(timers) {
+    if (mTimers != nullptr) {
+      mTimers->begin(name);
+    }
+  }
+  ~GpuTimerScope() {
+    if (mTimers != nullptr) {
+      mTimers->end();
+    }
+  }
+  GpuTimerScope(const GpuTimerScope&) = delete;
+  GpuTimerScope& operator=(const GpuTimerScope&) = delete;
+
+private:
+  GpuTimers* mTimers;
+};
+
 /** Median, spread (min, max, p10, p90) of samples; for `sylva bench` reports. */
 struct Stats {
   double median = 0.0;
