@@ -2,7 +2,7 @@
 
 #include <sylva/core/Geometry.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/Environment.hpp>
 
 #include <glm/glm.hpp>
 

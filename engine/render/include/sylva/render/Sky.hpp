@@ -1,6 +1,6 @@
 #pragma once
 
-#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/Environment.hpp>
 
 #include <glm/glm.hpp>
 
