@@ -1,7 +1,7 @@
 #include "Bench.hpp"
 
-#include "GrassFlags.hpp"
 #include "GrassSim.hpp"
+#include "WorldFlags.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -11,6 +11,7 @@
 #include <sylva/gl/Debug.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/gpu/TerrainPopping.hpp>
 
@@ -56,33 +57,53 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   std::vector<BenchRow> rows;
   report = header(o, "grass", context);
 
-  // 1. The paper's field: 34 x 439 tiles = 14,926, full density (constant noise), every blade drawn.
-  terrain::ProceduralSpec spec = terrain::TerrainSource::defaultProcedural();
-  spec.heightScale = 6.0f;
-  spec.frequency = 1.0f / 150.0f;
-  terrain::QuadtreeConfig quadtree = terrain::TerrainSetup::defaultQuadtree();
-  quadtree.rootSize = 128.0f;
-  quadtree.maxDepth = 4;
-  terrain::TerrainScene paperScene(library, terrain::generate(spec, 0.0, 0.0, 69, 879, 1.0f), quadtree);
-  const grass::FieldSettings fs = paperFieldSettings();
-  auto paperField =
-      std::make_shared<grass::GrassField>(paperScene.field(), grass::proceduralBladeTypes(), fs);
-  grass::CullSettings all;
+  // 1. The paper's field: 34 x 439 tiles = 14,926, full density, every blade drawn: a 69 x 879 m terrain of
+  // 1 m samples under one grass layer of one density everywhere (no density noise, no splat layer). The
+  // paper's frame is terrain and grass: no shadows, sky or flare.
+  scene::SceneDesc paperDesc;
+  paperDesc.path = "bench grass";
+  paperDesc.name = "paper field";
+  terrain::TerrainSetup& setup = paperDesc.terrain.setup.emplace();
+  setup.source.procedural = terrain::TerrainSource::defaultProcedural();
+  setup.source.procedural.heightScale = 6.0f;
+  setup.source.procedural.frequency = 1.0f / 150.0f;
+  setup.source.proceduralSize = 69;
+  setup.source.proceduralRows = 879;
+  setup.source.proceduralSpacing = 1.0f;
+  setup.seaLevel.kind = terrain::SeaLevelRule::Kind::None;
+  setup.quadtree.rootSize = 128.0f;
+  setup.maxDepth = 4;
+  scene::GrassLayer& paperLayer = paperDesc.grass.emplace_back();
+  paperLayer.layer = "none";
+  paperLayer.noiseFrequency = 0.0f;
+  paperLayer.maxSlope = 90.0f;
+  paperLayer.patchBlades = 16384;
+  paperLayer.bladesPerTile = 64;
+  grass::CullSettings& all = paperLayer.cull.emplace();
   all.maxDistance = 5000.0f;
   all.orientationCos = 0.0f;
-  grass::GrassRenderer paperGrass(library, paperField, all);
-  const std::size_t fieldBlades = paperField->countBlades();
-  const std::size_t tiles = static_cast<std::size_t>(paperField->layout().tilesX) *
-                            static_cast<std::size_t>(paperField->layout().tilesZ);
-  render::Camera camera =
-      paperScene.frameCamera(render::ViewFrom::SouthWest, glm::radians(50.0f), target.aspect());
-  grass::GrassDrawOptions grassOptions;
-  grassOptions.wind.speed = 3.0f;
-  grassOptions.countPrimitives = true;
+  paperDesc.wind.speed = 3.0f;
+  paperDesc.shadows.cascades = 0;
+  paperDesc.sky.flare = false;
+  scene::SceneWorld paperWorld(library, paperDesc);
+  paperWorld.passes().setEnabled(scene::Pass::Sky, false);
+  scene::SceneDrawOptions countAll;
+  countAll.countPrimitives = true;
+  paperWorld.setDrawOptions(countAll);
+  grass::GrassRenderer& paperGrass = paperWorld.grass(0);
+  const grass::GrassField& paperField = paperGrass.field();
+  const std::size_t fieldBlades = paperField.countBlades();
+  const std::size_t tiles = static_cast<std::size_t>(paperField.layout().tilesX) *
+                            static_cast<std::size_t>(paperField.layout().tilesZ);
+  const render::Camera camera =
+      paperWorld.terrain().frameCamera(render::ViewFrom::SouthWest, glm::radians(50.0f), target.aspect());
+  const auto frame = [&](scene::SceneWorld& world, const render::Camera& view, double time,
+                         render::GpuTimers* timers) {
+    target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    world.draw(view, o.width, o.height, time, &target.depth(), timers);
+  };
   const Samples paper = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
-    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-    drawTerrainWithGrass(paperScene, &paperGrass, camera, o.width, o.height, 1.0 + i / 60.0,
-                         paperScene.drawOptions(camera), grassOptions, &timers);
+    frame(paperWorld, camera, 1.0 + i / 60.0, &timers);
   });
   const gpu::GrassCounters counters = paperGrass.readCounters();
   const double drawnBlades = counters.blades.x;
@@ -115,41 +136,36 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
                   static_cast<double>(paperGrass.gpuBytes()) / 1e6, "MB", std::nan(""), true, 0,
                   "instance lists sized for the draw distance"});
 
-  // 2. The demo's ground view: the terrain of the command line (default: the demo landscape), --grass
-  // defaults.
-  auto demo = o.terrain.build(library);
-  GrassFlags grassFlags;
-  auto demoField = grassFlags.buildField(*demo);
-  grass::GrassRenderer demoGrass(library, demoField, grassFlags.cullSettings());
-  const render::Camera ground = grassCamera(*demo, *demoField, glm::radians(50.0f), grassFlags.windDirection);
-  grass::GrassDrawOptions demoOptions;
-  demoOptions.wind = grassFlags.wind();
+  // 2. The demo's ground view: the terrain of the command line (default: the demo landscape) under a grass
+  // layer of the --grass defaults, as `sylva render --grass` draws it (shadows, sky, flare).
+  WorldFlags demoFlags;
+  demoFlags.terrain = o.terrain;
+  demoFlags.grass.enabled = true;
+  scene::SceneWorld demoWorld(library, demoFlags.desc("bench grass", false));
+  grass::GrassRenderer& demoGrass = demoWorld.grass(0);
+  const render::Camera ground = demoFlags.start(demoWorld, target.aspect());
   const Samples demoSamples = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
-    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-    drawTerrainWithGrass(*demo, &demoGrass, ground, o.width, o.height, 1.0 + i / 60.0,
-                         demo->drawOptions(ground), demoOptions, &timers);
+    frame(demoWorld, ground, 1.0 + i / 60.0, &timers);
   });
   const gpu::GrassCounters demoCounters = demoGrass.readCounters();
   rows.push_back({"demo ground view: blades drawn", static_cast<double>(demoCounters.blades.x), "blades",
                   std::nan(""), false, 0,
                   fmt::format("{} visible tiles of {} blades", demoCounters.dispatch.x,
-                              demoField->layout().bladesPerTile)});
+                              demoGrass.field().layout().bladesPerTile)});
   rows.push_back({"demo ground view: grass cull + draw",
                   wallOf(demoSamples, "grass cull") + wallOf(demoSamples, "grass"), "ms", std::nan(""), true,
                   0, ""});
   rows.push_back({"demo ground view: whole frame (wall)", render::Stats::of(demoSamples.frame).median, "ms",
-                  std::nan(""), true, 0, ""});
+                  std::nan(""), true, 0, "with sun shadows, sky and flare"});
 
   // 3. Popping: the camera stays; the LOD boundaries move by 0.25 m (what a 0.25 m step of the camera does
   // to the blades near them, without the parallax). Pixels changing by more than 5 % in any channel.
   const auto still = [&](const grass::CullSettings& settings) {
     demoGrass.setCullSettings(settings);
-    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-    drawTerrainWithGrass(*demo, &demoGrass, ground, o.width, o.height, 1.0, demo->drawOptions(ground),
-                         demoOptions);
+    frame(demoWorld, ground, 1.0, nullptr);
     return target.readColor();
   };
-  const grass::CullSettings base = grassFlags.cullSettings();
+  const grass::CullSettings base = demoGrass.cullSettings();
   const auto shifted = [](grass::CullSettings s, float by) {
     s.lodDistances = {s.lodDistances[0] - by, s.lodDistances[1] - by};
     return s;
@@ -175,13 +191,9 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
         glm::vec3(ground.target.x - ground.position.x, 0.0f, ground.target.z - ground.position.z));
     moved.position += forward * 0.25f;
     moved.target += forward * 0.25f;
-    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-    drawTerrainWithGrass(*demo, &demoGrass, ground, o.width, o.height, 1.0, demo->drawOptions(ground),
-                         demoOptions);
+    frame(demoWorld, ground, 1.0, nullptr);
     const Image a = target.readColor();
-    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-    drawTerrainWithGrass(*demo, &demoGrass, moved, o.width, o.height, 1.0, demo->drawOptions(moved),
-                         demoOptions);
+    frame(demoWorld, moved, 1.0, nullptr);
     return terrain::changedPixelFraction(a, target.readColor(), 0.05f);
   };
   grass::CullSettings single = base;

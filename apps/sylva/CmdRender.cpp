@@ -12,10 +12,7 @@
 #include <sylva/trees/gpu/ForestScene.hpp>
 
 #include "CmdScene.hpp"
-#include "GrassFlags.hpp"
-#include "GrassSim.hpp"
-#include "TerrainFlags.hpp"
-#include "TreeFlags.hpp"
+#include "WorldFlags.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,11 +26,7 @@ namespace {
 struct Options {
   ContextFlags context;
   std::string scene = "terrain";
-  TerrainFlags terrain;
-  CameraFlags camera;
-  GrassFlags grass;
-  SimulationFlags simulation;
-  TreeFlags trees;
+  WorldFlags world;
   std::string frames;
   SceneRenderOptions sceneFile;
   CLI::Option* outOption = nullptr;
@@ -50,50 +43,6 @@ struct Options {
   bool wireframe = false;
   std::string shaderDir;
 };
-
-/** The world `sylva render --grass/--trees/--physics` draws: the terrain, grass and forest options as a scene
- * description (errors name the options). */
-scene::SceneDesc worldDesc(const Options& o) {
-  scene::SceneDesc d;
-  d.path = "sylva render";
-  d.name = "render";
-  d.terrain.setup = o.terrain.setup();
-  if (o.grass.enabled) {
-    scene::GrassLayer layer = o.grass.layerDesc();
-    layer.simulate = o.simulation.enabled();
-    d.grass.push_back(layer);
-  }
-  if (o.trees.enabled) {
-    d.forests.push_back(o.trees.forestDesc());
-  }
-  // The wind options blow along (cos a, sin a); a scene's direction is clockwise from north: a + 90°.
-  d.wind.speed = o.grass.windSpeed;
-  d.wind.direction = std::fmod(o.grass.windDirection + 90.0f, 360.0f);
-  d.wind.gusts = o.grass.gusts;
-  d.wind.seed = o.grass.windSeed;
-  d.fog.farSide = o.camera.fog;
-  if (o.simulation.enabled()) {
-    d.grassSim = o.simulation.settings();
-  }
-  d.fieldNames = [](std::string_view pointer) -> std::string {
-    const auto field = [&pointer](std::string_view prefix) {
-      return pointer.substr(pointer.find('/', prefix.size()) + 1);
-    };
-    if (pointer.starts_with("/terrain/")) {
-      return terrainOption(pointer.substr(std::string_view("/terrain/").size()));
-    }
-    if (pointer.starts_with("/grass/")) {
-      return GrassFlags::option(field("/grass/"));
-    }
-    if (pointer.starts_with("/forests/")) {
-      std::string option = "--trees-" + std::string(field("/forests/"));
-      std::replace(option.begin(), option.end(), '_', '-');
-      return option;
-    }
-    return std::string(pointer);
-  };
-  return d;
-}
 
 /** Writes --gif (all frames) and -o (the last frame), when frames were kept. */
 void writeFrames(const Options& o, const std::vector<Image>& frames) {
@@ -125,11 +74,7 @@ void registerRender(CLI::App& app) {
   command->add_option("--scene", o->scene, "terrain, or demo (the small built-in pipeline test scene)")
       ->check(CLI::IsMember({"terrain", "demo"}))
       ->capture_default_str();
-  o->terrain.add(*command);
-  o->camera.add(*command);
-  o->grass.add(*command);
-  o->simulation.add(*command);
-  o->trees.add(*command);
+  o->world.add(*command);
   command->add_option(
       "--frames", o->frames,
       "Scene file: frame numbers A-B (or A-B,C-D) of its fixed clock, written to --out DIR as "
@@ -192,20 +137,7 @@ void registerRender(CLI::App& app) {
       }
       frameCount = static_cast<int>(n);
     }
-    o->camera.check();
-    if (o->grass.enabled) {
-      o->grass.check();
-    }
-    if (o->simulation.enabled() && !o->grass.enabled) {
-      fail("--physics: needs --grass (the bodies move through the grass field)");
-    }
-    if (o->trees.enabled) {
-      o->trees.check();
-    }
-    if (o->simulation.enabled()) {
-      (void)o->simulation.solverSettings();
-      (void)o->simulation.poolSettings();
-    }
+    o->world.check(false);
     auto context = platform::createHeadlessContext(o->context.options());
     shader::Library library(o->shaderDir);
     render::RenderTarget target(o->width, o->height);
@@ -214,11 +146,11 @@ void registerRender(CLI::App& app) {
       target.begin(glm::vec4(environment.fogColor, 1.0f));
       render::DemoScene scene(library, o->demo);
       scene.render(scene.defaultCamera(), o->width, o->height, o->time, nullptr, o->wireframe);
-    } else if (!o->grass.enabled && !o->trees.enabled) {
+    } else if (!o->world.grass.enabled && !o->world.trees.enabled) {
       // Terrain alone: the terrain's own frame (its debugging views, sea and fog by --fog).
-      auto scene = o->terrain.build(library);
-      const render::Camera camera = o->camera.camera(*scene, target.aspect());
-      terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->camera.fog);
+      auto scene = o->world.terrain.build(library);
+      const render::Camera camera = o->world.camera.camera(*scene, target.aspect());
+      terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->world.camera.fog);
       options.view = parseTerrainView(o->view);
       options.wireframe = o->wireframe;
       std::vector<Image> frames;
@@ -240,53 +172,14 @@ void registerRender(CLI::App& app) {
     } else {
       // Grass, trees, bodies: the world the options describe, drawn by the scene's one frame path (sun
       // shadows, sky, aerial perspective), as a scene file would be.
-      scene::SceneWorld world(library, worldDesc(*o));
-      terrain::TerrainScene& terrain = world.terrain();
-      render::Camera camera = o->camera.camera(terrain, target.aspect());
-      const float fov = glm::radians(o->camera.fovDegrees);
-      if (o->grass.enabled) {
-        const grass::GrassField& field = world.grass(0).field();
-        log::info(
-            "grass: {} blade types, {} tiles of {} m, about {:.3g} blades in the field, patch {:.2f} MB",
-            field.types().size(), static_cast<long long>(field.layout().tilesX) * field.layout().tilesZ,
-            field.layout().tileSize, field.estimateBlades(),
-            static_cast<double>(grass::patchBytes(field.patch().size(), field.types().size())) / 1e6);
-        if (o->camera.cameraPos.empty()) {
-          camera = grassCamera(terrain, field, fov, o->grass.windDirection);
-          const float e = terrain.exaggeration();
-          log::info("grass: camera at {:.1f},{:.1f},{:.1f} looking at {:.1f},{:.1f},{:.1f} (--camera-pos, "
-                    "--look-at)",
-                    camera.position.x, camera.position.y / e, camera.position.z, camera.target.x,
-                    camera.target.y / e, camera.target.z);
-        }
-      }
-      if (o->trees.enabled) {
-        trees::ForestScene& forest = world.forest(0);
-        log::info("trees: {} trees, {} pieces, {} joints, {}", forest.forest().trees.size(),
-                  forest.renderer().instances().instances.size(), forest.forest().jointCount,
-                  o->trees.wind ? "in the wind (--no-trees-wind: rest pose)" : "rest pose");
-        if (o->camera.cameraPos.empty() && !o->grass.enabled) {
-          camera = forestCamera(terrain, forest.forest(), fov);
-        }
-      }
-      if (o->simulation.enabled()) {
-        scene::BodyDrop drop;
-        drop.centre = ballDropPoint(terrain.field(), world.grass(0).field(), camera);
-        drop.radius = 1.5f;
-        drop.count = o->simulation.balls;
-        drop.seed = o->simulation.seed;
-        drop.height = 0.5f;
-        world.addDrop(drop);
-        if (o->camera.cameraPos.empty()) {
-          camera = ballCamera(terrain, drop.centre, fov);
-        }
-      }
+      scene::SceneWorld world(library, o->world.desc("render", false));
+      const render::Camera camera = o->world.start(world, target.aspect());
       scene::SceneDrawOptions draw;
       draw.terrainView = parseTerrainView(o->view);
       draw.wireframe = o->wireframe;
-      draw.grassView = o->grass.grassView();
-      draw.treeView = o->trees.treeView();
-      draw.treeLod = o->trees.lod;
+      draw.grassView = o->world.grass.grassView();
+      draw.treeView = o->world.trees.treeView();
+      draw.treeLod = o->world.trees.lod;
       world.setDrawOptions(draw);
       std::vector<Image> frames;
       Progress progress("render", static_cast<std::size_t>(frameCount));

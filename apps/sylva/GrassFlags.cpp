@@ -191,12 +191,6 @@ std::string GrassFlags::option(std::string_view field) {
   return fmt::format("--grass-{}", field);
 }
 
-std::shared_ptr<const grass::GrassField> GrassFlags::buildField(const terrain::TerrainScene& scene) const {
-  check();
-  // Errors name the option a layer field comes from.
-  return scene::buildGrassField(layerDesc(), scene::grassGround(scene), option);
-}
-
 render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,
                            float windDirectionDegrees) {
   const terrain::HeightField& t = scene.field();
@@ -236,27 +230,6 @@ render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::Gras
   render::fitClipPlanes(camera, scene.bounds());
   camera.nearPlane = 0.05f;
   return camera;
-}
-
-void drawTerrainWithGrass(terrain::TerrainScene& scene, grass::GrassRenderer* grass,
-                          const render::Camera& camera, int width, int height, double time,
-                          terrain::TerrainDrawOptions terrainOptions,
-                          const grass::GrassDrawOptions& grassOptions, render::GpuTimers* timers) {
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  {
-    const render::GpuTimerScope timed(timers, "lod (cpu)");
-    scene.update(camera, aspect);
-  }
-  if (grass != nullptr && terrainOptions.view == terrain::TerrainView::Shaded) {
-    terrainOptions.groundTint = grass->groundTint();
-  }
-  scene.draw(camera, width, height, time, timers, terrainOptions);
-  if (grass != nullptr) {
-    grass->cull(camera, aspect, timers);
-    grass::GrassDrawOptions options = grassOptions;
-    options.environment = terrainOptions.environment;
-    grass->draw(camera, width, height, time, timers, options);
-  }
 }
 
 } // namespace sylva::app

@@ -1,6 +1,6 @@
 #pragma once
 // Command-line options for the grass field on a terrain (`sylva render --grass`, `sylva view --grass`,
-// `sylva bench grass`), and the shared frame that draws terrain and grass together.
+// `sylva bench grass`).
 
 #include <sylva/grass/gpu/GrassRenderer.hpp>
 #include <sylva/scene/SceneGrass.hpp>
@@ -49,12 +49,6 @@ struct GrassFlags {
   scene::GrassLayer layerDesc() const;
   /** The option a grass layer field comes from: "blades" → "--grass-types", "paint" → "--grass-paint". */
   static std::string option(std::string_view field);
-  /**
-   * The field over `scene`'s terrain (heights as drawn) as the engine builds a scene's grass layer
-   * (scene::buildGrassField): blade types, patch, density with the paint mask and the scene's splat layer
-   * named --grass-layer, grass only above the sea level. Errors name the option and file.
-   */
-  std::shared_ptr<const grass::GrassField> buildField(const terrain::TerrainScene& scene) const;
 };
 
 /**
@@ -63,16 +57,6 @@ struct GrassFlags {
  */
 render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,
                            float windDirectionDegrees);
-
-/**
- * Draws one frame of terrain with grass into the bound framebuffer: the terrain with the field's ground tint
- * (its far representation), then the culled field in one draw. `grass` may be null (terrain only); with
- * `timers`, the terrain's LOD update is timed as the pass "lod (cpu)".
- */
-void drawTerrainWithGrass(terrain::TerrainScene& scene, grass::GrassRenderer* grass,
-                          const render::Camera& camera, int width, int height, double time,
-                          terrain::TerrainDrawOptions terrainOptions,
-                          const grass::GrassDrawOptions& grassOptions, render::GpuTimers* timers = nullptr);
 
 /** "shaded" | "lod" | "tiles" → GrassView; throws naming the option otherwise. */
 grass::GrassView parseGrassView(const std::string& name);

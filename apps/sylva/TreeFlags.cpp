@@ -127,10 +127,6 @@ trees::ForestLook TreeFlags::look() const {
   return l;
 }
 
-void TreeFlags::applyFarField(trees::ForestScene& scene, const terrain::TerrainScene& terrain) const {
-  scene.applyFarField(look(), forest, scene::farGround(terrain));
-}
-
 void TreeFlags::check() const {
   trees::validate(forest, "--trees");
   for (const std::string& s : forest.species) {
@@ -182,17 +178,6 @@ scene::ForestDesc TreeFlags::forestDesc() const {
   f.look = look();
   f.wind = wind;
   return f;
-}
-
-std::shared_ptr<trees::Forest> TreeFlags::buildForest(const terrain::TerrainScene& scene) const {
-  check();
-  trees::ForestSettings settings = forest;
-  settings.verticalScale = 1.0f; // the scene's field holds drawn (exaggerated) heights already
-  settings.regionCentre = glm::vec2(scene.field().extentX(), scene.field().extentZ()) * 0.5f;
-  if (scene.seaLevel()) {
-    settings.minHeight = (*scene.seaLevel() + 0.5f) * scene.exaggeration();
-  }
-  return std::make_shared<trees::Forest>(trees::placeForest(scene.field(), settings));
 }
 
 render::Camera forestCamera(const terrain::TerrainScene& scene, const trees::Forest& forest, float fovY) {

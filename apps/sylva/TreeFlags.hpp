@@ -53,12 +53,6 @@ struct TreeFlags {
   static trees::ForestSettings defaultForest();
   /** Bark, foliage and far field as the flags say (the engine's description, trees::ForestLook). */
   trees::ForestLook look() const;
-  /** Where bark tiles come from; nullopt for --trees-bark none (flat bark colours). */
-  std::optional<trees::BarkSources> barkSources() const { return trees::barkSources(look()); }
-  /** Puts foliage on `scene` as the flags say (none with --no-trees-foliage). */
-  void applyFoliage(trees::ForestScene& scene) const { scene.applyFoliage(look()); }
-  /** Sets up the far field of `scene` on `terrain` as the flags say (none without --trees-far). */
-  void applyFarField(trees::ForestScene& scene, const terrain::TerrainScene& terrain) const;
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
    * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-view, --trees-wind. */
   void add(CLI::App& command);
@@ -68,8 +62,6 @@ struct TreeFlags {
   /** The forest these options describe (what a scene file's forest holds, with every look setting): the
    * species weighted equally, around the terrain's centre within --trees-radius. */
   scene::ForestDesc forestDesc() const;
-  /** The forest on `scene`'s terrain (drawn heights), only above the sea level. */
-  std::shared_ptr<trees::Forest> buildForest(const terrain::TerrainScene& scene) const;
 };
 
 /** "shaded" | "pieces" | "bones" | "lod" | "tiles" → TreeView; throws naming the option otherwise. */

@@ -10,7 +10,7 @@
 # <golden-out>/llvmpipe/viewer-trees-e2e.*.png.
 #
 # The widgets are clicked at fixed window coordinates: the panel is scrolled to its bottom before each click, so
-# they sit at a fixed distance above the Trees section's last rows (its stats, the pause/fly row and the status
+# they sit at a fixed distance above the Trees section's last rows (its stats, the reload button and the status
 # text). If the panel's layout changes, look at the screenshots and update the coordinates below.
 #
 # Usage: viewer-trees-e2e.sh SYLVA_EXE SOURCE_DIR GOLDEN_OUT_DIR
@@ -30,12 +30,12 @@ if ! command -v compare >/dev/null; then
 fi
 
 # Window coordinates of the widgets once the panel is scrolled to its bottom (1280x720 window).
-foliage_box=(27 286)
-view_combo=(120 219)
-view_shaded=(120 243)
-view_tiles=(120 311)
-bark_combo=(120 246)
-bark_flat=(120 304)
+foliage_box=(27 310)
+view_combo=(120 243)
+view_shaded=(120 267)
+view_tiles=(120 335)
+bark_combo=(120 270)
+bark_flat=(120 328)
 # Crops (WxH+X+Y, window coordinates) of the near tree and of its trunk, right of the panel.
 tree_crop="260x350+520+130"
 trunk_crop="50x150+615+320"

@@ -23,13 +23,19 @@
 
 namespace sylva::scene {
 
+wind::WindSettings windSettings(const WindDesc& desc) {
+  wind::WindSettings w;
+  const float a = glm::radians(desc.direction);
+  w.direction = {std::sin(a), -std::cos(a)}; // clockwise from north (−z), the way it blows
+  w.speed = desc.speed;
+  w.gustStrength = desc.gusts;
+  w.seed = desc.seed;
+  return w;
+}
+
 SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
     : mLibrary(library), mDesc(std::move(desc)) {
-  const float a = glm::radians(mDesc.wind.direction);
-  mWind.direction = {std::sin(a), -std::cos(a)}; // clockwise from north (−z), the way it blows
-  mWind.speed = mDesc.wind.speed;
-  mWind.gustStrength = mDesc.wind.gusts;
-  mWind.seed = mDesc.wind.seed;
+  mWind = windSettings(mDesc.wind);
 
   mTerrain = terrain::TerrainScene::fromSetup(library, terrainSetup(mDesc.terrain),
                                               sceneFieldName(mDesc, "/terrain"));
@@ -37,12 +43,8 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
             mTerrain->field().height(), mTerrain->field().extentX(), mTerrain->field().extentZ());
 
   for (std::size_t i = 0; i < mDesc.grass.size(); ++i) {
-    const GrassLayer& layer = mDesc.grass[i];
-    const GrassFieldName name = sceneFieldName(mDesc, "/grass/" + std::to_string(i));
-    const grass::CullSettings cull = grassCullSettings(layer, name);
-    auto field = buildGrassField(layer, grassGround(*mTerrain), name);
-    mGrass.push_back(std::make_unique<grass::GrassRenderer>(library, field, cull));
-    if (layer.simulate) {
+    mGrass.push_back(makeGrass(i, mDesc.grass[i]));
+    if (mDesc.grass[i].simulate) {
       if (mSimulatedGrass >= 0) {
         fail("{}: /grass/{}/simulate: only one grass layer can be simulated (layer {} already is)",
              mDesc.path, i, mSimulatedGrass);
@@ -55,21 +57,13 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
          mDesc.path);
   }
 
-  const float e = mTerrain->exaggeration();
   for (std::size_t i = 0; i < mDesc.forests.size(); ++i) {
-    const ForestDesc& f = mDesc.forests[i];
-    const FieldName name = sceneFieldName(mDesc, "/forests/" + std::to_string(i));
-    const trees::ForestSettings s =
-        forestSettings(f, e, mTerrain->seaLevel(), name,
-                       glm::vec2(mTerrain->field().extentX(), mTerrain->field().extentZ()));
-    const trees::ForestLook look = forestLook(f, name);
-    auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), s));
-    auto scene = std::make_unique<trees::ForestScene>(library, forest, f.wind);
-    scene->applyLook(look, s, farGround(*mTerrain));
-    log::info("scene {}: forest {}: {} trees", mDesc.name, i, forest->trees.size());
-    mForests.push_back(std::move(scene));
+    trees::ForestSettings placement;
+    mForests.push_back(makeForest(i, mDesc.forests[i], placement));
+    mPlacements.push_back(placement);
   }
 
+  const float e = mTerrain->exaggeration();
   for (const WaterDesc& w : mDesc.water) {
     ShoreSettings settings;
     settings.level = w.level * e;
@@ -88,12 +82,40 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
   }
 
   mPasses = std::make_unique<ScenePasses>(library, mDesc);
+  registerPasses();
+  buildSimulation();
+}
+
+SceneWorld::~SceneWorld() = default;
+
+std::unique_ptr<grass::GrassRenderer> SceneWorld::makeGrass(std::size_t i, const GrassLayer& layer) const {
+  const GrassFieldName name = sceneFieldName(mDesc, "/grass/" + std::to_string(i));
+  const grass::CullSettings cull = grassCullSettings(layer, name);
+  auto field = buildGrassField(layer, grassGround(*mTerrain), name);
+  return std::make_unique<grass::GrassRenderer>(mLibrary, field, cull);
+}
+
+std::unique_ptr<trees::ForestScene> SceneWorld::makeForest(std::size_t i, const ForestDesc& f,
+                                                           trees::ForestSettings& placement) const {
+  const FieldName name = sceneFieldName(mDesc, "/forests/" + std::to_string(i));
+  placement = forestSettings(f, mTerrain->exaggeration(), mTerrain->seaLevel(), name,
+                             glm::vec2(mTerrain->field().extentX(), mTerrain->field().extentZ()));
+  const trees::ForestLook look = forestLook(f, name);
+  auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), placement));
+  auto scene = std::make_unique<trees::ForestScene>(mLibrary, forest, f.wind);
+  scene->applyLook(look, placement, farGround(*mTerrain));
+  log::info("scene {}: forest {}: {} trees", mDesc.name, i, forest->trees.size());
+  return scene;
+}
+
+void SceneWorld::registerPasses() {
   mPasses->set(
       Pass::Terrain,
       [this](const PassInput& in) {
         const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
         {
           const render::GpuTimerScope timed(in.timers, "lod (cpu)");
+          mTerrain->setFrozenFrustum(mDrawOptions.frozenFrustum);
           mTerrain->update(in.camera, aspect);
         }
         terrain::TerrainDrawOptions options = mTerrain->drawOptions(in.camera);
@@ -102,6 +124,8 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
         options.geomorph = mDesc.terrain.setup ? mDesc.terrain.setup->geomorph : mDesc.terrain.geomorph;
         options.view = mDrawOptions.terrainView;
         options.wireframe = mDrawOptions.wireframe;
+        options.skirts = mDrawOptions.terrainSkirts;
+        options.countVertices = mDrawOptions.countVertices;
         if (!mGrass.empty() && options.view == terrain::TerrainView::Shaded) {
           options.groundTint = mGrass.front()->groundTint();
         }
@@ -143,6 +167,7 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
       const float aspect = static_cast<float>(in.width) / static_cast<float>(in.height);
       grass::GrassDrawOptions options;
       options.view = mDrawOptions.grassView;
+      options.countPrimitives = mDrawOptions.countPrimitives;
       options.environment = in.environment;
       options.wind = mWind;
       for (auto& g : mGrass) {
@@ -166,10 +191,75 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
       }
     });
   }
+}
+
+void SceneWorld::setGrassLayer(std::size_t i, GrassLayer layer) {
+  if (i > mGrass.size()) {
+    fail("{}: /grass/{}: the scene has {} grass layers", mDesc.path, i, mGrass.size());
+  }
+  const bool simulated = static_cast<int>(i) == mSimulatedGrass;
+  if (layer.simulate && mSimulatedGrass >= 0 && !simulated) {
+    fail("{}: /grass/{}/simulate: only one grass layer can be simulated (layer {} already is)", mDesc.path, i,
+         mSimulatedGrass);
+  }
+  std::unique_ptr<grass::GrassRenderer> renderer = makeGrass(i, layer); // throws: the world is unchanged
+  if (simulated) {
+    mSimulation.reset(); // registered with the renderer it moves: goes first
+    layer.simulate = true;
+  }
+  if (i == mGrass.size()) {
+    mGrass.push_back(std::move(renderer));
+    mDesc.grass.push_back(std::move(layer));
+  } else {
+    mGrass[i] = std::move(renderer);
+    mDesc.grass[i] = std::move(layer);
+  }
+  if (mDesc.grass[i].simulate && !simulated) {
+    mSimulatedGrass = static_cast<int>(i);
+  }
+  registerPasses();
+  if (mDesc.grass[i].simulate) {
+    buildSimulation();
+  }
+}
+
+void SceneWorld::simulateGrass(std::size_t i) {
+  if (i >= mGrass.size()) {
+    fail("{}: /grass/{}: the scene has {} grass layers", mDesc.path, i, mGrass.size());
+  }
+  if (mSimulatedGrass >= 0) {
+    fail("{}: /grass/{}/simulate: only one grass layer can be simulated (layer {} already is)", mDesc.path, i,
+         mSimulatedGrass);
+  }
+  mDesc.grass[i].simulate = true;
+  mSimulatedGrass = static_cast<int>(i);
+  registerPasses();
   buildSimulation();
 }
 
-SceneWorld::~SceneWorld() = default;
+void SceneWorld::clearBodies() {
+  mDesc.bodies.clear();
+  mDesc.drops.clear();
+  buildSimulation();
+}
+
+void SceneWorld::setForest(std::size_t i, ForestDesc forest) {
+  if (i > mForests.size()) {
+    fail("{}: /forests/{}: the scene has {} forests", mDesc.path, i, mForests.size());
+  }
+  trees::ForestSettings placement;
+  std::unique_ptr<trees::ForestScene> scene = makeForest(i, forest, placement); // throws: unchanged
+  if (i == mForests.size()) {
+    mForests.push_back(std::move(scene));
+    mPlacements.push_back(placement);
+    mDesc.forests.push_back(std::move(forest));
+  } else {
+    mForests[i] = std::move(scene);
+    mPlacements[i] = placement;
+    mDesc.forests[i] = std::move(forest);
+  }
+  registerPasses();
+}
 
 float SceneWorld::groundHeight(float x, float z) const {
   return terrain::heightAt(mTerrain->field(), x,

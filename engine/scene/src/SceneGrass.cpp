@@ -70,6 +70,9 @@ grass::FieldSettings grassFieldSettings(const GrassLayer& layer, const GrassGrou
   s.bladesPerTile = layer.bladesPerTile;
   s.density.base = layer.density;
   s.density.coverage = layer.coverage;
+  if (layer.noiseFrequency) {
+    s.density.noiseFrequency = *layer.noiseFrequency;
+  }
   s.density.seed = layer.seed + 1;
   s.density.verticalScale = ground.exaggeration;
   s.density.maxSlopeDegrees = drawnSlope(layer.maxSlope, ground.exaggeration);

@@ -52,13 +52,12 @@ std::unique_ptr<TerrainScene> TerrainScene::fromSetup(const shader::Library& lib
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   const TerrainSource& source = setup.source;
   if (source.dem.empty()) {
-    if (source.proceduralSize > maxTexture) {
+    if (std::max(source.proceduralSize, source.rows()) > maxTexture) {
       fail("{} {}: larger than the GPU's largest texture side ({}); use {} or less", field("size"),
-           source.proceduralSize, maxTexture, maxTexture);
+           std::max(source.proceduralSize, source.rows()), maxTexture, maxTexture);
     }
     validate(source.procedural, field("relief"));
-    checkMemoryFor(static_cast<std::size_t>(source.proceduralSize) *
-                       static_cast<std::size_t>(source.proceduralSize),
+    checkMemoryFor(static_cast<std::size_t>(source.proceduralSize) * static_cast<std::size_t>(source.rows()),
                    field("size"));
   }
   LoadOptions limits = source.load;

@@ -19,21 +19,22 @@ HeightField loadTerrainSource(const TerrainSource& source, const LoadOptions* li
     return loadHeightField(source.dem, limits != nullptr ? *limits : source.load);
   }
   const int size = source.proceduralSize;
+  const int height = source.rows();
   const float spacing = source.proceduralSpacing;
-  const std::size_t samples = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
+  const std::size_t samples = static_cast<std::size_t>(size) * static_cast<std::size_t>(height);
   if (samples <= kProgressSamples) {
-    return generate(source.procedural, 0.0, 0.0, size, size, spacing);
+    return generate(source.procedural, 0.0, 0.0, size, height, spacing);
   }
   // Strips whose origin lies on the sample lattice give bit-identical heights to one generate() call (see
   // generate), so a large field can report progress without changing a single sample.
-  HeightField field(size, size, spacing, spacing);
+  HeightField field(size, height, spacing, spacing);
   const int strip = std::max(1, static_cast<int>(kProgressSamples / 4 / static_cast<std::size_t>(size)));
-  Progress progress("generating heights", static_cast<std::size_t>(size));
-  for (int row = 0; row < size; row += strip) {
+  Progress progress("generating heights", static_cast<std::size_t>(height));
+  for (int row = 0; row < height; row += strip) {
     if (progress.cancelled()) {
       fail("generating heights: cancelled");
     }
-    const int rows = std::min(strip, size - row);
+    const int rows = std::min(strip, height - row);
     const HeightField part = generate(
         source.procedural, 0.0, static_cast<double>(row) * static_cast<double>(spacing), size, rows, spacing);
     std::copy(part.samples().begin(), part.samples().end(),

@@ -82,4 +82,45 @@ glm::vec3 flyKeys(const platform::GlfwWindow& window, bool vertical) {
   return move;
 }
 
+void passTimingTable(const render::GpuTimers& timers) {
+  if (!ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingFixedFit)) {
+    return;
+  }
+  ImGui::TableSetupColumn("pass");
+  ImGui::TableSetupColumn("CPU ms");
+  ImGui::TableSetupColumn("GPU ms");
+  ImGui::TableHeadersRow();
+  for (const render::PassTiming& t : timers.lastFrame()) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(t.name.c_str());
+    ImGui::TableNextColumn();
+    ImGui::Text("%.3f", t.cpuMs);
+    ImGui::TableNextColumn();
+    if (t.gpuMs >= 0.0) {
+      ImGui::Text("%.3f", t.gpuMs);
+    } else {
+      ImGui::TextUnformatted("-");
+    }
+  }
+  ImGui::EndTable();
+}
+
+void errorText(const std::string& message) {
+  if (message.empty()) {
+    return;
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 420.0f);
+  ImGui::TextUnformatted(message.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::PopStyleColor();
+}
+
+void disabledTooltip(const char* text) {
+  if (text != nullptr && *text != '\0' && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("%s", text);
+  }
+}
+
 } // namespace sylva::ui

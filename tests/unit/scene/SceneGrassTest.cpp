@@ -87,6 +87,11 @@ TEST(SceneGrass, EveryLayerFieldReachesTheField) {
   // The paint mask's white half grows grass and its black half none.
   const grass::DensityMap density(s.density);
   EXPECT_EQ(density.at(48.0f, 16.0f, 6.0f, 0.0f), 0.0f);
+  // The code-only noise frequency (the paper's field: 0, one density everywhere); by default the module's.
+  EXPECT_EQ(s.density.noiseFrequency, grass::DensitySettings{}.noiseFrequency);
+  layer.noiseFrequency = 0.0f;
+  EXPECT_EQ(grassFieldSettings(layer, on, sceneGrassFieldName("meadow.json", 0)).density.noiseFrequency,
+            0.0f);
 }
 
 TEST(SceneGrass, MaxSlopeOfASceneFileThinsTheGrass) {

@@ -73,5 +73,25 @@ TEST(TerrainSetup, ALargeProceduralFieldIsGeneratedInIdenticalStrips) {
   EXPECT_TRUE(std::equal(strips.samples().begin(), strips.samples().end(), whole.samples().begin()));
 }
 
+TEST(TerrainSetup, ARectangularProceduralFieldHasItsRowsAlongZ) {
+  TerrainSource source;
+  source.proceduralSize = 9;
+  source.proceduralRows = 33;
+  source.proceduralSpacing = 1.0f;
+  const HeightField field = loadTerrainSource(source);
+  EXPECT_EQ(field.width(), 9);
+  EXPECT_EQ(field.height(), 33);
+  const HeightField whole = generate(source.procedural, 0.0, 0.0, 9, 33, 1.0f);
+  EXPECT_TRUE(std::equal(field.samples().begin(), field.samples().end(), whole.samples().begin()));
+  // Tall and narrow past kProgressSamples: generated in strips of whole rows, identical to one call.
+  source.proceduralSize = 64;
+  source.proceduralRows = 17000;
+  ASSERT_GT(static_cast<std::size_t>(source.proceduralSize) * source.rows(), kProgressSamples);
+  const HeightField strips = loadTerrainSource(source);
+  const HeightField one = generate(source.procedural, 0.0, 0.0, 64, 17000, 1.0f);
+  ASSERT_EQ(strips.height(), 17000);
+  EXPECT_TRUE(std::equal(strips.samples().begin(), strips.samples().end(), one.samples().begin()));
+}
+
 } // namespace
 } // namespace sylva::terrain

@@ -84,6 +84,9 @@ struct GrassLayer {
   int bladesPerTile = 256; ///< blades a tile draws at density 1 (at most patchBlades)
   /** Code only: draw distance, LOD bands and fades, instead of those derived from `distance`. */
   std::optional<grass::CullSettings> cull;
+  /** Code only: the density noise's frequency, per metre (0: one density everywhere, as in the paper's
+   * field); nullopt: the grass module's default. */
+  std::optional<float> noiseFrequency;
 };
 
 /** One forest: a species mix placed by rules evaluated from the terrain. */

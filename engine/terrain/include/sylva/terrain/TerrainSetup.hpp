@@ -27,6 +27,11 @@ struct TerrainSource {
   /** Procedural field size in samples per side, and spacing in metres. */
   int proceduralSize = 1025;
   float proceduralSpacing = 2.0f;
+  /** Samples along z of a rectangular procedural field (proceduralSize along x); 0: square. */
+  int proceduralRows = 0;
+
+  /** Samples along z of the procedural field: proceduralRows, or proceduralSize when 0. */
+  int rows() const { return proceduralRows > 0 ? proceduralRows : proceduralSize; }
 
   /** The demo landscape: warped fBm, 400 m relief. */
   static ProceduralSpec defaultProcedural();

@@ -4,6 +4,7 @@
 // the windowed commands (view, scene viewer, fold view, fold editor).
 
 #include <sylva/platform/GlfwWindow.hpp>
+#include <sylva/render/GpuTimers.hpp>
 
 #include <glm/glm.hpp>
 
@@ -46,5 +47,15 @@ bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::st
  * widget has the keyboard, so typing into the panel does not move the camera.
  */
 glm::vec3 flyKeys(const platform::GlfwWindow& window, bool vertical = true);
+
+/** The per-pass CPU and GPU milliseconds of `timers`' last complete frame as a table (GPU "-" until its
+ * query has come back). */
+void passTimingTable(const render::GpuTimers& timers);
+
+/** Red text wrapped at 420 px for an error message (nothing when empty). */
+void errorText(const std::string& message);
+
+/** The last item's tooltip, shown even while it is disabled (nothing for null or empty `text`). */
+void disabledTooltip(const char* text);
 
 } // namespace sylva::ui

@@ -13,6 +13,7 @@
 #include <sylva/scene/gpu/ScenePasses.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/terrain/gpu/TerrainScene.hpp>
+#include <sylva/trees/Forest.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
@@ -39,7 +40,20 @@ struct SceneDrawOptions {
   /** The trees' tessellation rule in the view (shadow draws keep it, with pieces under
    * render::kCasterMinTexels skipped). */
   trees::TreeLod treeLod;
+  /** The terrain's crack check: skirts drawn in a signal colour under every patch edge (counted). */
+  bool terrainSkirts = false;
+  /** Count the terrain's vertex shader invocations (a pipeline query:
+   * TerrainRenderer::lastVertexInvocations).
+   */
+  bool countVertices = false;
+  /** Count the grass draws' primitives (a pipeline query: GrassRenderer::lastPrimitivesSubmitted). */
+  bool countPrimitives = false;
+  /** The terrain's LOD chosen for this frustum instead of the camera's (inspecting the selection). */
+  std::optional<Frustum> frozenFrustum;
 };
+
+/** A scene's wind as the wind module takes it (direction clockwise from north becomes a unit xz vector). */
+wind::WindSettings windSettings(const WindDesc& desc);
 
 /**
  * Every subsystem of one scene file, on the GPU, with its simulations. Frame f of a sequence is a pure
@@ -107,11 +121,41 @@ public:
   trees::ForestScene& forest(std::size_t i) { return *mForests.at(i); }
   /** The grass simulation, or null without a simulated layer. */
   GrassSimulation* simulation() { return mSimulation.get(); }
+  /** Grass layers, forests (in the description's order). */
+  std::size_t grassCount() const { return mGrass.size(); }
+  std::size_t forestCount() const { return mForests.size(); }
+  /**
+   * Replaces grass layer `i` with `layer`, or adds it at i == grassCount() (the viewer's panel). Builds the
+   * new field first: on an error (naming the field) the world is unchanged. A simulated layer restarts its
+   * simulation with the description's bodies.
+   */
+  void setGrassLayer(std::size_t i, GrassLayer layer);
+  /** Makes grass layer `i` the simulated one (no layer may be yet): the physics world starts, with the
+   * description's bodies (none for a description that had no simulated layer). */
+  void simulateGrass(std::size_t i);
+  /** Removes every body and drop from the description; the simulation restarts empty at time 0. */
+  void clearBodies();
+  /** Replaces forest `i` with `forest`, or adds it at i == forestCount(); on an error, unchanged. */
+  void setForest(std::size_t i, ForestDesc forest);
+  /** Where forest `i` was placed from (its description turned into placement rules on this terrain). */
+  const trees::ForestSettings& forestPlacement(std::size_t i) const { return mPlacements.at(i); }
+  /** The wind of the next steps and frames (grass, trees, simulation). */
+  void setWind(const WindDesc& wind) {
+    mDesc.wind = wind;
+    mWind = windSettings(wind);
+  }
+  /** The simulated grass layer's index, or -1 when none is simulated. */
+  int simulatedLayer() const { return mSimulatedGrass; }
   /** Bytes of GPU memory the scene's subsystems hold (those that report it). */
   std::size_t gpuBytes() const;
   void reloadShaders(const shader::Library& library);
 
 private:
+  std::unique_ptr<grass::GrassRenderer> makeGrass(std::size_t i, const GrassLayer& layer) const;
+  std::unique_ptr<trees::ForestScene> makeForest(std::size_t i, const ForestDesc& forest,
+                                                 trees::ForestSettings& placement) const;
+  /** (Re)registers every subsystem's draws with the passes. */
+  void registerPasses();
   void buildSimulation();
   void stepTo(double time);
 
@@ -123,6 +167,7 @@ private:
   int mSimulatedGrass = -1;
   std::unique_ptr<GrassSimulation> mSimulation;
   std::vector<std::unique_ptr<trees::ForestScene>> mForests;
+  std::vector<trees::ForestSettings> mPlacements;
   std::vector<std::unique_ptr<ShoreWater>> mWater;
   std::unique_ptr<ScenePasses> mPasses;
   std::map<std::string, std::vector<WorldCameraKey>> mCameras;

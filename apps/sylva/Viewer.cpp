@@ -1,0 +1,485 @@
+// `sylva view`: one window loop for scene files, the options' world and the demo scene (Viewer.hpp).
+#include "Viewer.hpp"
+
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Log.hpp>
+#include <sylva/gl/ContextInfo.hpp>
+#include <sylva/gl/State.hpp>
+#include <sylva/platform/GlfwWindow.hpp>
+#include <sylva/render/DemoScene.hpp>
+#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/RenderTarget.hpp>
+#include <sylva/scene/gpu/SceneWorld.hpp>
+#include <sylva/trees/gpu/ForestScene.hpp>
+#include <sylva/ui/ImGuiLayer.hpp>
+
+#include "ViewerPanels.hpp"
+
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sylva::app {
+namespace {
+
+constexpr int kPassCount = static_cast<int>(scene::Pass::Count);
+/** Eye height above the ground while walking (G), metres. */
+constexpr float kEyeHeight = 1.8f;
+
+/** What a viewer shows: a world (scene file or options) or the demo scene, and where it starts. */
+struct ViewerContent {
+  std::unique_ptr<scene::SceneWorld> world;
+  std::unique_ptr<render::DemoScene> demo;
+  /** The first camera when the world has no file cameras (orbit from there). */
+  render::Camera start;
+  /** Scene seconds of the first frame. */
+  double time = 1.0;
+  /** The options the world was described by (the sections' defaults for what they add); null: a file. */
+  const WorldFlags* flags = nullptr;
+};
+
+/** Seconds of the end of the scene's timeline: its output range or its longest camera path. */
+double timelineEnd(const scene::SceneDesc& desc) {
+  double end = static_cast<double>(desc.output.lastFrame + 1) / desc.output.fps;
+  for (const auto& [name, camera] : desc.cameras) {
+    if (!camera.keys.empty()) {
+      end = std::max(end, camera.keys.back().time);
+    }
+  }
+  return end;
+}
+
+/** Fly-controller angles and position that reproduce `camera`'s view. */
+void syncFly(render::FlyController& fly, const render::Camera& camera) {
+  fly.position = camera.position;
+  const glm::vec3 d = glm::normalize(camera.target - camera.position);
+  fly.yaw = std::atan2(d.x, d.z);
+  fly.pitch = std::asin(std::clamp(d.y, -1.0f, 1.0f));
+}
+
+/** The camera choice: one of the file's cameras, orbit, or fly (walk: fly on the ground). */
+struct CameraChoice {
+  std::vector<std::string> names; ///< the file's cameras; then "orbit", then "fly"
+  int index = 0;
+  int lastFileCamera = -1; ///< where F goes back to from fly (-1: orbit)
+  bool walk = false;
+
+  int orbitIndex() const { return static_cast<int>(names.size()); }
+  int flyIndex() const { return orbitIndex() + 1; }
+  bool file() const { return index < orbitIndex(); }
+  bool orbit() const { return index == orbitIndex(); }
+  bool fly() const { return index == flyIndex(); }
+  /** Leaves a file camera or the orbit for fly at `current`. */
+  void goFly(render::FlyController& flyer, const render::Camera& current) {
+    if (!fly()) {
+      lastFileCamera = file() ? index : -1;
+      syncFly(flyer, current);
+      index = flyIndex();
+    }
+  }
+  /** Back from fly to the file camera or orbit it left. */
+  void back(render::OrbitController& orbiter, const render::Camera& current) {
+    walk = false;
+    index = lastFileCamera >= 0 ? lastFileCamera : orbitIndex();
+    if (orbit()) {
+      orbiter.target = current.target;
+      const render::OrbitController from = render::OrbitController::from(current);
+      orbiter.yaw = from.yaw;
+      orbiter.pitch = from.pitch;
+      orbiter.distance = std::clamp(from.distance, orbiter.minDistance, orbiter.maxDistance);
+    }
+  }
+};
+
+/** The box the free cameras' clip planes must hold: the terrain and every forest's crowns. */
+Aabb sceneBox(scene::SceneWorld& world) {
+  Aabb box = world.terrain().bounds();
+  for (std::size_t i = 0; i < world.forestCount(); ++i) {
+    box.min = glm::min(box.min, world.forest(i).bounds().min);
+    box.max = glm::max(box.max, world.forest(i).bounds().max);
+  }
+  return box;
+}
+
+/** The scene panel's world lines: pass toggles, trees and bodies, GPU memory. */
+void passToggles(scene::SceneWorld& world) {
+  ImGui::Text("trees %zu   bodies %zu   GPU memory %.1f MB", world.treeCount(), world.bodies(),
+              static_cast<double>(world.gpuBytes()) / 1e6);
+  scene::ScenePasses& passes = world.passes();
+  if (ImGui::BeginTable("pass toggles", 4, ImGuiTableFlags_SizingFixedFit)) {
+    for (int i = 0; i < kPassCount; ++i) {
+      const auto pass = static_cast<scene::Pass>(i);
+      if (!passes.present(pass)) {
+        continue;
+      }
+      ImGui::TableNextColumn();
+      bool on = passes.enabled(pass);
+      if (ImGui::Checkbox(fmt::format("{} ({})", scene::passName(pass), i + 1).c_str(), &on)) {
+        passes.setEnabled(pass, on);
+      }
+    }
+    ImGui::EndTable();
+  }
+}
+
+/**
+ * The window loop: `build` makes the content once the window (and its GL context) exists. Keys: F5 reload
+ * shaders, F fly, G walk, B throw a ball, Space pause, 1-8 passes, Tab panel, Esc quit.
+ */
+void runViewer(const ViewerOptions& o, const std::string& title,
+               const std::function<ViewerContent(const shader::Library&, float aspect)>& build) {
+  const auto startup = std::chrono::steady_clock::now();
+  platform::GlfwWindow window(o.width, o.height, title);
+  window.setVsync(o.frames == 0);
+  const gl::ContextInfo info = gl::queryContextInfo();
+  const shader::Library library(o.shaderDir); // outlives the world (it rebuilds its simulation from it)
+  const float startAspect = static_cast<float>(o.width) / static_cast<float>(o.height);
+  ViewerContent content = build(library, startAspect);
+  scene::SceneWorld* world = content.world.get();
+  render::DemoScene* demo = content.demo.get();
+
+  CameraChoice choice;
+  double time = content.time;
+  double end = time;
+  render::Camera camera = content.start;
+  std::optional<TerrainPanel> terrainPanel;
+  std::optional<GrassPanel> grassPanel;
+  std::optional<TreesPanel> treesPanel;
+  const WorldFlags defaults;
+  if (world != nullptr) {
+    for (const auto& [name, path] : world->desc().cameras) {
+      choice.names.push_back(name);
+    }
+    end = std::max(end, timelineEnd(world->desc()));
+    const WorldFlags& flags = content.flags != nullptr ? *content.flags : defaults;
+    terrainPanel.emplace(*world);
+    grassPanel.emplace(*world, flags);
+    treesPanel.emplace(*world, flags.trees);
+    // A scene file opens with its sections closed (the panel stays short over the view); the options' world
+    // with the sections of what they turned on open.
+    grassPanel->open = grassPanel->open && content.flags != nullptr;
+    treesPanel->open = treesPanel->open && content.flags != nullptr;
+  }
+  const auto output = world != nullptr
+                          ? std::find(choice.names.begin(), choice.names.end(), world->desc().output.camera)
+                          : choice.names.end();
+  choice.index =
+      output != choice.names.end() ? static_cast<int>(output - choice.names.begin()) : choice.orbitIndex();
+  if (choice.file()) {
+    camera = world->camera(choice.names[static_cast<std::size_t>(choice.index)], time, startAspect);
+  }
+  const float fovY = camera.fovY;
+  render::OrbitController orbit = render::OrbitController::from(camera);
+  if (world != nullptr) {
+    // Zoom out until the whole terrain is a small part of the view, in until a few samples fill it.
+    const Aabb box = world->terrain().bounds();
+    const terrain::HeightField& field = world->terrain().field();
+    orbit.maxDistance = std::max(4.0f * orbit.distance, 2.0f * glm::length(box.max - box.min));
+    orbit.minDistance = std::max(0.5f, 2.0f * std::min(field.spacingX(), field.spacingZ()));
+  }
+  render::FlyController fly;
+  syncFly(fly, camera);
+  float flySpeed = std::clamp(0.05f * orbit.distance, 10.0f, 200.0f); // metres per second
+  float walkSpeed = 4.0f;
+  bool paused = false;
+  bool showUi = !o.noUi;
+  bool throwRequested = false;
+  bool reloadRequested = false;
+  std::string status =
+      world != nullptr ? "F: fly  G: walk  B: throw a ball  Space: pause  1-8: passes  F5: reload shaders  "
+                         "Tab: panel"
+                       : "F5: reload shaders  Space: pause  Tab: panel";
+  bool wireframe = false; // the demo's
+
+  window.setKeyCallback([&](int key, int) {
+    if (ImGui::GetIO().WantCaptureKeyboard) {
+      return;
+    }
+    if (key == GLFW_KEY_F5) {
+      reloadRequested = true;
+    } else if (key == GLFW_KEY_F && world != nullptr) {
+      if (choice.fly()) {
+        choice.back(orbit, camera);
+      } else {
+        choice.goFly(fly, camera);
+      }
+    } else if (key == GLFW_KEY_G && world != nullptr) {
+      choice.goFly(fly, camera);
+      choice.walk = !choice.walk;
+    } else if (key == GLFW_KEY_B) {
+      throwRequested = world != nullptr; // thrown once the frame's camera is known
+    } else if (key == GLFW_KEY_SPACE) {
+      paused = !paused;
+    } else if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + kPassCount && world != nullptr) {
+      scene::ScenePasses& passes = world->passes();
+      const auto pass = static_cast<scene::Pass>(key - GLFW_KEY_1);
+      if (passes.present(pass)) {
+        passes.setEnabled(pass, !passes.enabled(pass));
+        log::info("pass {} {}", scene::passName(pass), passes.enabled(pass) ? "on" : "off");
+      }
+    } else if (key == GLFW_KEY_TAB) {
+      showUi = !showUi;
+    } else if (key == GLFW_KEY_ESCAPE) {
+      glfwSetWindowShouldClose(window.handle(), GLFW_TRUE);
+    }
+  });
+
+  ui::ImGuiLayer ui(window);
+  std::optional<render::RenderTarget> target;
+  render::GpuTimers timers;
+  render::FrameClock clock(o.fixedStep);
+  std::deque<float> frameTimes;
+  int frame = 0;
+  long long shownFrames = 0;
+  while (window.pollEvents()) {
+    // Frame 0 shows the start time; later frames advance by the clock (the fixed step when scripted, so
+    // screenshots repeat; a long real-time hitch counts as 0.1 s so the physics does not catch up at once).
+    const double dt = clock.tick();
+    const glm::ivec2 size = window.framebufferSize();
+    if (size.x == 0 || size.y == 0) {
+      continue;
+    }
+    const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
+    if (reloadRequested) {
+      reloadRequested = false;
+      // From the source tree unless a directory was given: the point is editing shaders live.
+      const shader::Library disk(o.shaderDir.empty() ? shader::Library::sourceDirectory()
+                                                     : std::filesystem::path(o.shaderDir));
+      try {
+        if (world != nullptr) {
+          world->reloadShaders(disk);
+        } else {
+          demo->reloadShaders(disk);
+        }
+        status = "shaders reloaded from " + disk.directory().string();
+      } catch (const Error& e) {
+        status = e.what();
+        log::error("{}", e.what());
+      }
+    }
+
+    // The camera: a file camera at the scene time, the orbit, or the fly/walk camera.
+    const platform::InputState& in = window.input();
+    const bool mouseFree = !ImGui::GetIO().WantCaptureMouse;
+    const glm::vec3 move = ui::flyKeys(window, !choice.walk);
+    const bool dragged = in.cursorDelta.x != 0.0 || in.cursorDelta.y != 0.0;
+    if (world != nullptr &&
+        (move != glm::vec3(0.0f) || (choice.file() && mouseFree && in.mouseLeft && dragged))) {
+      choice.goFly(fly, camera); // flying (or looking around from a file camera) leaves it
+    }
+    if (choice.file()) {
+      camera = world->camera(choice.names[static_cast<std::size_t>(choice.index)], time, aspect);
+      syncFly(fly, camera); // flying starts where the file camera is
+    } else {
+      if (choice.orbit()) {
+        if (mouseFree && in.mouseLeft) {
+          orbit.rotate(static_cast<float>(in.cursorDelta.x), static_cast<float>(in.cursorDelta.y));
+        }
+        if (mouseFree && (in.mouseRight || in.mouseMiddle)) {
+          orbit.pan(static_cast<float>(in.cursorDelta.x), static_cast<float>(in.cursorDelta.y));
+        }
+        if (mouseFree) {
+          orbit.zoom(static_cast<float>(in.scrollDelta));
+        }
+        orbit.apply(camera);
+        syncFly(fly, camera); // flying starts where the orbit camera is
+      } else {
+        const bool look = mouseFree && in.mouseLeft;
+        fly.speed = choice.walk ? walkSpeed : flySpeed;
+        fly.update(move, look ? static_cast<float>(in.cursorDelta.x) : 0.0f,
+                   look ? static_cast<float>(in.cursorDelta.y) : 0.0f, static_cast<float>(dt));
+        if (choice.walk) {
+          const float ground = world->groundHeight(fly.position.x, fly.position.z);
+          if (!std::isnan(ground)) {
+            fly.position.y = ground + kEyeHeight;
+          }
+        }
+        camera = render::Camera{};
+        fly.apply(camera);
+      }
+      camera.fovY = fovY;
+      if (world != nullptr) {
+        render::fitClipPlanes(camera, sceneBox(*world)); // wherever the orbit or fly camera went
+        if (grassPanel->active(*world)) {
+          camera.nearPlane = std::min(camera.nearPlane, 0.05f); // blades right below the eye
+        }
+      } else {
+        camera.nearPlane = content.start.nearPlane;
+        camera.farPlane = content.start.farPlane;
+      }
+    }
+
+    timers.beginFrame();
+    if (throwRequested) {
+      throwRequested = false;
+      status = grassPanel->throwBall(*world, camera)
+                   ? fmt::format("ball thrown: {} bodies", world->bodies())
+                   : "B: no physics here (bodies need a grass layer: turn grass on)";
+    }
+    if (!target || target->width() != size.x || target->height() != size.y) {
+      target.emplace(size.x, size.y);
+    }
+    if (world != nullptr) {
+      {
+        const render::GpuTimerScope timed(&timers, "simulation");
+        world->advanceTo(time);
+      }
+      target->begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      world->draw(camera, size.x, size.y, time, &target->depth(), &timers);
+    } else {
+      target->begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+      demo->render(camera, size.x, size.y, time, &timers, wireframe);
+    }
+    {
+      const render::GpuTimerScope timed(&timers, "blit");
+      gl::blitToWindow(target->framebuffer(), size);
+    }
+    gl::bindDefaultFramebuffer(size.x, size.y);
+
+    if (showUi) {
+      const render::GpuTimerScope timed(&timers, "ui");
+      if (world != nullptr) {
+        if (grassPanel->active(*world) && grassPanel->open) {
+          grassPanel->counters = world->grass(0).readCounters();
+        }
+        treesPanel->readCounts(*world);
+      }
+      ui.begin();
+      const float avg = ui::beginPanel("Sylva", info.renderer, frameTimes);
+      if (world != nullptr) {
+        const std::string& path = world->desc().path;
+        ImGui::Text("%s  (%s)", world->desc().name.c_str(),
+                    content.flags != nullptr ? path.c_str() : std::filesystem::path(path).filename().c_str());
+      }
+      ImGui::Text("frame %.2f ms (%.0f fps)", avg, avg > 0.0f ? 1000.0f / avg : 0.0f);
+      if (world != nullptr) {
+        passToggles(*world);
+        ImGui::Separator();
+        std::vector<const char*> labels;
+        for (const std::string& name : choice.names) {
+          labels.push_back(name.c_str());
+        }
+        labels.push_back("orbit (drag, right-drag, wheel)");
+        labels.push_back("fly (F; G: walk)");
+        int index = choice.index;
+        if (ImGui::Combo("camera", &index, labels.data(), static_cast<int>(labels.size()))) {
+          if (index == choice.flyIndex()) {
+            choice.goFly(fly, camera);
+          } else {
+            choice.walk = false;
+            choice.lastFileCamera = index < choice.orbitIndex() ? index : -1;
+            choice.index = choice.flyIndex();
+            choice.back(orbit, camera);
+          }
+        }
+        if (ImGui::Checkbox("walk (G)", &choice.walk) && choice.walk) {
+          choice.goFly(fly, camera);
+        }
+        ImGui::SameLine(118.0f);
+      }
+      ImGui::Checkbox("pause (Space)", &paused);
+      float t = static_cast<float>(time);
+      if (ImGui::SliderFloat("scene time (s)", &t, 0.0f, static_cast<float>(std::max(end, time)), "%.2f",
+                             ImGuiSliderFlags_AlwaysClamp)) {
+        time = t; // earlier: the simulations restart from time 0 and step there
+      }
+      if (world != nullptr) {
+        ImGui::SliderFloat("fly speed (m/s)", &flySpeed, 1.0f, 200.0f, "%.0f",
+                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+        const float ground = world->groundHeight(camera.position.x, camera.position.z);
+        ImGui::Text("camera %.0f, %.0f m, %.1f m above ground", camera.position.x, camera.position.z,
+                    std::isnan(ground) ? 0.0f : camera.position.y - ground);
+        terrainPanel->show(*world, camera, aspect, choice.walk);
+        grassPanel->show(*world);
+        grassPanel->showSimulation(*world, camera);
+        treesPanel->show(*world, timers);
+      } else {
+        ImGui::Checkbox("wireframe", &wireframe);
+      }
+      ImGui::Separator();
+      if (ImGui::Button("reload shaders (F5)")) {
+        reloadRequested = true;
+      }
+      ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 420.0f);
+      ImGui::TextUnformatted(status.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::PopItemWidth();
+      ImGui::End();
+      // The timings in a window of their own, top right: the table's rows come and go with the passes.
+      ImGui::SetNextWindowPos(ImVec2(static_cast<float>(size.x) - 10.0f, 10.0f), ImGuiCond_Always,
+                              ImVec2(1.0f, 0.0f));
+      ImGui::SetNextWindowBgAlpha(0.8f);
+      ImGui::Begin("Timings", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+      std::vector<float> plot(frameTimes.begin(), frameTimes.end());
+      ImGui::PlotLines("##frametimes", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, 50.0f,
+                       ImVec2(220, 36));
+      ui::passTimingTable(timers);
+      ImGui::End();
+      ui.end();
+    }
+    timers.endFrame();
+    const bool last = ui::endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes);
+    // One line a frame at debug level, once swapped: the GUI end-to-end tests wait on it (frames take
+    // seconds on llvmpipe).
+    log::debug("viewer: frame {} shown, scene time {:.3f} s", shownFrames, time);
+    if (shownFrames++ == 0) {
+      log::info("viewer: first frame shown after {:.1f} s",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - startup).count());
+    }
+    if (last) {
+      break;
+    }
+    if (!paused) {
+      time += clock.fixed() ? dt : std::min(dt, 0.1);
+    }
+  }
+}
+
+} // namespace
+
+void viewSceneFile(const std::string& file, const ViewerOptions& options) {
+  auto desc = std::make_shared<scene::SceneDesc>(scene::loadScene(file)); // errors before the window opens
+  runViewer(options, fmt::format("Sylva viewer: {}", desc->name), [&](const shader::Library& library, float) {
+    ViewerContent content;
+    content.world = std::make_unique<scene::SceneWorld>(library, std::move(*desc));
+    content.time = content.world->frameTime(content.world->desc().output.firstFrame);
+    return content;
+  });
+}
+
+void viewWorld(const WorldFlags& flags, const ViewerOptions& options) {
+  runViewer(options, "Sylva viewer", [&](const shader::Library& library, float aspect) {
+    ViewerContent content;
+    content.world = std::make_unique<scene::SceneWorld>(library, flags.desc("view", true));
+    content.start = flags.start(*content.world, aspect);
+    scene::SceneDrawOptions draw;
+    draw.grassView = flags.grass.grassView();
+    draw.treeView = flags.trees.treeView();
+    draw.treeLod = flags.trees.lod;
+    content.world->setDrawOptions(draw);
+    content.flags = &flags;
+    return content;
+  });
+}
+
+void viewDemo(const ViewerOptions& options) {
+  runViewer(options, "Sylva viewer", [](const shader::Library& library, float) {
+    ViewerContent content;
+    content.demo = std::make_unique<render::DemoScene>(library);
+    content.start = content.demo->defaultCamera();
+    return content;
+  });
+}
+
+} // namespace sylva::app

@@ -1,0 +1,42 @@
+#pragma once
+// `sylva view`: the one interactive viewer (docs/cli.md, docs/scenes.md "Viewer"). A scene file or the world
+// the terrain/grass/trees options describe is built by the engine (scene::SceneWorld) and drawn by its frame
+// path exactly as `sylva render` draws it, into an offscreen target of the window's size (whose depth the sun
+// flare tests), then blitted under the ImGui panel.
+
+#include "WorldFlags.hpp"
+
+#include <string>
+
+namespace sylva::app {
+
+/** The window and scripted-run options of `sylva view`. */
+struct ViewerOptions {
+  int width = 1280;       ///< window width, screen pixels
+  int height = 720;       ///< window height, screen pixels
+  std::string shaderDir;  ///< empty: embedded shaders (F5 reloads from the source tree)
+  int frames = 0;         ///< > 0: quit after this many frames (scripted runs)
+  std::string screenshot; ///< with frames: save the last frame here
+  double fixedStep = 0.0; ///< > 0: scene seconds per frame (scripted runs repeat)
+  bool noUi = false;      ///< start with the panel hidden
+};
+
+/**
+ * Opens a window on the scene file: its output camera at its first frame's time to start, its other cameras
+ * in a selector (path cameras play along scene time), orbit, fly (F) and walk (G) cameras, balls thrown from
+ * the eye (B), a pause and a scene-time slider, a checkbox per pass (keys 1-8), per-pass CPU and GPU timings,
+ * and the terrain, grass, simulation and trees sections. Throws sylva::Error with one line naming the
+ * file/field.
+ */
+void viewSceneFile(const std::string& file, const ViewerOptions& options);
+
+/**
+ * Opens a window on the world `flags` describe (as `sylva render` with the same options draws it), at the
+ * same first camera, orbiting it; the sections start open for what the options turned on.
+ */
+void viewWorld(const WorldFlags& flags, const ViewerOptions& options);
+
+/** Opens a window on the small built-in pipeline test scene (render::DemoScene), orbiting it. */
+void viewDemo(const ViewerOptions& options);
+
+} // namespace sylva::app
