@@ -167,9 +167,10 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     grassPanel.emplace(*world, flags);
     treesPanel.emplace(*world, flags.trees);
     // A scene file opens with its sections closed (the panel stays short over the view); the options' world
-    // with the sections of what they turned on open.
+    // with the sections of what they turned on open (the terrain's alone).
     grassPanel->open = grassPanel->open && content.flags != nullptr;
     treesPanel->open = treesPanel->open && content.flags != nullptr;
+    terrainPanel->open = content.flags != nullptr && !grassPanel->open && !treesPanel->open;
   }
   const auto output = world != nullptr
                           ? std::find(choice.names.begin(), choice.names.end(), world->desc().output.camera)
@@ -357,10 +358,9 @@ void runViewer(const ViewerOptions& o, const std::string& title,
       }
       ui.begin();
       const float avg = ui::beginPanel("Sylva", info.renderer, frameTimes);
-      if (world != nullptr) {
-        const std::string& path = world->desc().path;
+      if (world != nullptr && content.flags == nullptr) {
         ImGui::Text("%s  (%s)", world->desc().name.c_str(),
-                    content.flags != nullptr ? path.c_str() : std::filesystem::path(path).filename().c_str());
+                    std::filesystem::path(world->desc().path).filename().c_str());
       }
       ImGui::Text("frame %.2f ms (%.0f fps)", avg, avg > 0.0f ? 1000.0f / avg : 0.0f);
       if (world != nullptr) {

@@ -128,7 +128,7 @@ TerrainPanel::TerrainPanel(scene::SceneWorld& world) : lod(world.terrain().quadt
 void TerrainPanel::show(scene::SceneWorld& world, const render::Camera& camera, float aspect, bool& walk) {
   terrain::TerrainScene& scene = world.terrain();
   scene::SceneDrawOptions draw = world.drawOptions();
-  if (section("Terrain LOD", false)) {
+  if (section("Terrain LOD", open)) {
     bool changed = false;
     const char* methods[] = {"paper (quadtree search)", "ours (restricted level map)", "none (shows cracks)"};
     changed |= ImGui::Combo("crack method", &method, methods, 3);

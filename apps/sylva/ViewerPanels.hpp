@@ -23,6 +23,8 @@ struct TerrainPanel {
   int method = 1; // 0 paper, 1 ours, 2 none
   int view = 0;
   bool freeze = false;
+  /** Whether the section starts open. */
+  bool open = false;
 
   /** Starts at `world`'s terrain settings. */
   explicit TerrainPanel(scene::SceneWorld& world);

@@ -111,7 +111,10 @@ void ScenePasses::render(const render::Camera& camera, int width, int height, do
                          const Aabb& casters, const gl::Texture* depth, render::GpuTimers* timers) {
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   mEnvironment = mBase;
-  if (mShadowMaps && enabled(Pass::Shadows) && casters.max.x > casters.min.x) {
+  // A camera whose near plane lies beyond the shadow distance (a whole large terrain in view) sees nothing
+  // the cascades cover: everything is drawn fully sunlit.
+  if (mShadowMaps && enabled(Pass::Shadows) && casters.max.x > casters.min.x &&
+      camera.nearPlane < mScene.shadows.distance) {
     renderShadows(camera, aspect, time, casters, timers);
   } else {
     render::ShadowMaps::unbind();

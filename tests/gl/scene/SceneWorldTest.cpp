@@ -1,7 +1,10 @@
 // The world the engine composes from a description built in code, as `sylva render --trees` builds it: the
 // forest casts sun shadows on the terrain through the scene's one frame (the shadow pass darkens the ground
 // around the trees and brightens nothing), the code-only fields reach the world (the region around the
-// terrain's centre, the look), and the same time gives the same pixels.
+// terrain's centre, the look), and the same time gives the same pixels. The viewer's edits (a grass layer
+// added, a simulation started, a forest rebuilt) change one subsystem and leave the world as it was on
+// errors.
+#include <sylva/core/Error.hpp>
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
@@ -106,6 +109,70 @@ TEST_F(SceneWorldTest, ACodeBuiltForestCastsSunShadowsThroughTheScenesFrame) {
   world.passes().setEnabled(Pass::Shadows, true);
   const Image again = draw(world, camera);
   EXPECT_EQ(std::memcmp(again.data(), shadowed.data(), shadowed.byteSize()), 0);
+}
+
+TEST_F(SceneWorldTest, ACameraBeyondTheShadowDistanceDrawsFullySunlit) {
+  SceneWorld world(shaders(), forestDesc());
+  // The whole terrain from 2 km away: the near plane lies past the 150 m the cascades cover.
+  render::Camera camera;
+  camera.target = glm::vec3(128.0f, 0.0f, 128.0f);
+  camera.position = camera.target + glm::vec3(-1500.0f, 1500.0f, 1500.0f);
+  camera.fovY = glm::radians(20.0f);
+  render::fitClipPlanes(camera, world.terrain().bounds());
+  ASSERT_GT(camera.nearPlane, world.desc().shadows.distance);
+  const Image far = draw(world, camera);
+  world.passes().setEnabled(Pass::Shadows, false);
+  const Image lit = draw(world, camera);
+  EXPECT_EQ(std::memcmp(far.data(), lit.data(), lit.byteSize()), 0);
+}
+
+TEST_F(SceneWorldTest, TheViewersEditsRebuildOneSubsystemAndKeepTheWorldOnErrors) {
+  SceneWorld world(shaders(), forestDesc());
+  ASSERT_EQ(world.grassCount(), 0u);
+  ASSERT_FALSE(world.passes().present(Pass::Grass));
+  // A grass layer added later (the viewer's first enable): its pass appears.
+  GrassLayer layer;
+  layer.layer = "none";
+  layer.patchBlades = 1024;
+  layer.bladesPerTile = 64;
+  world.setGrassLayer(0, layer);
+  ASSERT_EQ(world.grassCount(), 1u);
+  EXPECT_TRUE(world.passes().present(Pass::Grass));
+  EXPECT_EQ(world.desc().grass.size(), 1u);
+  // A bad layer names its field and leaves the built one in place.
+  GrassLayer bad = layer;
+  bad.bladesPerTile = 4096; // more than the patch holds
+  const grass::GrassRenderer* before = &world.grass(0);
+  EXPECT_THROW(world.setGrassLayer(0, bad), Error);
+  EXPECT_EQ(&world.grass(0), before);
+  EXPECT_EQ(world.desc().grass[0].bladesPerTile, 64);
+  // Simulation on demand, a ball, then every body removed.
+  ASSERT_EQ(world.simulation(), nullptr);
+  world.simulateGrass(0);
+  ASSERT_NE(world.simulation(), nullptr);
+  EXPECT_EQ(world.simulatedLayer(), 0);
+  EXPECT_TRUE(world.passes().present(Pass::Bodies));
+  const float ground = world.groundHeight(128.0f, 128.0f);
+  EXPECT_TRUE(world.spawnBall(glm::vec3(128.0f, ground + 2.0f, 128.0f), glm::vec3(0.0f)));
+  EXPECT_EQ(world.bodies(), 1u);
+  world.clearBodies();
+  EXPECT_EQ(world.bodies(), 0u);
+  // The forest rebuilt from a new description: more trees, the placement follows.
+  ForestDesc more = world.desc().forests[0];
+  more.count = 60;
+  more.regionRadius = 60.0f;
+  const std::size_t trees = world.treeCount();
+  world.setForest(0, more);
+  EXPECT_GT(world.treeCount(), trees);
+  EXPECT_EQ(world.forestPlacement(0).count, 60);
+  EXPECT_EQ(world.desc().forests[0].count, 60);
+  ForestDesc none = more;
+  none.species = {{"no-such-species", 1.0f}};
+  EXPECT_THROW(world.setForest(0, none), Error);
+  EXPECT_EQ(world.desc().forests[0].count, 60);
+  // Frames still draw after every edit.
+  const Image frame = draw(world, forestCamera(world));
+  EXPECT_GT(frame.width(), 0);
 }
 
 } // namespace
