@@ -4,6 +4,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/ImageHeader.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/core/Random.hpp>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <optional>
 #include <string>
 
 namespace sylva::folding {
@@ -54,6 +56,60 @@ void quietOpenCv() {
 
 bool isPattern(const fs::path& path) {
   return path.string().find('%') != std::string::npos;
+}
+
+/** An image-sequence pattern: one printf integer conversion (%d, %4d, %04d), as OpenCV's reader expects. */
+struct SequencePattern {
+  std::string prefix;     ///< the name before the conversion
+  std::string suffix;     ///< the name after it
+  std::size_t digits = 0; ///< the field width (0: as many as the number needs)
+  bool zeroPad = false;   ///< pad with zeros (%04d) rather than spaces (%4d)
+
+  /** Parses `name`; throws sylva::Error naming it when it does not hold exactly one such conversion. */
+  static SequencePattern parse(const std::string& name) {
+    const std::size_t percent = name.find('%');
+    const std::size_t end = name.find('d', percent);
+    const std::string spec = end == std::string::npos ? "x" : name.substr(percent + 1, end - percent - 1);
+    if (end == std::string::npos || name.find('%', percent + 1) != std::string::npos || spec.size() > 2 ||
+        !std::all_of(spec.begin(), spec.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      fail("{}: expected one %d conversion, e.g. frames/%04d.png", name);
+    }
+    return {name.substr(0, percent), name.substr(end + 1),
+            spec.empty() ? 0 : static_cast<std::size_t>(std::stoi(spec)), !spec.empty() && spec[0] == '0'};
+  }
+
+  /** The file name of frame `index`. */
+  std::string frame(std::size_t index) const {
+    std::string number = std::to_string(index);
+    if (number.size() < digits) {
+      number.insert(0, digits - number.size(), zeroPad ? '0' : ' ');
+    }
+    return prefix + number + suffix;
+  }
+};
+
+/**
+ * Refuses an image sequence whose frames (numbered from 0 or 1, as OpenCV reads them; up to maxFrames + 1,
+ * the one past the last read telling whether the clip was cut short) state more than kMaxVideoSide pixels per
+ * side in their headers, before OpenCV decodes, and allocates for, any of them: a 2.6 KB progressive JPEG
+ * claiming 20000×20000 pixels made libjpeg zero about 2 GB (fuzz/regressions/flow). Frames in formats
+ * readImageHeader does not read are checked after decoding, as before.
+ */
+void checkSequenceHeaders(const std::string& name, int maxFrames) {
+  const SequencePattern pattern = SequencePattern::parse(name);
+  std::error_code ec;
+  const std::size_t first = fs::is_regular_file(pattern.frame(0), ec) ? 0 : 1;
+  for (std::size_t i = first; i <= first + static_cast<std::size_t>(maxFrames); ++i) {
+    const std::string file = pattern.frame(i);
+    if (!fs::is_regular_file(file, ec)) {
+      break;
+    }
+    const std::optional<ImageHeader> header = readImageHeader(file);
+    if (header && (header->width > kMaxVideoSide || header->height > kMaxVideoSide)) {
+      fail("{}: frame file {} is a {} of {}×{} pixels, over the {} per side this loader accepts", name,
+           fs::path(file).filename().string(), header->format, header->width, header->height, kMaxVideoSide);
+    }
+  }
 }
 
 /** One decoded frame as RGBA8, whatever OpenCV handed back (BGR, grey, BGRA; 8 or 16 bits). */
@@ -236,6 +292,9 @@ VideoClip loadVideo(const std::filesystem::path& path, int maxFrames, Progress* 
     fail("{}: is a directory; expected a video file or an image-sequence pattern such as frames/%04d.png",
          name);
   }
+  if (pattern) {
+    checkSequenceHeaders(name, maxFrames);
+  }
   quietOpenCv();
   const int api = pattern ? cv::CAP_IMAGES : cv::CAP_FFMPEG;
   if (!cv::videoio_registry::hasBackend(static_cast<cv::VideoCaptureAPIs>(api))) {
@@ -326,25 +385,12 @@ void saveVideo(const std::filesystem::path& path, const VideoClip& clip) {
     }
   }
   if (isPattern(path)) {
-    // One printf integer conversion (%d, %4d, %04d), as OpenCV's image-sequence reader expects.
-    const std::size_t percent = name.find('%');
-    const std::size_t end = name.find('d', percent);
-    const std::string spec = end == std::string::npos ? "x" : name.substr(percent + 1, end - percent - 1);
-    if (end == std::string::npos || name.find('%', percent + 1) != std::string::npos || spec.size() > 2 ||
-        !std::all_of(spec.begin(), spec.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-      fail("{}: expected one %d conversion, e.g. frames/%04d.png", name);
-    }
-    if (lowerExtension(path) != ".png" || name.find_first_of("/\\", end) != std::string::npos) {
+    const SequencePattern frames = SequencePattern::parse(name);
+    if (lowerExtension(path) != ".png" || frames.suffix.find_first_of("/\\") != std::string::npos) {
       fail("{}: image sequences are written as PNG (.png)", name);
     }
-    const bool zeroPad = !spec.empty() && spec[0] == '0';
-    const std::size_t digits = spec.empty() ? 0 : static_cast<std::size_t>(std::stoi(spec));
     for (std::size_t i = 0; i < clip.frames.size(); ++i) {
-      std::string number = std::to_string(i);
-      if (number.size() < digits) {
-        number.insert(0, digits - number.size(), zeroPad ? '0' : ' ');
-      }
-      saveImage(name.substr(0, percent) + number + name.substr(end + 1), clip.frames[i]);
+      saveImage(frames.frame(i), clip.frames[i]);
     }
     return;
   }

@@ -2,12 +2,14 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/ImageHeader.hpp>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <system_error>
 
 namespace sylva::texsynth {
@@ -122,6 +124,13 @@ Image loadPhoto(const fs::path& path) {
   }
   if (ext != ".jpg" && ext != ".jpeg") {
     fail("{}: unsupported photo format '{}' (expected .jpg, .jpeg, .png or .exr)", name, ext);
+  }
+  // The size the header states is checked before OpenCV decodes: libjpeg allocates (and for progressive
+  // files zeroes) the whole image's coefficients up front, whatever the file's length.
+  if (const std::optional<ImageHeader> header = readImageHeader(path);
+      header && (header->width > kMaxTextureSide || header->height > kMaxTextureSide)) {
+    fail("{}: image size {}x{} is out of range (1..{} per side)", name, header->width, header->height,
+         kMaxTextureSide);
   }
   cv::Mat bgr;
   try {

@@ -166,6 +166,37 @@ TEST(FoldFlow, SyntheticClipSurvivesMotionJpegAndPngSequences) {
   }
 }
 
+TEST(FoldFlow, ASequenceFrameClaimingAHugeSizeIsRefusedBeforeDecoding) {
+  // The flow fuzz target's finding: a 2.6 KB progressive JPEG whose header claims 20000×20000 pixels made
+  // libjpeg zero about 2 GB before reading a scan. Its header is read first, in any frame the clip would
+  // decode (numbered from 0 or 1), and the clip is refused naming the frame; the pattern's own form is
+  // checked too.
+  SYLVA_SKIP_UNDER_TSAN();
+  const test::TempDir dir;
+  const fs::path huge = test::sourcePath("fuzz/regressions/flow/jpeg-progressive-claims-20000x20000.jpg");
+  saveVideo(dir / "seq/%04d.png", syntheticVideo({32, 32}, 3, SyntheticMotion{}));
+  fs::copy_file(huge, dir / "seq/0002.png", fs::copy_options::overwrite_existing);
+  const std::string pattern = (dir / "seq/%04d.png").string();
+  try {
+    (void)loadVideo(pattern, 3);
+    ADD_FAILURE() << "the third frame claims 20000×20000 pixels";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), pattern +
+                                         ": frame file 0002.png is a JPEG of 20000×20000 pixels, over the " +
+                                         std::to_string(kMaxVideoSide) + " per side this loader accepts");
+  }
+  // Reading two frames still decodes the third (it tells whether the clip was cut short); reading one does
+  // not.
+  EXPECT_THROW((void)loadVideo(pattern, 2), Error);
+  const VideoClip first = loadVideo(pattern, 1);
+  EXPECT_EQ(first.frames.size(), 1u);
+  EXPECT_TRUE(first.truncated);
+  fs::create_directories(dir / "one");
+  fs::copy_file(huge, dir / "one/1.jpg");
+  EXPECT_THROW((void)loadVideo(dir / "one/%d.jpg", 1), Error); // numbered from 1
+  EXPECT_THROW((void)loadVideo(dir / "one/%s.jpg", 1), Error);
+}
+
 TEST(FoldFlow, SyntheticClipIsDeterministicAndMovesExactly) {
   // A whole-pixel translation makes the next frame an exact shift of this one (same texture coordinates).
   SyntheticMotion shift;

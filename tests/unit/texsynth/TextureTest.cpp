@@ -52,6 +52,16 @@ TEST(Texture, PhotoErrorsNameTheFile) {
   EXPECT_THROW(loadPhoto(dir / "missing.jpg"), Error);
   writeTextFile(dir / "photo.gif", "GIF89a");
   EXPECT_THROW(loadPhoto(dir / "photo.gif"), Error);
+  // A 2.6 KB progressive JPEG claiming 20000×20000 pixels is refused from its header, before libjpeg would
+  // allocate and zero about 2 GB of coefficients.
+  std::filesystem::copy_file(
+      test::sourcePath("fuzz/regressions/flow/jpeg-progressive-claims-20000x20000.jpg"), dir / "huge.jpg");
+  try {
+    loadPhoto(dir / "huge.jpg");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("huge.jpg: image size 20000x20000 is out of range"));
+  }
 }
 
 TEST(Texture, LoadsTheBarkPhotosThroughOpenCv) {

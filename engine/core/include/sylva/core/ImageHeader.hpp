@@ -1,0 +1,28 @@
+#pragma once
+// What an image file says about its size before any pixel is decoded, so that a loader handing a file to a
+// third-party decoder (OpenCV) can refuse a small file that claims a huge image: a 2.6 KB progressive JPEG
+// claiming 20000×20000 pixels makes libjpeg allocate and zero about 2 GB of coefficients before reading a
+// scan.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace sylva {
+
+/** An image file's format and size, as its header states them (nothing decoded, nothing verified). */
+struct ImageHeader {
+  std::string format; ///< "PNG", "JPEG" or "WebP"
+  int width = 0;      ///< pixels, as stated (may be 0 in a damaged file)
+  int height = 0;     ///< pixels, as stated
+};
+
+/**
+ * Reads the header of a PNG, JPEG or WebP file, recognised by its content (the extension is only a name):
+ * PNG's IHDR, the first JPEG frame header (SOF0–SOF15, skipping every segment before it, however long),
+ * WebP's VP8, VP8L or VP8X chunk. nullopt for any other format or a header cut short before the size. Reads
+ * only the bytes up to the size fields. Throws sylva::Error naming the file when it cannot be opened.
+ */
+std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path);
+
+} // namespace sylva

@@ -1,0 +1,128 @@
+// Image sizes from file headers: real files (a PNG written by savePng, the JPEG seed of the flow fuzz target,
+// the progressive JPEG that claims 20000×20000 pixels) and hand-built headers for each path through the JPEG
+// marker walk and the three WebP chunk kinds; anything else and any header cut short is "unknown", not a
+// size.
+#include <sylva/core/Error.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/core/ImageHeader.hpp>
+
+#include "TempDir.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <vector>
+
+namespace sylva {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+std::optional<ImageHeader> headerOf(const test::TempDir& dir, const Bytes& bytes) {
+  const std::filesystem::path path = dir / "image.bin";
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return readImageHeader(path);
+}
+
+/** SOI, an APP0 segment, fill bytes, a restart marker, then a frame header SOFn of width × height. */
+Bytes jpeg(std::uint8_t sof, int width, int height) {
+  Bytes b = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x06, 'J', 'F', 'I', 'F', 0xFF, 0xFF, 0xFF, 0xD3};
+  const Bytes frame = {0xFF,
+                       sof,
+                       0x00,
+                       0x0B,
+                       0x08,
+                       static_cast<std::uint8_t>(height >> 8),
+                       static_cast<std::uint8_t>(height),
+                       static_cast<std::uint8_t>(width >> 8),
+                       static_cast<std::uint8_t>(width),
+                       0x01,
+                       0x01,
+                       0x11,
+                       0x00};
+  b.insert(b.end(), frame.begin(), frame.end());
+  return b;
+}
+
+Bytes webp(const char* fourcc, const Bytes& payload) {
+  Bytes b = {'R', 'I', 'F', 'F', 0, 0, 0, 0, 'W', 'E', 'B', 'P'};
+  b.insert(b.end(), fourcc, fourcc + 4);
+  b.insert(b.end(), {static_cast<std::uint8_t>(payload.size()), 0, 0, 0});
+  b.insert(b.end(), payload.begin(), payload.end());
+  return b;
+}
+
+void expectSize(const std::optional<ImageHeader>& header, const char* format, int width, int height) {
+  ASSERT_TRUE(header.has_value());
+  EXPECT_EQ(header->format, format);
+  EXPECT_EQ(header->width, width);
+  EXPECT_EQ(header->height, height);
+}
+
+TEST(ImageHeader, ReadsTheSizeOfRealFiles) {
+  test::TempDir dir;
+  Image image(37, 19, 4, PixelType::U16);
+  savePng(dir / "a.png", image);
+  expectSize(readImageHeader(dir / "a.png"), "PNG", 37, 19);
+  expectSize(readImageHeader(test::sourcePath("fuzz/corpus/flow/jpeg-16x16.jpg")), "JPEG", 16, 16);
+  expectSize(
+      readImageHeader(test::sourcePath("fuzz/regressions/flow/jpeg-progressive-claims-20000x20000.jpg")),
+      "JPEG", 20000, 20000);
+}
+
+TEST(ImageHeader, WalksJpegSegmentsToTheFirstFrameHeader) {
+  test::TempDir dir;
+  expectSize(headerOf(dir, jpeg(0xC0, 640, 480)), "JPEG", 640, 480); // baseline
+  expectSize(headerOf(dir, jpeg(0xC2, 65535, 3)), "JPEG", 65535, 3); // progressive
+  expectSize(headerOf(dir, jpeg(0xCF, 1, 2)), "JPEG", 1, 2);         // lossless arithmetic
+  // DHT, JPG and DAC share the SOFn range but are not frame headers: their 11 bytes are skipped.
+  Bytes dht = jpeg(0xC4, 9999, 9999);
+  const Bytes sof = jpeg(0xC0, 12, 34);
+  dht.insert(dht.end(), sof.begin() + 2, sof.end());
+  expectSize(headerOf(dir, dht), "JPEG", 12, 34);
+  // libjpeg skips bytes that are not a marker ("extraneous bytes") and stuffed zeros, and decodes on: so does
+  // the walk (the flow fuzz target's second finding hid a 28535×26220 frame header behind one such byte).
+  Bytes junk = {0xFF, 0xD8, '(', '(', 0xFF, 0x00, 0x17};
+  junk.insert(junk.end(), sof.begin() + 2, sof.end());
+  expectSize(headerOf(dir, junk), "JPEG", 12, 34);
+  expectSize(
+      readImageHeader(test::sourcePath("fuzz/regressions/flow/jpeg-extraneous-bytes-hide-26220x28535.jpg")),
+      "JPEG", 28535, 26220);
+}
+
+TEST(ImageHeader, ReadsEachWebPChunkKind) {
+  test::TempDir dir;
+  // Lossy: frame tag, start code, 14-bit sides (the top two bits are a scale and not part of the size).
+  expectSize(headerOf(dir, webp("VP8 ", {0, 0, 0, 0x9d, 0x01, 0x2a, 0x40, 0xC1, 0xF0, 0x40})), "WebP", 320,
+             240);
+  // Lossless: 14 bits width − 1 then 14 bits height − 1: 100 × 50.
+  const std::uint32_t bits = 99u | (49u << 14);
+  expectSize(
+      headerOf(dir, webp("VP8L", {0x2f, static_cast<std::uint8_t>(bits), static_cast<std::uint8_t>(bits >> 8),
+                                  static_cast<std::uint8_t>(bits >> 16),
+                                  static_cast<std::uint8_t>(bits >> 24), 0, 0, 0, 0, 0})),
+      "WebP", 100, 50);
+  // Extended: 24-bit canvas width − 1 and height − 1, beyond what a VP8 frame can hold.
+  expectSize(headerOf(dir, webp("VP8X", {0, 0, 0, 0, 0x3F, 0x42, 0x0F, 0x01, 0x00, 0x00})), "WebP", 1000000,
+             2);
+}
+
+TEST(ImageHeader, OtherFormatsAndCutHeadersAreUnknown) {
+  test::TempDir dir;
+  EXPECT_FALSE(headerOf(dir, {}).has_value());
+  EXPECT_FALSE(headerOf(dir, {'B', 'M', 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}).has_value());
+  Bytes cut = jpeg(0xC0, 640, 480);
+  cut.resize(cut.size() - 8); // inside the frame header
+  EXPECT_FALSE(headerOf(dir, cut).has_value());
+  EXPECT_FALSE(headerOf(dir, {0xFF, 0xD8, 0xFF, 0xDA, 0x00, 0x02}).has_value()); // a scan before any frame
+  EXPECT_FALSE(headerOf(dir, {0xFF, 0xD8, 0xFF, 0xE1, 0xFF, 0xFF}).has_value()); // a segment past the end
+  EXPECT_FALSE(
+      headerOf(dir, {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H'}).has_value());
+  EXPECT_FALSE(headerOf(dir, webp("VP8 ", {0, 0, 0, 0, 0, 0, 1, 1, 1, 1})).has_value()); // no start code
+  EXPECT_THROW((void)readImageHeader(dir / "missing.png"), Error);
+}
+
+} // namespace
+} // namespace sylva
