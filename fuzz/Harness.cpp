@@ -1,6 +1,6 @@
 #include "Harness.hpp"
 
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 #include <sylva/capture/Depth.hpp>
 #include <sylva/capture/Fakenect.hpp>
 #include <sylva/core/Error.hpp>
@@ -245,18 +245,18 @@ void flowFfmpeg(std::span<const std::uint8_t> bytes) {
  */
 void bladeModels(std::span<const std::uint8_t> bytes) {
   const fs::path path = writeInput("blades.json", bytes);
-  capture::BladeModelFile file;
+  blades::BladeModelFile file;
   try {
-    file = capture::loadBladeModels(path);
+    file = blades::loadBladeModels(path);
   } catch (const Error&) {
     return;
   }
-  for (const capture::BladeModel& blade : file.blades) {
+  for (const blades::BladeModel& blade : file.blades) {
     (void)blade.length();
     (void)blade.maxWidth();
     (void)blade.lodForKnots(16);
   }
-  (void)capture::parseBladeModels(capture::toJson(file), path.string()); // throws (a finding) if not
+  (void)blades::parseBladeModels(blades::toJson(file), path.string()); // throws (a finding) if not
 }
 
 /** Depth inputs: the bytes as a file both depth loaders open (16-bit depth PNG, 8-bit Middlebury disparity).

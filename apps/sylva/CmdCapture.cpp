@@ -7,7 +7,7 @@
 #include "Commands.hpp"
 #include "SourceOptions.hpp"
 
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 #include <sylva/capture/Depth.hpp>
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Fakenect.hpp>
@@ -427,10 +427,10 @@ void runCapture(const CaptureOptions& o) {
   model.rawMetres = o.rawMetres;
   model.simulateSway = motion == "sway";
   std::vector<TrackedBlade> tracks = trackBlades(results);
-  BladeModelFile file;
+  blades::BladeModelFile file;
   file.generator = fmt::format("sylva capture {}: {}", SYLVA_VERSION, source.label);
   for (std::size_t b = 0; b < tracks.size(); ++b) {
-    BladeSource meta;
+    blades::BladeSource meta;
     meta.file = source.label;
     meta.kind = depthSourceName(reference.kind);
     meta.frame = reference.frame;
@@ -439,7 +439,7 @@ void runCapture(const CaptureOptions& o) {
     meta.intrinsics = reference.intrinsics;
     meta.relativeDepth = reference.relativeDepth;
     const KnotFrames empty;
-    BladeModel m =
+    blades::BladeModel m =
         makeBladeModel(tracks[b].reference, motion == "recording" ? tracks[b].motion : empty, model, meta);
     m.name = fmt::format("{}-{}", base, b);
     file.blades.push_back(std::move(m));
@@ -448,12 +448,12 @@ void runCapture(const CaptureOptions& o) {
   if (o.scaleTo > 0.0) {
     // Relative depth (Middlebury without calibration) has no true scale: the user gives the longest blade's.
     float longest = 0.0f;
-    for (const BladeModel& m : file.blades) {
+    for (const blades::BladeModel& m : file.blades) {
       longest = std::max(longest, m.length());
     }
     const float factor = static_cast<float>(o.scaleTo) / std::max(longest, 1e-9f);
-    for (BladeModel& m : file.blades) {
-      for (BladeLod& lod : m.lods) {
+    for (blades::BladeModel& m : file.blades) {
+      for (blades::BladeLod& lod : m.lods) {
         for (glm::vec3& p : lod.positions) {
           p *= factor;
         }
@@ -524,7 +524,7 @@ void runCapture(const CaptureOptions& o) {
     saveImage(overlay, overlayImage(reference, first));
   }
   if (!out.empty()) {
-    saveBladeModels(out, file);
+    blades::saveBladeModels(out, file);
   }
   if (!o.quiet) {
     for (const std::string& path : {out, overlay, o.stages}) {

@@ -158,7 +158,7 @@ void BM_MakeBladeModel(benchmark::State& state) {
   options.simulateSway = true;
   options.sway.frames = 60;
   for (auto _ : state) {
-    const BladeModel model = makeBladeModel(blade, {}, options, BladeSource{});
+    const sylva::blades::BladeModel model = makeBladeModel(blade, {}, options, sylva::blades::BladeSource{});
     benchmark::DoNotOptimize(model.lods.data());
   }
   state.SetItemsProcessed(state.iterations());

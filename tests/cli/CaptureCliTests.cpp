@@ -5,7 +5,7 @@
 #include "CliRun.hpp"
 #include "TempDir.hpp"
 
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 #include <sylva/capture/Depth.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
@@ -71,9 +71,9 @@ TEST(CaptureCli, SyntheticPngGivesBladeModelsAndAnOverlay) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, testing::HasSubstr("5 blades"));
   EXPECT_THAT(r.out, testing::HasSubstr("colour-refined edges"));
-  const capture::BladeModelFile models = capture::loadBladeModels(dir / "m.json");
+  const blades::BladeModelFile models = blades::loadBladeModels(dir / "m.json");
   ASSERT_EQ(models.blades.size(), 5u);
-  for (const capture::BladeModel& blade : models.blades) {
+  for (const blades::BladeModel& blade : models.blades) {
     ASSERT_EQ(blade.lods.size(), 3u) << blade.name;
     EXPECT_EQ(blade.lods[0].knotCount(), 64u) << blade.name;
     EXPECT_EQ(blade.lods[1].knotCount(), 32u) << blade.name;
@@ -89,9 +89,9 @@ TEST(CaptureCli, SyntheticPngGivesBladeModelsAndAnOverlay) {
   const test::RunResult levels = runSylva(dir, "capture " + at(dir, "s.png") + " --levels 32,8 -q -o " +
                                                    at(dir, "l.json") + " --stages " + at(dir, "stages"));
   ASSERT_EQ(levels.status, 0) << levels.err;
-  const capture::BladeModelFile coarse = capture::loadBladeModels(dir / "l.json");
+  const blades::BladeModelFile coarse = blades::loadBladeModels(dir / "l.json");
   ASSERT_EQ(coarse.blades.size(), 5u);
-  for (const capture::BladeModel& blade : coarse.blades) {
+  for (const blades::BladeModel& blade : coarse.blades) {
     ASSERT_EQ(blade.lods.size(), 2u) << blade.name;
     EXPECT_EQ(blade.lods[0].knotCount(), 32u) << blade.name;
     EXPECT_EQ(blade.lods[1].knotCount(), 8u) << blade.name;

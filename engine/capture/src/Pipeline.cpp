@@ -76,8 +76,8 @@ std::vector<TrackedBlade> trackBlades(const std::vector<ExtractResult>& results,
   return tracks;
 }
 
-BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion, const ModelOptions& options,
-                          BladeSource source) {
+blades::BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion,
+                                  const ModelOptions& options, blades::BladeSource source) {
   const std::size_t n = blade.knots.size();
   if (n < 2 || blade.widths.size() != n || blade.sides.size() != n) {
     fail("blade model: the captured blade has {} knots, {} widths and {} sides", n, blade.widths.size(),
@@ -118,7 +118,7 @@ BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion, 
     }
   }
 
-  BladeModel model;
+  blades::BladeModel model;
   model.hasColour = blade.hasColour;
   model.colour = blade.colour;
   glm::vec3 axis(0.0f);
@@ -145,7 +145,7 @@ BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion, 
     refine.measure = options.measure;
     refine.unitMetres = options.rawMetres ? 0.0 : spacing;
     const RefineResult r = refineKnots(frames, blade.widths, refine);
-    BladeLod lod;
+    blades::BladeLod lod;
     const std::vector<glm::vec3>& pose = r.frames[0];
     const glm::vec3 root = pose[0];
     const std::size_t m = pose.size();

@@ -98,14 +98,14 @@ std::vector<BladeType> proceduralBladeTypes() {
           arcBlade("broadleaf", 0.18f, 0.018f, 0.3f, broadProfile, {0.12f, 0.36f, 0.07f}, 0.7f)};
 }
 
-BladeType bladeTypeFromModel(const capture::BladeModel& model, const glm::vec3& colour, float stiffness) {
+BladeType bladeTypeFromModel(const blades::BladeModel& model, const glm::vec3& colour, float stiffness) {
   if (model.lods.empty() || model.lods.front().knotCount() < 2) {
     fail("blade model '{}': no level with at least 2 knots", model.name);
   }
   if (!(stiffness > 0.0f) || !std::isfinite(stiffness)) {
     fail("blade model '{}': stiffness must be > 0", model.name);
   }
-  const capture::BladeLod& finest = model.lods.front();
+  const blades::BladeLod& finest = model.lods.front();
   if (polylineLength(finest.positions) <= 0.0f) {
     fail("blade model '{}': zero length", model.name);
   }
@@ -121,12 +121,12 @@ BladeType bladeTypeFromModel(const capture::BladeModel& model, const glm::vec3& 
 
 std::vector<BladeType> loadBladeTypes(const std::filesystem::path& path, const glm::vec3& colour,
                                       float stiffness) {
-  const capture::BladeModelFile file = capture::loadBladeModels(path);
+  const blades::BladeModelFile file = blades::loadBladeModels(path);
   if (file.blades.empty()) {
     fail("{}: no blades", path.string());
   }
   std::vector<BladeType> types;
-  for (const capture::BladeModel& model : file.blades) {
+  for (const blades::BladeModel& model : file.blades) {
     types.push_back(bladeTypeFromModel(model, colour, stiffness));
   }
   return types;

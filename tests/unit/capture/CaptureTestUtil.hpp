@@ -2,7 +2,6 @@
 
 // Helpers shared by the capture module's tests.
 
-#include <sylva/capture/BladeModel.hpp>
 #include <sylva/core/Error.hpp>
 
 #include <gtest/gtest.h>
@@ -24,8 +23,5 @@ template <typename F> std::string errorOf(F&& body) {
 inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
-
-/** Every field of two blade-model files is equal (floats exactly: files round-trip bit for bit). */
-void expectEqual(const BladeModelFile& a, const BladeModelFile& b);
 
 } // namespace sylva::capture::testutil

@@ -2,7 +2,7 @@
 // instances: every file must load, and its blades must look like grass and leaves.
 #include "TempDir.hpp"
 
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 
 #include <gtest/gtest.h>
 
@@ -21,9 +21,9 @@ TEST(BladeLibrary, EveryFileLoadsWithPlausibleBlades) {
       continue;
     }
     names.insert(entry.path().stem().string());
-    const BladeModelFile file = loadBladeModels(entry.path());
+    const blades::BladeModelFile file = blades::loadBladeModels(entry.path());
     ASSERT_FALSE(file.blades.empty()) << entry.path();
-    for (const BladeModel& blade : file.blades) {
+    for (const blades::BladeModel& blade : file.blades) {
       SCOPED_TRACE(blade.name);
       ASSERT_EQ(blade.lods.size(), 3u);
       EXPECT_EQ(blade.lods[0].knotCount(), 64u);
@@ -35,7 +35,7 @@ TEST(BladeLibrary, EveryFileLoadsWithPlausibleBlades) {
       EXPECT_GT(blade.maxWidth(), 0.0f);
       EXPECT_LE(blade.maxWidth(), 0.12f);
       EXPECT_GE(blade.length() / blade.maxWidth(), 2.5f);
-      for (const BladeLod& lod : blade.lods) {
+      for (const blades::BladeLod& lod : blade.lods) {
         EXPECT_EQ(lod.positions.front(), glm::vec3(0.0f));
         // Grass grows upwards from its root (+Y up in blade space); an aloe's lower leaves droop below their
         // root, but not by more than half their length.

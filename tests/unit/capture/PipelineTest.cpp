@@ -1,7 +1,7 @@
 // From captured blades to blade models: tracking blades through a swaying synthetic recording (including a
 // frame that loses a blade), blade models (levels, blade space, normals, widths, option errors, motion frame
 // counts, file round trip) and a fakenect recording of the sequence extracting like the frames themselves.
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Fakenect.hpp>
 #include <sylva/capture/Pipeline.hpp>
@@ -14,6 +14,7 @@
 #include "CaptureTestUtil.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -207,8 +208,8 @@ const CapturedBlade& uprightBlade() {
   return blade;
 }
 
-BladeSource syntheticSource() {
-  BladeSource source;
+blades::BladeSource syntheticSource() {
+  blades::BladeSource source;
   source.file = "synthetic:slim";
   source.kind = "synthetic";
   source.intrinsics = CameraIntrinsics::kinectV1();
@@ -221,7 +222,7 @@ TEST(MakeBladeModel, LevelsInBladeSpace) {
   ASSERT_EQ(blade.knots.size(), 128u);
   ModelOptions options;
   options.levels = {64, 32, 16};
-  const BladeModel model = makeBladeModel(blade, {}, options, syntheticSource());
+  const blades::BladeModel model = makeBladeModel(blade, {}, options, syntheticSource());
   ASSERT_EQ(model.lods.size(), 3u);
   EXPECT_EQ(model.source.file, "synthetic:slim");
   EXPECT_EQ(model.source.blade, 2);
@@ -234,7 +235,7 @@ TEST(MakeBladeModel, LevelsInBladeSpace) {
   EXPECT_GT(model.bendAxis.x, 0.9f);
   const int expected[] = {64, 32, 16};
   for (std::size_t l = 0; l < 3; ++l) {
-    const BladeLod& lod = model.lods[l];
+    const blades::BladeLod& lod = model.lods[l];
     SCOPED_TRACE("level " + std::to_string(expected[l]));
     ASSERT_EQ(lod.knotCount(), static_cast<std::size_t>(expected[l]));
     ASSERT_EQ(lod.widths.size(), lod.knotCount());
@@ -301,13 +302,13 @@ TEST(MakeBladeModel, MotionFrames) {
   const CapturedBlade& blade = uprightBlade();
   ModelOptions still;
   still.simulateSway = false;
-  const BladeModel a = makeBladeModel(blade, {}, still, syntheticSource());
+  const blades::BladeModel a = makeBladeModel(blade, {}, still, syntheticSource());
   EXPECT_EQ(a.source.motionFrames, 1);
   ModelOptions swaying;
   swaying.simulateSway = true;
   swaying.sway.frames = 37;
   swaying.mu = 0.25;
-  const BladeModel b = makeBladeModel(blade, {}, swaying, syntheticSource());
+  const blades::BladeModel b = makeBladeModel(blade, {}, swaying, syntheticSource());
   EXPECT_EQ(b.source.motionFrames, 38);
   EXPECT_EQ(b.source.mu, 0.25);
   // Refining never moves the root or the tip.
@@ -315,8 +316,8 @@ TEST(MakeBladeModel, MotionFrames) {
   // The sway bends the blade most towards its tip: with the displacement variance (the default) refining
   // keeps more knots there than the static pose does. The paper's distance variance cannot see it: the sway
   // keeps segment lengths, so adjacent knots keep their distance in every frame and the same knots merge.
-  auto tipHalf = [](const BladeModel& m) {
-    const BladeLod& lod = m.lods.back();
+  auto tipHalf = [](const blades::BladeModel& m) {
+    const blades::BladeLod& lod = m.lods.back();
     const float half = 0.5f * lod.positions.back().y;
     return std::count_if(lod.positions.begin(), lod.positions.end(),
                          [half](const glm::vec3& p) { return p.y > half; });
@@ -324,8 +325,8 @@ TEST(MakeBladeModel, MotionFrames) {
   ModelOptions stillDefault;
   stillDefault.simulateSway = false;
   ModelOptions swayDefault;
-  const BladeModel staticPose = makeBladeModel(blade, {}, stillDefault, syntheticSource());
-  const BladeModel swayed = makeBladeModel(blade, {}, swayDefault, syntheticSource());
+  const blades::BladeModel staticPose = makeBladeModel(blade, {}, stillDefault, syntheticSource());
+  const blades::BladeModel swayed = makeBladeModel(blade, {}, swayDefault, syntheticSource());
   EXPECT_GT(tipHalf(swayed), tipHalf(staticPose));
   ModelOptions paper = swayDefault;
   paper.measure = RefineOptions::Measure::Distance;
@@ -337,11 +338,12 @@ TEST(MakeBladeModel, MotionFrames) {
   const Sway& s = sway();
   const std::vector<TrackedBlade> tracks = trackBlades(s.results);
   ASSERT_FALSE(tracks.empty());
-  const BladeModel c = makeBladeModel(tracks[0].reference, tracks[0].motion, swaying, syntheticSource());
+  const blades::BladeModel c =
+      makeBladeModel(tracks[0].reference, tracks[0].motion, swaying, syntheticSource());
   EXPECT_EQ(c.source.motionFrames, kSwayFrames);
   ASSERT_EQ(c.lods.size(), 3u);
   // Measured movement (sensor noise included) changes which knots merge.
-  const BladeModel still0 = makeBladeModel(tracks[0].reference, {}, still, syntheticSource());
+  const blades::BladeModel still0 = makeBladeModel(tracks[0].reference, {}, still, syntheticSource());
   for (std::size_t l = 0; l < 3; ++l) {
     EXPECT_NE(c.lods[l].positions, still0.lods[l].positions) << "level " << l;
     EXPECT_EQ(c.lods[l].positions.back(), still0.lods[l].positions.back()) << "level " << l;
@@ -358,19 +360,19 @@ TEST(MakeBladeModel, SavesAndLoadsExactly) {
   const test::TempDir dir;
   const Sway& s = sway();
   const std::vector<TrackedBlade> tracks = trackBlades(s.results);
-  BladeModelFile file;
+  blades::BladeModelFile file;
   file.generator = "sylva capture test: sway";
   for (std::size_t t = 0; t < tracks.size(); ++t) {
-    BladeSource source = syntheticSource();
+    blades::BladeSource source = syntheticSource();
     source.blade = static_cast<int>(t);
-    BladeModel model = makeBladeModel(tracks[t].reference, tracks[t].motion, {}, source);
+    blades::BladeModel model = makeBladeModel(tracks[t].reference, tracks[t].motion, {}, source);
     model.name = "sway-" + std::to_string(t);
     file.blades.push_back(std::move(model));
   }
   file.blades.push_back(makeBladeModel(uprightBlade(), {}, {}, syntheticSource()));
   file.blades.back().name = "upright";
-  saveBladeModels(dir / "grass.json", file);
-  testutil::expectEqual(loadBladeModels(dir / "grass.json"), file);
+  blades::saveBladeModels(dir / "grass.json", file);
+  EXPECT_EQ(blades::toJson(blades::loadBladeModels(dir / "grass.json")), blades::toJson(file));
 }
 
 TEST(FakenectSway, ARecordingOfTheSequenceExtractsTheSame) {

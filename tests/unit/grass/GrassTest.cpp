@@ -55,7 +55,7 @@ TEST(BladeTypes, ProceduralTypesHaveThreeLevels) {
 TEST(BladeTypes, FromTheCapturedLibrary) {
   const std::vector<BladeType> types = loadBladeTypes(test::sourcePath("data/blades/slim.json"));
   ASSERT_FALSE(types.empty());
-  const capture::BladeModelFile file = capture::loadBladeModels(test::sourcePath("data/blades/slim.json"));
+  const blades::BladeModelFile file = blades::loadBladeModels(test::sourcePath("data/blades/slim.json"));
   ASSERT_EQ(types.size(), file.blades.size());
   for (std::size_t i = 0; i < types.size(); ++i) {
     EXPECT_EQ(types[i].lods[0].knots.front(), file.blades[i].lods[0].positions.front());

@@ -3,6 +3,7 @@
 // v1 raw 11-bit scale. Every loader returns depth in metres with the camera intrinsics needed to unproject a
 // pixel.
 
+#include <sylva/blades/CameraIntrinsics.hpp>
 #include <sylva/core/Image.hpp>
 
 #include <glm/vec3.hpp>
@@ -14,26 +15,8 @@
 
 namespace sylva::capture {
 
-/**
- * Pinhole intrinsics in pixels: a pixel (u, v) (column, row from the top-left, pixel centres at integer + 0.5
- * are not used: (u, v) is the integer index) at depth z metres is the camera-space point
- * ((u − cx)·z/fx, (v − cy)·z/fy, z), x right, y down, z forward (OpenCV convention).
- */
-struct CameraIntrinsics {
-  double fx = 594.21;
-  double fy = 591.04;
-  double cx = 339.31;
-  double cy = 242.74;
-  /** Kinect v1 depth camera at 640×480 (Nicolas Burrus' calibration, the values libfreenect users quote). */
-  static CameraIntrinsics kinectV1() { return {}; }
-  /** Kinect v1 intrinsics scaled to a width × height image (same field of view). */
-  static CameraIntrinsics kinectV1Scaled(int width, int height);
-  /** Camera-space point (metres) of pixel (u, v) at depth z (metres). */
-  glm::dvec3 unproject(double u, double v, double z) const {
-    return {(u - cx) * z / fx, (v - cy) * z / fy, z};
-  }
-  bool operator==(const CameraIntrinsics&) const = default;
-};
+/** Pinhole intrinsics of the depth camera: the model the blade-model format records (sylva/blades). */
+using blades::CameraIntrinsics;
 
 /** Kinect v1 raw depth value that means "no data". */
 inline constexpr std::uint16_t kKinectNoData = 2047;

@@ -2,7 +2,7 @@
 // From captured blades to blade models: tracking blades through a recording (their movement drives refining),
 // simulated sway when there is no recording, the change from camera to blade space, and refining to levels.
 
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Refine.hpp>
 
@@ -53,7 +53,7 @@ struct ModelOptions {
  * copied into the model (its motionFrames and mu are filled in). Throws sylva::Error for invalid levels (each
  * in 2..captured knots, strictly decreasing).
  */
-BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion, const ModelOptions& options,
-                          BladeSource source);
+blades::BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion,
+                                  const ModelOptions& options, blades::BladeSource source);
 
 } // namespace sylva::capture

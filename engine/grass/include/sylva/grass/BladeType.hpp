@@ -2,7 +2,7 @@
 // Blade types of the grass field: knot lines with widths at the field's three levels of detail (16, 8 and 4
 // knots), a colour and a stiffness. Made procedurally, or from blade-model files of the capture module.
 
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 
 #include <glm/vec3.hpp>
 
@@ -46,7 +46,7 @@ std::vector<BladeType> proceduralBladeTypes();
  * tip kept), colour from the model when it has one (else `colour`). Throws sylva::Error naming the model for
  * levels with fewer than 2 knots or a zero length.
  */
-BladeType bladeTypeFromModel(const capture::BladeModel& model, const glm::vec3& colour, float stiffness);
+BladeType bladeTypeFromModel(const blades::BladeModel& model, const glm::vec3& colour, float stiffness);
 
 /** Every blade of a blade-model file as a type; throws sylva::Error naming the file (empty file: an error).
  */

@@ -1,10 +1,9 @@
 // Blade-model files: exact round trips, every validation error naming the file and the JSON path at fault,
 // broken and missing files, and the model helpers (length, widest knot, level choice).
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 
 #include <sylva/core/Error.hpp>
 
-#include "CaptureTestUtil.hpp"
 #include "TempDir.hpp"
 
 #include <glm/geometric.hpp>
@@ -18,11 +17,40 @@
 #include <string>
 #include <utility>
 
-namespace sylva::capture {
+namespace sylva::blades {
 namespace {
 
 using nlohmann::json;
-using testutil::expectEqual;
+
+/** Every field of two blade-model files is equal (floats exactly: files round-trip bit for bit). */
+void expectEqual(const BladeModelFile& a, const BladeModelFile& b) {
+  EXPECT_EQ(a.generator, b.generator);
+  ASSERT_EQ(a.blades.size(), b.blades.size());
+  for (std::size_t i = 0; i < a.blades.size(); ++i) {
+    const BladeModel& x = a.blades[i];
+    const BladeModel& y = b.blades[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.bendAxis, y.bendAxis);
+    EXPECT_EQ(x.hasColour, y.hasColour);
+    EXPECT_EQ(x.colour, y.colour);
+    EXPECT_EQ(x.source.file, y.source.file);
+    EXPECT_EQ(x.source.kind, y.source.kind);
+    EXPECT_EQ(x.source.frame, y.source.frame);
+    EXPECT_EQ(x.source.cluster, y.source.cluster);
+    EXPECT_EQ(x.source.blade, y.source.blade);
+    EXPECT_EQ(x.source.intrinsics, y.source.intrinsics);
+    EXPECT_EQ(x.source.relativeDepth, y.source.relativeDepth);
+    EXPECT_EQ(x.source.medialAxis, y.source.medialAxis);
+    EXPECT_EQ(x.source.motionFrames, y.source.motionFrames);
+    EXPECT_EQ(x.source.mu, y.source.mu);
+    ASSERT_EQ(x.lods.size(), y.lods.size());
+    for (std::size_t l = 0; l < x.lods.size(); ++l) {
+      EXPECT_EQ(x.lods[l].positions, y.lods[l].positions);
+      EXPECT_EQ(x.lods[l].widths, y.lods[l].widths);
+      EXPECT_EQ(x.lods[l].normals, y.lods[l].normals);
+    }
+  }
+}
 
 /** A straight blade of `knots` knots along +Y, tapering to the tip, facing +Z. */
 BladeLod straightLod(int knots, float length) {
@@ -302,4 +330,4 @@ TEST(BladeModel, LengthMaxWidthAndLevelChoice) {
 }
 
 } // namespace
-} // namespace sylva::capture
+} // namespace sylva::blades

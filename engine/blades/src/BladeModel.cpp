@@ -33,7 +33,7 @@
 // Unknown fields are errors at every level. Numbers are written with enough digits to round-trip floats.
 // Errors read "<file>: <json path>: <reason>", e.g. `grass.json: blades[2].lods[0].widths[5]: expected a
 // finite number ≥ 0`; the envelope's are `<file>: field 'version' must be 1` (sylva::requireJsonVersion).
-#include <sylva/capture/BladeModel.hpp>
+#include <sylva/blades/BladeModel.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -49,7 +49,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace sylva::capture {
+namespace sylva::blades {
 
 namespace {
 
@@ -328,4 +328,4 @@ void saveBladeModels(const std::filesystem::path& path, const BladeModelFile& fi
   writeTextFile(path, compactNumberArrays(document.dump(2)) + "\n");
 }
 
-} // namespace sylva::capture
+} // namespace sylva::blades

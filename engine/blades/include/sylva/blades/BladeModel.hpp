@@ -3,7 +3,7 @@
 // Format (docs/capture.md#blade-model-files): a versioned JSON document, validated on load with errors naming
 // the file and the JSON path of the field at fault.
 
-#include <sylva/capture/Depth.hpp>
+#include <sylva/blades/CameraIntrinsics.hpp>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace sylva::capture {
+namespace sylva::blades {
 
 /** Current version of the blade-model file format. */
 inline constexpr int kBladeModelVersion = 1;
@@ -102,4 +102,4 @@ BladeModelFile loadBladeModels(const std::filesystem::path& path);
 /** Saves atomically (2-space JSON); throws sylva::Error naming the file. */
 void saveBladeModels(const std::filesystem::path& path, const BladeModelFile& file);
 
-} // namespace sylva::capture
+} // namespace sylva::blades
