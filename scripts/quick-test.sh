@@ -2,16 +2,17 @@
 # The developers' loop between commits (also `scripts/test.sh --quick`): rebuilds the release preset
 # incrementally, then runs every unit test and the gl + golden tests of the modules named, or, with none named,
 # of the modules the working tree changes against HEAD (tracked changes and new files):
-#   scripts/quick-test.sh [MODULE ...]      MODULE: core gl platform shader render terrain capture grass trees
-#                                           texsynth folding physics scene wind cli fuzz, or all
-# A change under engine/M, shaders/M, tests/*/M or bench/M selects M; apps/ and tests/cli, tests/gui select cli
+#   scripts/quick-test.sh [MODULE ...]      MODULE: core gl platform shader render terrain blades capture grass
+#                                           trees texsynth folding physics scene wind cli fuzz, or all
+# A change under engine/M, shaders/M, tests/*/M or bench/M selects M; apps/, bench/areas (what `sylva bench`
+# runs) and tests/cli, tests/gui select cli
 # (the program's end-to-end tests); a change to a module every other builds on (core gl platform shader render),
 # to shaders/common or shaders/shared, to tests/support or to the build files selects all. The README's test
 # command (scripts/test.sh) still runs everything, with the sanitizers and the fuzz targets.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc 2>/dev/null || echo 2)"
-known=(core gl platform shader render terrain capture grass trees texsynth folding physics scene wind cli fuzz)
+known=(core gl platform shader render terrain blades capture grass trees texsynth folding physics scene wind cli fuzz)
 foundation=" core gl platform shader render "
 
 selected=()
@@ -30,12 +31,12 @@ if [ $# -gt 0 ]; then
 else
   while IFS= read -r f; do
     case "$f" in
+      tests/cli/* | tests/gui/* | apps/* | bench/areas/*) add cli ;;
       engine/*/* | shaders/*/* | bench/*/*)
         m="${f#*/}"
         m="${m%%/*}"
         case "$m" in common | shared) add all ;; *) add "$m" ;; esac
         ;;
-      tests/cli/* | tests/gui/* | apps/*) add cli ;;
       tests/support/* | cmake/* | CMakeLists.txt | CMakePresets.json) add all ;;
       tests/*/*/*)
         m="${f#tests/*/}"

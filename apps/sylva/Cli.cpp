@@ -38,23 +38,6 @@ void addScriptedWindowOptions(CLI::App& command, int& frames, std::string& scree
       ->check(finiteRange(0.0, 10.0));
 }
 
-MachineInfo machineInfo() {
-  MachineInfo info;
-  char host[256] = {};
-  ::gethostname(host, sizeof(host) - 1);
-  info.host = host;
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      info.cpu = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  info.cores = std::thread::hardware_concurrency();
-  return info;
-}
-
 int& exitCode() {
   static int code = 0;
   return code;

@@ -1,110 +1,65 @@
-#include "Bench.hpp"
+// `sylva bench <area>` (docs/cli.md): the command line of the benchmarks in bench/areas (sylva::bench), which
+// measure; this file only turns options into a bench::BenchOptions and picks the area.
 #include "Commands.hpp"
 #include "TerrainFlags.hpp"
+#include "WorldFlags.hpp"
 
 #include <sylva/core/Error.hpp>
-#include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
-#include <sylva/core/Parallel.hpp>
-#include <sylva/core/Progress.hpp>
-#include <sylva/gl/Debug.hpp>
-#include <sylva/gl/ContextInfo.hpp>
-#include <sylva/render/DemoScene.hpp>
-#include <sylva/render/GpuTimers.hpp>
-#include <sylva/render/RenderTarget.hpp>
-#include <sylva/terrain/HeightQuery.hpp>
 
-#include <algorithm>
-#include <array>
-#include <atomic>
-#include <chrono>
-#include <cmath>
+#include "Bench.hpp"
+
 #include <cstdio>
-#include <fstream>
-#include <functional>
-#include <map>
-#include <numbers>
-#include <numeric>
-#include <unistd.h>
+#include <memory>
 
 namespace sylva::app {
 
-Samples measure(const BenchOptions& o, const std::function<void(render::GpuTimers&, int, Samples&)>& frame) {
-  render::GpuTimers timers(1, true);
-  Samples s;
-  for (int i = 0; i < o.warmup + o.frames; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    timers.beginFrame();
-    Samples scratch;
-    frame(timers, i, scratch);
-    timers.endFrame(); // synchronous: waits for this frame's GPU results
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (i < o.warmup) {
-      continue;
-    }
-    s.frame.push_back(ms);
-    for (const render::PassTiming& t : timers.lastFrame()) {
-      if (s.cpu.find(t.name) == s.cpu.end()) {
-        s.order.push_back(t.name);
-      }
-      s.cpu[t.name].push_back(t.cpuMs);
-      s.gpu[t.name].push_back(t.gpuMs);
-      s.wall[t.name].push_back(t.wallMs);
-    }
-    for (auto& [name, values] : scratch.extra) {
-      s.extra[name].insert(s.extra[name].end(), values.begin(), values.end());
-    }
-  }
-  return s;
-}
+namespace {
 
-nlohmann::json header(const BenchOptions& o, const std::string& name, const platform::GlContext& context) {
-  const gl::ContextInfo info = gl::queryContextInfo();
-  const MachineInfo machine = machineInfo();
-  return {{"benchmark", name},
-          {"machine", {{"host", machine.host}, {"cpu", machine.cpu}, {"cores", machine.cores}}},
-          {"renderer", {{"vendor", info.vendor}, {"renderer", info.renderer}, {"version", info.version}}},
-          {"context", context.description()},
-          {"frames", o.frames},
-          {"warmup", o.warmup},
-          {"resolution", {o.width, o.height}}};
-}
+/** The options of `sylva bench`. */
+struct BenchFlags {
+  std::string area = "demo";
+  ContextFlags context;
+  TerrainFlags terrain;
+  int frames = 60;
+  int warmup = 5;
+  int width = 1280;
+  int height = 720;
+  std::string out;
+  double maxGrowthPercent = 1.0;
+  std::string sceneFile = "data/scenes/meadow.json";
 
-void benchDemo(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report) {
-  shader::Library library;
-  render::RenderTarget target(o.width, o.height);
-  render::DemoScene scene(library);
-  const render::Camera camera = scene.defaultCamera();
-  const Samples s = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
-    target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
-    scene.render(camera, o.width, o.height, 1.0 + i / 60.0, &timers);
-  });
-  std::printf("demo: %d frames after %d warm-up, %dx%d, %s\n", o.frames, o.warmup, o.width, o.height,
-              gl::queryContextInfo().renderer.c_str());
-  // "wall" is each pass's time to completion; on llvmpipe it is the meaningful column (work deferred to the
-  // rasteriser threads, a clear included, lands in the pass that waits for it).
-  std::printf("  %-14s %12s %12s %12s %12s %12s\n", "pass", "cpu median", "gpu median", "gpu p10", "gpu p90",
-              "wall median");
-  for (const std::string& pass : s.order) {
-    const render::Stats c = render::Stats::of(s.cpu.at(pass));
-    const render::Stats g = render::Stats::of(s.gpu.at(pass));
-    const render::Stats w = render::Stats::of(s.wall.at(pass));
-    std::printf("  %-14s %9.3f ms %9.3f ms %9.3f ms %9.3f ms %9.3f ms\n", pass.c_str(), c.median, g.median,
-                g.p10, g.p90, w.median);
+  /** What the area measures; throws naming the option when the terrain options do not go together. */
+  bench::BenchOptions options() const {
+    bench::BenchOptions b;
+    b.context = context.options();
+    b.terrain = terrain.setup();
+    b.terrainFieldName = terrainOption;
+    b.terrainSource = terrain.source.describe();
+    b.frames = frames;
+    b.warmup = warmup;
+    b.width = width;
+    b.height = height;
+    b.maxGrowthPercent = maxGrowthPercent;
+    if (area == "grass") {
+      // The demo's ground view: the terrain of the options under a grass layer of the --grass defaults, as
+      // `sylva render --grass` draws it.
+      auto world = std::make_shared<WorldFlags>();
+      world->terrain = terrain;
+      world->grass.enabled = true;
+      b.groundWorld = world->desc("bench grass", false);
+      b.groundCamera = [world](scene::SceneWorld& w, float aspect) { return world->start(w, aspect); };
+    }
+    return b;
   }
-  const render::Stats f = render::Stats::of(s.frame);
-  std::printf("  %-14s %9.3f ms (%.1f frames/s at the median)\n", "frame (wall)", f.median,
-              1000.0 / f.median);
-  report = header(o, "demo", context);
-  report["frame_ms"] = f.toJson();
-  report["passes"] = s.passesJson();
-}
+};
+
+} // namespace
 
 void registerBench(CLI::App& app) {
   auto* command = app.add_subcommand(
       "bench", "Measure CPU and GPU time per pass over N frames; prints a table and writes JSON");
-  auto o = std::make_shared<BenchOptions>();
+  auto o = std::make_shared<BenchFlags>();
   command
       ->add_option(
           "area", o->area,
@@ -144,10 +99,11 @@ void registerBench(CLI::App& app) {
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   command->callback([o] {
+    const bench::BenchOptions options = o->options();
     nlohmann::json report;
     if (o->area == "capture") {
 #ifdef SYLVA_HAVE_CAPTURE
-      benchCapture(report);
+      bench::benchCapture(report);
 #else
       fail("bench capture: this sylva was built without the capture module");
 #endif
@@ -159,7 +115,7 @@ void registerBench(CLI::App& app) {
     if (o->area == "fold") {
 #ifdef SYLVA_HAVE_FOLDING
       // CPU rows need no GL; the GPU row makes its own context (and says why when it cannot).
-      benchFold(*o, report);
+      bench::benchFold(options, report);
 #else
       fail("bench fold: this sylva was built without the folding module");
 #endif
@@ -168,31 +124,34 @@ void registerBench(CLI::App& app) {
       std::printf("%s\n", out.c_str());
       return;
     }
-    auto context = platform::createHeadlessContext(o->context.options());
+    auto context = platform::createHeadlessContext(options.context);
     if (o->area == "terrain") {
-      benchTerrain(*o, *context, report);
+      bench::benchTerrain(options, *context, report);
     } else if (o->area == "grass") {
-      benchGrass(*o, *context, report);
+      bench::benchGrass(options, *context, report);
     } else if (o->area == "grass-sim") {
-      benchGrassSim(*o, *context, report);
+      bench::benchGrassSim(options, *context, report);
     } else if (o->area == "trees") {
-      report = header(*o, "trees", *context);
-      benchTrees(o->frames, o->width, o->height, report);
+      report = bench::header(options, "trees", *context);
+      bench::benchTrees(o->frames, o->width, o->height, report);
     } else if (o->area == "scene") {
 #ifdef SYLVA_HAVE_SCENE
-      report = header(*o, "scene", *context);
-      benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, report);
+      report = bench::header(options, "scene", *context);
+      bench::benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, report);
 #else
       fail("bench scene: this sylva was built without the scene module");
 #endif
     } else if (o->area == "soak") {
-      benchSoak(*o, *context, report);
+      bench::benchSoak(options, *context, report);
     } else {
-      benchDemo(*o, *context, report);
+      bench::benchDemo(options, *context, report);
     }
     const std::string out = o->out.empty() ? "out/bench-" + o->area + ".json" : o->out;
     saveJsonFile(out, report);
     std::printf("%s\n", out.c_str());
+    if (o->area == "soak" && !report.value("passed", false)) {
+      exitCode() = 1; // the report says why
+    }
   });
 }
 

@@ -40,14 +40,6 @@ void registerCapture(CLI::App& app);
 /** `sylva texsynth quilt|tiles|wang` (image quilting and tile sets, docs/texsynth.md). */
 void registerTexsynth(CLI::App& app);
 
-/** Host name, CPU model and core count, for benchmark reports. */
-struct MachineInfo {
-  std::string host;
-  std::string cpu;
-  unsigned cores = 0;
-};
-MachineInfo machineInfo();
-
 /** The whole `sylva` command line: every subcommand registered, callbacks running the commands. */
 struct Cli {
   std::unique_ptr<CLI::App> app;

@@ -1,8 +1,5 @@
 #include "Bench.hpp"
 
-#include "GrassSim.hpp"
-#include "WorldFlags.hpp"
-
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Parallel.hpp>
@@ -11,6 +8,8 @@
 #include <sylva/gl/Debug.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/render/RenderTarget.hpp>
+#include <sylva/grass/gpu/GrassSimulator.hpp>
+#include <sylva/scene/gpu/GrassSimulation.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/gpu/TerrainPopping.hpp>
@@ -28,7 +27,7 @@
 #include <numeric>
 #include <unistd.h>
 
-namespace sylva::app {
+namespace sylva::bench {
 
 namespace {
 
@@ -138,12 +137,9 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
 
   // 2. The demo's ground view: the terrain of the command line (default: the demo landscape) under a grass
   // layer of the --grass defaults, as `sylva render --grass` draws it (shadows, sky, flare).
-  WorldFlags demoFlags;
-  demoFlags.terrain = o.terrain;
-  demoFlags.grass.enabled = true;
-  scene::SceneWorld demoWorld(library, demoFlags.desc("bench grass", false));
+  scene::SceneWorld demoWorld(library, o.groundWorld);
   grass::GrassRenderer& demoGrass = demoWorld.grass(0);
-  const render::Camera ground = demoFlags.start(demoWorld, target.aspect());
+  const render::Camera ground = o.groundCamera(demoWorld, target.aspect());
   const Samples demoSamples = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
     frame(demoWorld, ground, 1.0 + i / 60.0, &timers);
   });
@@ -346,4 +342,4 @@ void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nl
   report["table1"] = table;
 }
 
-} // namespace sylva::app
+} // namespace sylva::bench

@@ -1,15 +1,17 @@
 #pragma once
 
-// `sylva bench <area>` (docs/cli.md): one file per area (BenchTerrain.cpp, BenchGrass.cpp, BenchTrees.cpp,
-// BenchScene.cpp, BenchFold.cpp, BenchCapture.cpp; the demo and the command in CmdBench.cpp), the options and
-// GPU-timed frame loop they share, and the target tables: each row is a measured value against a target from
-// the specs, printed as a table and returned as JSON.
+// Sylva's measured benchmarks, `sylva bench <area>` (docs/cli.md, docs/testing.md): one file per area
+// (BenchTerrain.cpp, BenchGrass.cpp, BenchTrees.cpp, BenchScene.cpp, BenchFold.cpp, BenchCapture.cpp; the
+// demo and the shared frame loop in Bench.cpp), and the target tables: each row is a measured value against a
+// target from the specs, printed as a table and returned as JSON. The app (apps/sylva/CmdBench.cpp) turns its
+// options into BenchOptions; the Google Benchmark kernels of the CPU code sit beside this, in
+// bench/<module>/.
 
 #include <sylva/platform/GlContext.hpp>
+#include <sylva/render/Camera.hpp>
 #include <sylva/render/GpuTimers.hpp>
-
-#include "Commands.hpp"
-#include "TerrainFlags.hpp"
+#include <sylva/scene/SceneFile.hpp>
+#include <sylva/terrain/TerrainSetup.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -20,21 +22,40 @@
 #include <string>
 #include <vector>
 
-namespace sylva::app {
+namespace sylva::scene {
+class SceneWorld;
+}
 
-/** The options of `sylva bench`. */
+namespace sylva::bench {
+
+/** What a benchmark run measures and how: filled by `sylva bench` from its options. */
 struct BenchOptions {
-  ContextFlags context;
-  TerrainFlags terrain;
-  int frames = 60;
-  int warmup = 5;
-  int width = 1280;
+  /** The headless context of areas that make their own (fold's GPU row). */
+  platform::ContextOptions context;
+  /** The terrain of terrain, soak and grass (default: the demo landscape). */
+  terrain::TerrainSetup terrain;
+  /** Names a terrain field in errors (the command line names its option: "tess_level" → "--tess"). */
+  terrain::TerrainFieldName terrainFieldName;
+  /** One line naming the height source, for reports. */
+  std::string terrainSource = "the demo landscape";
+  /** bench grass: the world `sylva render --grass` draws from the same options, and its first camera. */
+  scene::SceneDesc groundWorld;
+  std::function<render::Camera(scene::SceneWorld&, float aspect)> groundCamera;
+  int frames = 60;  ///< measured frames (per configuration)
+  int warmup = 5;   ///< frames run before measuring
+  int width = 1280; ///< target size, pixels
   int height = 720;
-  std::string out;
-  std::string area = "demo";
+  /** soak: largest allowed growth of resident memory after warm-up, percent. */
   double maxGrowthPercent = 1.0;
-  std::string sceneFile = "data/scenes/meadow.json";
 };
+
+/** Host name, CPU model and core count, for benchmark reports. */
+struct MachineInfo {
+  std::string host;
+  std::string cpu;
+  unsigned cores = 0;
+};
+MachineInfo machineInfo();
 
 /** Samples of one measured run: per-pass CPU/GPU milliseconds, wall time per frame, extra per-frame series.
  */
@@ -110,7 +131,11 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report);
 void benchDemo(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
 /** `bench terrain`: the paper's Table 8, both crack methods, popping (BenchTerrain.cpp). */
 void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
-/** `bench soak`: memory, GL errors and frame-time drift over a long orbit (BenchTerrain.cpp). */
+/**
+ * `bench soak`: memory, GL errors and frame-time drift over a long orbit (BenchTerrain.cpp); report["passed"]
+ * is false (and a line on stderr says why) when memory grew more than maxGrowthPercent or a GL error
+ * occurred.
+ */
 void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
 /** `bench grass`: the paper's field, memory, popping (BenchGrass.cpp). */
 void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
@@ -119,4 +144,4 @@ void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nl
 /** `bench fold`: the folding targets (BenchFold.cpp; without the folding module, not built). */
 void benchFold(const BenchOptions& o, nlohmann::json& report);
 
-} // namespace sylva::app
+} // namespace sylva::bench

@@ -30,7 +30,7 @@
 #include <numeric>
 #include <unistd.h>
 
-namespace sylva::app {
+namespace sylva::bench {
 
 /**
  * `bench fold`: the folding targets of docs/folding.md on the generated 1024x1024 case (FoldingCase.hpp):
@@ -169,7 +169,7 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
 #ifdef SYLVA_HAVE_FOLDING_GPU
   std::string gpuSkipped;
   try {
-    auto context = platform::createHeadlessContext(o.context.options());
+    auto context = platform::createHeadlessContext(o.context);
     const gl::ContextInfo info = gl::queryContextInfo();
     shader::Library library;
     folding::gpu::FoldRenderer renderer(library);
@@ -231,4 +231,4 @@ void benchFold(const BenchOptions& o, nlohmann::json& report) {
             {"rows", rowsJson}};
 }
 
-} // namespace sylva::app
+} // namespace sylva::bench

@@ -17,8 +17,6 @@
 #include <sylva/trees/gpu/TreeRenderer.hpp>
 #include <sylva/wind/Wind.hpp>
 
-#include "TreeFlags.hpp"
-
 #include <glm/geometric.hpp>
 
 #include <fmt/format.h>
@@ -27,7 +25,7 @@
 #include <cstdio>
 #include <memory>
 
-namespace sylva::app {
+namespace sylva::bench {
 namespace {
 
 /** A camera that sees the whole grid forest from the south-west, above the crowns. */
@@ -324,4 +322,4 @@ void benchTrees(int frames, int width, int height, nlohmann::json& report) {
   report["fig16"] = fig16;
 }
 
-} // namespace sylva::app
+} // namespace sylva::bench

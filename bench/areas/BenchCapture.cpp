@@ -4,7 +4,6 @@
 // beside it), a whole blade model (three levels over a 60-frame simulated sway) and the synthetic generator.
 // Inputs are the synthetic clusters of the accuracy tests. Medians of 9 runs after 2 warm-ups.
 #include "Bench.hpp"
-#include "Commands.hpp"
 
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Pipeline.hpp>
@@ -15,7 +14,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace sylva::app {
+namespace sylva::bench {
 
 void benchCapture(nlohmann::json& report) {
   using namespace sylva::capture;
@@ -86,4 +85,4 @@ void benchCapture(nlohmann::json& report) {
   (void)sink;
 }
 
-} // namespace sylva::app
+} // namespace sylva::bench
