@@ -24,19 +24,26 @@ function(sylva_add_module name)
 endfunction()
 
 # sylva_add_gpu_module(<name> DEPS <targets...>)
-# The GL side of module <name> (sources in gpu/*.cpp) as sylva::<name>_gpu, linked to sylva::<name> and DEPS:
-# decide on the CPU (sylva::<name>, unit-tested without GL), draw on the GPU. Skipped without sylva::render
-# or without sources.
+# The GL side of module <name> (sources in gpu/*.cpp) as sylva::<name>_gpu, linked to sylva::<name>, to the
+# GL side of render (sylva::render_gpu: targets, timers, frame uniforms) and DEPS: decide on the CPU
+# (sylva::<name>, unit-tested without GL), draw on the GPU. Skipped without sylva::render_gpu (except for
+# render's own) or without sources.
 function(sylva_add_gpu_module name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
   file(GLOB gpu_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/gpu/*.cpp)
-  if(NOT TARGET sylva::render OR NOT TARGET sylva_${name} OR NOT gpu_sources)
+  set(render_gpu sylva::render_gpu)
+  if(name STREQUAL "render")
+    set(render_gpu)
+  elseif(NOT TARGET sylva::render_gpu)
+    return()
+  endif()
+  if(NOT TARGET sylva_${name} OR NOT gpu_sources)
     return()
   endif()
   add_library(sylva_${name}_gpu STATIC ${gpu_sources})
   add_library(sylva::${name}_gpu ALIAS sylva_${name}_gpu)
   target_include_directories(sylva_${name}_gpu PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
-  target_link_libraries(sylva_${name}_gpu PUBLIC sylva::${name} sylva::render ${ARG_DEPS})
+  target_link_libraries(sylva_${name}_gpu PUBLIC sylva::${name} ${render_gpu} ${ARG_DEPS})
   target_compile_options(sylva_${name}_gpu PRIVATE ${SYLVA_WARNINGS})
 endfunction()
 

@@ -26,8 +26,8 @@
 #include <sylva/folding/gpu/ShaderExport.hpp>
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/gl/Framebuffer.hpp>
-#include <sylva/render/GpuTimers.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/shader/Library.hpp>
 
 #include "FoldEditor.hpp"

@@ -5,8 +5,8 @@
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/media/Export.hpp>
-#include <sylva/render/DemoScene.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/DemoScene.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/gpu/GrassSimulation.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>

@@ -8,7 +8,7 @@
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/media/Export.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/scene/Sequence.hpp>
 

@@ -30,7 +30,7 @@
 #include <sylva/gl/Framebuffer.hpp>
 #include <sylva/gl/Texture.hpp>
 #include <sylva/platform/GlfwWindow.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
 
 #include <GLFW/glfw3.h>

@@ -2,7 +2,7 @@
 // Command-line options for a forest on the terrain (`sylva render --trees`, `sylva view --trees`).
 
 #include <sylva/core/Geometry.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/terrain/gpu/TerrainScene.hpp>
 #include <sylva/trees/gpu/FoliageRenderer.hpp>

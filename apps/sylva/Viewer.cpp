@@ -6,9 +6,9 @@
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/platform/GlfwWindow.hpp>
-#include <sylva/render/DemoScene.hpp>
-#include <sylva/render/GpuTimers.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/DemoScene.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 #include <sylva/ui/ImGuiLayer.hpp>

@@ -4,7 +4,7 @@
 // (a rebuilt grass layer or forest) or its drawables (culling, bark, foliage, far field), never by drawing.
 
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 

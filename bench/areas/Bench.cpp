@@ -3,8 +3,8 @@
 #include "Bench.hpp"
 
 #include <sylva/gl/ContextInfo.hpp>
-#include <sylva/render/DemoScene.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/DemoScene.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/shader/Library.hpp>
 
 #include <fmt/format.h>

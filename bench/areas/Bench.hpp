@@ -9,7 +9,7 @@
 
 #include <sylva/platform/GlContext.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/terrain/TerrainSetup.hpp>
 

@@ -9,7 +9,7 @@
 #include <sylva/capture/Pipeline.hpp>
 #include <sylva/capture/Refine.hpp>
 #include <sylva/capture/Synthetic.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 
 #include <cmath>
 #include <cstdio>

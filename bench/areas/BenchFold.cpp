@@ -8,7 +8,7 @@
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/gl/State.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/folding/Edit.hpp>
 #include <sylva/folding/Renderer.hpp>

@@ -7,7 +7,7 @@
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/gl/State.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/grass/gpu/GrassSimulator.hpp>
 #include <sylva/scene/gpu/GrassSimulation.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>

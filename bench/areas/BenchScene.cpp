@@ -7,7 +7,7 @@
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/gl/ContextInfo.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/SceneFile.hpp>
 
 #include <fmt/format.h>

@@ -7,8 +7,8 @@
 #include <sylva/core/Log.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/gl/ContextInfo.hpp>
-#include <sylva/render/GpuTimers.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/trees/Bark.hpp>
 #include <sylva/trees/gpu/FoliageRenderer.hpp>

@@ -1,10 +1,10 @@
 #include <sylva/scene/gpu/ScenePasses.hpp>
 
 #include <sylva/core/Error.hpp>
-#include <sylva/render/ShadowMaps.hpp>
+#include <sylva/render/gpu/ShadowMaps.hpp>
 #include <sylva/render/Shadows.hpp>
 #include <sylva/render/Sky.hpp>
-#include <sylva/render/SkyRenderer.hpp>
+#include <sylva/render/gpu/SkyRenderer.hpp>
 
 #include <epoxy/gl.h>
 

@@ -2,7 +2,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/shader/Compiler.hpp>
 #include <sylva/trees/gpu/FoliageRenderer.hpp>
 #include <sylva/trees/Tree.hpp>

@@ -2,7 +2,7 @@
 
 #include <sylva/core/Image.hpp>
 #include <sylva/gl/State.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>

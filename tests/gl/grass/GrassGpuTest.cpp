@@ -2,7 +2,7 @@
 // heights, the vertex shader's blade expansion, blade counts from pipeline statistics, determinism.
 #include <sylva/core/Error.hpp>
 #include <sylva/grass/gpu/GrassRenderer.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/Noise.hpp>
 

@@ -2,7 +2,7 @@
 // field in gusty wind) stepped 120 times by both, blade by blade within 1e-4 m; and simulated tiles drawn
 // from the pool in the field's one draw.
 #include <sylva/grass/gpu/GrassSimulator.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/Noise.hpp>
 

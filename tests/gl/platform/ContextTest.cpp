@@ -4,8 +4,8 @@
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/platform/GlContext.hpp>
 #include <sylva/platform/GlfwWindow.hpp>
-#include <sylva/render/DemoScene.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/DemoScene.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 
 #include "Golden.hpp"
 

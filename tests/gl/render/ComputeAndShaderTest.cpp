@@ -1,9 +1,9 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/gl/Program.hpp>
-#include <sylva/render/DemoScene.hpp>
-#include <sylva/render/GpuTimers.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/DemoScene.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/shader/Compiler.hpp>
 
 #include "GlTest.hpp"

@@ -6,8 +6,8 @@
 #include <sylva/gl/Buffer.hpp>
 #include <sylva/gl/Framebuffer.hpp>
 #include <sylva/gl/Program.hpp>
-#include <sylva/render/RenderTarget.hpp>
-#include <sylva/render/ShadowMaps.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
+#include <sylva/render/gpu/ShadowMaps.hpp>
 #include <sylva/render/Shadows.hpp>
 #include <sylva/shader/Compiler.hpp>
 #include <sylva/terrain/HeightQuery.hpp>

@@ -4,10 +4,10 @@
 // front of the sun, 0 behind an occluder (and then adds nothing), and the CPU count of the same depth texels
 // when half covered, where the ghosts are half as bright.
 #include <sylva/gl/Buffer.hpp>
-#include <sylva/render/FrameUniforms.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/render/Sky.hpp>
-#include <sylva/render/SkyRenderer.hpp>
+#include <sylva/render/gpu/SkyRenderer.hpp>
 #include <sylva/shader/Compiler.hpp>
 
 #include "GlTest.hpp"

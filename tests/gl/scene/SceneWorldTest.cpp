@@ -5,7 +5,7 @@
 // added, a simulation started, a forest rebuilt) change one subsystem and leave the world as it was on
 // errors.
 #include <sylva/core/Error.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 

@@ -3,7 +3,7 @@
 // writes (debug view) matches the CPU shoreBand per pixel, the swash animates in the band only, and equal
 // times give equal pixels.
 #include <sylva/core/Error.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/gpu/ShoreWater.hpp>
 #include <sylva/terrain/gpu/TerrainScene.hpp>
 

@@ -6,7 +6,7 @@
 // the surface. Zero samples in every frame = no crack pixel. With crack removal disabled the same check must
 // find cracks, so it is known to work. The same holds with geomorphing on (TerrainCracksGeomorph).
 #include <sylva/core/Random.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/gpu/TerrainRenderer.hpp>
 

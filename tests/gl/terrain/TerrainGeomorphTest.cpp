@@ -2,7 +2,7 @@
 // read back) has the height of the CPU reference morphedHeight; and rendered frames pop at LOD boundaries no
 // more than a small multiple of what the same camera step changes inside one LOD band.
 #include <sylva/gl/Framebuffer.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/Geomorph.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/HeightSources.hpp>

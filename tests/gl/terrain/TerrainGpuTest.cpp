@@ -8,7 +8,7 @@
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/gpu/TerrainRenderer.hpp>
 
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 
 #include "GlTest.hpp"
 

@@ -2,7 +2,7 @@
 // chooseTile() picks for its piece instance and quad, among the tiles of the quad's class; textured drawing
 // is deterministic and differs from the flat colours; invalid tile sets are refused.
 #include <sylva/core/Error.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include "GlTest.hpp"

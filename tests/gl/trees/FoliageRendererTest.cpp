@@ -3,7 +3,7 @@
 // where they overlap; the depth buffer holds the CPU fragment rule's depth; an opaque quad through the centre
 // hides the back card only; a billboard behind another is hidden exactly where the first has leaves. The bake
 // runs again only for a new view direction, and the far-field dissolve drops foliage like its tree's pieces.
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/gpu/FoliageRenderer.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>
 

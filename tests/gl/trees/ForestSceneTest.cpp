@@ -1,7 +1,7 @@
 // trees::ForestScene, the forest as one drawable pass: the same scene time gives the same picture (also after
 // resetWind, and in a second scene), the wind moves the trees (the control), its bounds hold every tree, and
 // the depth-only view used by shadow casters draws the foliage too.
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 
 #include "GlTest.hpp"

@@ -4,7 +4,7 @@
 // switch pops; 100,000 far trees draw in one instanced draw; the baked depth hides impostors behind nearer
 // surfaces.
 #include <sylva/gl/Query.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/gpu/ImpostorRenderer.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>
 

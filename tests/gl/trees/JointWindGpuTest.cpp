@@ -3,7 +3,7 @@
 // and ω and every frame compared; a state set from the CPU gives the CPU's frames; and the time both passes
 // take for a forest of 100,000 joints (20,000 on llvmpipe).
 #include <sylva/core/Error.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/trees/gpu/JointWindGpu.hpp>
 #include <sylva/wind/Wind.hpp>
 

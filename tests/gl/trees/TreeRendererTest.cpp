@@ -3,7 +3,7 @@
 // multi-draw and the per-piece baseline draw the same image, and so do commands of any chunk size; size
 // culling drops many pieces of a distant forest and leaves its picture; the depth-only view (shadow casters)
 // writes the shaded view's depth.
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/Tessellation.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>
 

@@ -9,7 +9,7 @@
 // branch) are out and every crack inside the surface is in. Zero such pixels in every frame = watertight.
 // With the rims broken by 3 % the same check must find cracks, so it is known to work.
 #include <sylva/core/Random.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>
 
 #include "GlTest.hpp"

@@ -1,7 +1,7 @@
 // Grass field images: a field on a small procedural terrain (shaded and in the LOD debug view) and on the
 // real Jacksboro DEM, each from a fixed ground-level camera, with wind at a fixed time.
 #include <sylva/grass/gpu/GrassRenderer.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/gpu/TerrainScene.hpp>

@@ -1,6 +1,6 @@
 #include <sylva/core/Files.hpp>
-#include <sylva/render/DemoScene.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/DemoScene.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 
 #include "GlTest.hpp"
 #include "Golden.hpp"

@@ -1,5 +1,5 @@
 // Terrain images: a small procedural terrain in each debug view, and the real Jacksboro DEM shaded.
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/gpu/TerrainScene.hpp>
 

@@ -1,6 +1,6 @@
 // Tree images: one almond tree in its random pose (shaded by the distance rule, and in the piece-type view),
 // and a small forest of four species, each from a fixed camera over a plain background.
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/gpu/FoliageRenderer.hpp>
 #include <sylva/trees/gpu/ImpostorRenderer.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>

@@ -1,6 +1,8 @@
 #include <sylva/core/Geometry.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/Timing.hpp>
+
+#include <nlohmann/json.hpp>
 #include <sylva/render/ImageCompare.hpp>
 
 #include <shared/Demo.h>

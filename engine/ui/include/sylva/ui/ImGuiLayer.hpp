@@ -4,7 +4,7 @@
 // the windowed commands (view, scene viewer, fold view, fold editor).
 
 #include <sylva/platform/GlfwWindow.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 
 #include <glm/glm.hpp>
 

@@ -14,8 +14,8 @@
 #include <sylva/grass/Expand.hpp>
 #include <sylva/grass/GrassField.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/terrain/gpu/TerrainRenderer.hpp>
 #include <sylva/wind/Wind.hpp>

@@ -7,7 +7,7 @@
 #include <sylva/gl/VertexArray.hpp>
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/shader/Library.hpp>
 
 namespace sylva::physics {

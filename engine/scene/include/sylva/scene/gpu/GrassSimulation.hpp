@@ -9,7 +9,7 @@
 #include <sylva/physics/gpu/BodyRenderer.hpp>
 #include <sylva/physics/World.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/terrain/HeightField.hpp>

@@ -7,8 +7,8 @@
 #include <sylva/core/Geometry.hpp>
 #include <sylva/gl/Texture.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/shader/Library.hpp>
 

@@ -6,8 +6,8 @@
 
 #include <sylva/grass/gpu/GrassRenderer.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/scene/CameraPath.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/scene/gpu/ScenePasses.hpp>

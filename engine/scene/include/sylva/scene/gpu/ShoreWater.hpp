@@ -7,7 +7,7 @@
 #include <sylva/gl/Texture.hpp>
 #include <sylva/gl/VertexArray.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/scene/Shore.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/terrain/HeightField.hpp>

@@ -2,7 +2,7 @@
 
 #include <sylva/core/Image.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/Quadtree.hpp>
 #include <sylva/terrain/gpu/TerrainRenderer.hpp>
 

@@ -6,8 +6,8 @@
 #include <sylva/gl/Texture.hpp>
 #include <sylva/gl/VertexArray.hpp>
 #include <sylva/render/Camera.hpp>
-#include <sylva/render/FrameUniforms.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/terrain/HeightField.hpp>
 #include <sylva/terrain/Quadtree.hpp>

@@ -4,7 +4,7 @@
 
 #include <sylva/core/Geometry.hpp>
 #include <sylva/core/Image.hpp>
-#include <sylva/render/GpuTimers.hpp>
+#include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/trees/Bark.hpp>
 #include <sylva/trees/gpu/FoliageRenderer.hpp>

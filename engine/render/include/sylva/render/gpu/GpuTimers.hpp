@@ -1,6 +1,7 @@
 #pragma once
 
 #include <sylva/gl/Query.hpp>
+#include <sylva/render/Timing.hpp>
 
 #include <chrono>
 #include <map>
@@ -78,39 +79,6 @@ public:
 
 private:
   GpuTimers* mTimers;
-};
-
-/** Median, spread (min, max, p10, p90) of samples; for `sylva bench` reports. */
-struct Stats {
-  double median = 0.0;
-  double min = 0.0;
-  double max = 0.0;
-  double p10 = 0.0;
-  double p90 = 0.0;
-  std::size_t count = 0;
-  static Stats of(std::vector<double> samples);
-  nlohmann::json toJson() const;
-};
-
-/**
- * Frame clock: real time, or a fixed step (seconds per frame) so animation and simulation are deterministic
- * in tests, goldens and benchmarks.
- */
-class FrameClock {
-public:
-  /** `fixedStep` > 0 selects the fixed clock. */
-  explicit FrameClock(double fixedStep = 0.0);
-  /** Advances one frame; returns the frame's dt in seconds. */
-  double tick();
-  /** Seconds since start (fixed: frames × step). */
-  double time() const { return mTime; }
-  bool fixed() const { return mFixedStep > 0.0; }
-
-private:
-  double mFixedStep;
-  double mTime = 0.0;
-  std::chrono::steady_clock::time_point mLast;
-  bool mStarted = false;
 };
 
 } // namespace sylva::render

@@ -1,4 +1,4 @@
-#include <sylva/render/ShadowMaps.hpp>
+#include <sylva/render/gpu/ShadowMaps.hpp>
 
 #include <sylva/core/Error.hpp>
 

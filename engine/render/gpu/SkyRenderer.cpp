@@ -1,4 +1,4 @@
-#include <sylva/render/SkyRenderer.hpp>
+#include <sylva/render/gpu/SkyRenderer.hpp>
 
 #include <sylva/render/Sky.hpp>
 #include <sylva/shader/Compiler.hpp>

@@ -1,4 +1,4 @@
-#include <sylva/render/FrameUniforms.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
 
 namespace sylva::render {
 

@@ -1,4 +1,4 @@
-#include <sylva/render/DemoScene.hpp>
+#include <sylva/render/gpu/DemoScene.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/shader/Compiler.hpp>

@@ -1,4 +1,4 @@
-#include <sylva/render/RenderTarget.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 
 namespace sylva::render {
 
