@@ -36,6 +36,12 @@ std::uint32_t littleEndian(const std::uint8_t* p, int bytes) {
   return v;
 }
 
+/** Whether the four bytes at `p` spell `tag` (a RIFF or PNG chunk name). */
+bool hasTag(const std::uint8_t* p, const char (&tag)[5]) {
+  return std::equal(tag, tag + 4, p,
+                    [](char t, std::uint8_t b) { return static_cast<std::uint8_t>(t) == b; });
+}
+
 /** The largest int for a stated size (PNG allows up to 2^31 − 1, so no stated size wraps negative). */
 int side(std::uint32_t v) {
   return static_cast<int>(std::min<std::uint32_t>(v, 0x7fffffffu));
@@ -44,7 +50,7 @@ int side(std::uint32_t v) {
 std::optional<ImageHeader> pngHeader(std::ifstream& in) {
   // Signature (8), IHDR length (4), "IHDR" (4), width (4), height (4).
   std::array<std::uint8_t, 16> rest{};
-  if (!readBytes(in, rest) || rest[4] != 'I' || rest[5] != 'H' || rest[6] != 'D' || rest[7] != 'R') {
+  if (!readBytes(in, rest) || !hasTag(&rest[4], "IHDR")) {
     return std::nullopt;
   }
   return ImageHeader{"PNG", side(bigEndian(&rest[8], 4)), side(bigEndian(&rest[12], 4))};
@@ -104,14 +110,14 @@ std::optional<ImageHeader> webpHeader(std::ifstream& in) {
     return std::nullopt;
   }
   const std::uint8_t* p = &chunk[8];
-  if (chunk[0] == 'V' && chunk[1] == 'P' && chunk[2] == '8' && chunk[3] == ' ') {
+  if (hasTag(chunk.data(), "VP8 ")) {
     // Lossy: a 3-byte frame tag, the start code 9d 01 2a, then 14-bit width and height (2 scale bits).
     if (p[3] != 0x9d || p[4] != 0x01 || p[5] != 0x2a) {
       return std::nullopt;
     }
     return ImageHeader{"WebP", side(littleEndian(&p[6], 2) & 0x3fff), side(littleEndian(&p[8], 2) & 0x3fff)};
   }
-  if (chunk[0] == 'V' && chunk[1] == 'P' && chunk[2] == '8' && chunk[3] == 'L') {
+  if (hasTag(chunk.data(), "VP8L")) {
     // Lossless: signature 0x2f, then 14 bits width − 1 and 14 bits height − 1, least significant first.
     if (p[0] != 0x2f) {
       return std::nullopt;
@@ -119,7 +125,7 @@ std::optional<ImageHeader> webpHeader(std::ifstream& in) {
     const std::uint32_t bits = littleEndian(&p[1], 4);
     return ImageHeader{"WebP", side((bits & 0x3fff) + 1), side(((bits >> 14) & 0x3fff) + 1)};
   }
-  if (chunk[0] == 'V' && chunk[1] == 'P' && chunk[2] == '8' && chunk[3] == 'X') {
+  if (hasTag(chunk.data(), "VP8X")) {
     // Extended: flags (4), then 24-bit canvas width − 1 and height − 1.
     return ImageHeader{"WebP", side(littleEndian(&p[4], 3) + 1), side(littleEndian(&p[7], 3) + 1)};
   }
@@ -146,11 +152,7 @@ std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path) {
     in.seekg(static_cast<std::streamoff>(kPng.size()));
     return pngHeader(in);
   }
-  const auto is = [&](std::size_t at, const char* tag) {
-    return start[at] == tag[0] && start[at + 1] == tag[1] && start[at + 2] == tag[2] &&
-           start[at + 3] == tag[3];
-  };
-  if (n == start.size() && is(0, "RIFF") && is(8, "WEBP")) {
+  if (n == start.size() && hasTag(&start[0], "RIFF") && hasTag(&start[8], "WEBP")) {
     return webpHeader(in);
   }
   return std::nullopt;
