@@ -8,7 +8,7 @@
 
 #include <imgui.h>
 #include <sylva/core/Error.hpp>
-#include <sylva/ui/ImGuiLayer.hpp>
+#include <sylva/ui/WindowShell.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
@@ -415,11 +415,15 @@ void runFoldViewer(const ViewOptions& o) {
   // shrunk to fit a common screen.
   const double grow = std::max(1.0, std::min(960.0 / first.x, 720.0 / first.y));
   const double fit = std::min({grow, 1600.0 / first.x, 1000.0 / first.y});
-  platform::GlfwWindow window(std::max(480, static_cast<int>(first.x * fit)),
-                              std::max(360, static_cast<int>(first.y * fit)),
-                              "Sylva fold: " + fs::path(o.project).filename().string());
-  window.setVsync(o.frames == 0);
-  const gl::ContextInfo info = gl::queryContextInfo();
+  ui::ShellOptions shellOptions;
+  shellOptions.width = std::max(480, static_cast<int>(first.x * fit));
+  shellOptions.height = std::max(360, static_cast<int>(first.y * fit));
+  shellOptions.title = "Sylva fold: " + fs::path(o.project).filename().string();
+  shellOptions.frames = o.frames;
+  shellOptions.screenshot = o.screenshot;
+  shellOptions.fixedStep = o.fixedStep;
+  shellOptions.panelShown = !o.noUi;
+  ui::WindowShell shell(shellOptions);
   shader::Library library(o.shaderDir);
   folding::gpu::FoldRenderer renderer(library);
   renderer.upload(textures, l.project.profiles, l.project.jumpLayers);
@@ -428,7 +432,6 @@ void runFoldViewer(const ViewOptions& o) {
   float shift = 0.0f;
   int function = 0; // 0: as in the project, else kFunctionNames[function - 1]
   bool paused = false;
-  bool showUi = !o.noUi;
   double t = 0.0;
   const double period = longestPeriod(l.project.profiles);
   const auto updateProfiles = [&] {
@@ -439,74 +442,55 @@ void runFoldViewer(const ViewOptions& o) {
     }
     renderer.setProfiles(applyPlayback(l.project.profiles, playback));
   };
-  window.setKeyCallback([&](int key, int) {
-    if (ImGui::GetIO().WantCaptureKeyboard) {
-      return;
-    }
+  shell.setKeyHandler([&](int key, int) {
     if (key == GLFW_KEY_SPACE) {
       paused = !paused;
-    } else if (key == GLFW_KEY_TAB) {
-      showUi = !showUi;
-    } else if (key == GLFW_KEY_ESCAPE) {
-      glfwSetWindowShouldClose(window.handle(), GLFW_TRUE);
+      return true;
     }
+    return false;
   });
-  ui::ImGuiLayer ui(window);
-  render::FrameClock clock(o.fixedStep);
-  std::deque<float> frameTimes;
-  int frame = 0;
-  while (window.pollEvents()) {
-    const double dt = clock.tick();
+  shell.run([&](const ui::ShellFrame& f) {
     if (!paused) {
-      t += dt * speed;
-    }
-    const glm::ivec2 size = window.framebufferSize();
-    if (size.x == 0 || size.y == 0) {
-      continue;
+      t += f.dt * speed;
     }
     const AtlasEntry& entry = textures.atlas.entries[static_cast<std::size_t>(index)];
     const Rect region = entry.atlasRect();
-    gl::bindDefaultFramebuffer(size.x, size.y);
+    gl::bindDefaultFramebuffer(f.size.x, f.size.y);
     gl::clear(glm::vec4(0.12f, 0.12f, 0.13f, 1.0f));
-    const glm::ivec4 view = letterbox(size, {region.width(), region.height()});
+    const glm::ivec4 view = letterbox(f.size, {region.width(), region.height()});
     gl::setViewport({view.x, view.y}, {view.z, view.w});
     renderer.draw(t, region);
-    gl::setViewport({0, 0}, size);
-    if (showUi) {
-      ui.begin();
-      const float avg = ui::beginPanel("Fold", info.renderer, frameTimes);
-      ImGui::Text("frame %.2f ms (%.0f fps), %dx%d", avg, avg > 0.0f ? 1000.0f / avg : 0.0f, region.width(),
-                  region.height());
-      bool changed = false;
-      ImGui::SliderFloat("speed", &speed, 0.0f, 4.0f, "%.2fx");
-      changed |= ImGui::SliderFloat("shift (cycles)", &shift, 0.0f, 1.0f, "%.3f");
-      const char* functions[] = {"as in the project", "linear",  "piecewise",
-                                 "exponential",       "sigmoid", "sine"};
-      changed |= ImGui::Combo("function", &function, functions, 6);
-      float time = static_cast<float>(std::fmod(t, period));
-      if (ImGui::SliderFloat("time (s)", &time, 0.0f, static_cast<float>(period), "%.3f")) {
-        t = time;
-        paused = true;
-      }
-      ImGui::Checkbox("pause (space)", &paused);
-      if (l.project.images.size() > 1) {
-        std::vector<const char*> ids;
-        for (const ImageEntry& e : l.project.images) {
-          ids.push_back(e.id.c_str());
-        }
-        ImGui::Combo("image", &index, ids.data(), static_cast<int>(ids.size()));
-      }
-      if (changed) {
-        updateProfiles();
-      }
-      ImGui::PopItemWidth();
-      ImGui::End();
-      ui.end();
+    gl::setViewport({0, 0}, f.size);
+    if (!shell.panelShown()) {
+      return;
     }
-    if (ui::endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes)) {
-      break;
+    shell.beginUi();
+    shell.beginPanel("Fold", fmt::format(", {}x{}", region.width(), region.height()));
+    bool changed = false;
+    ImGui::SliderFloat("speed", &speed, 0.0f, 4.0f, "%.2fx");
+    changed |= ImGui::SliderFloat("shift (cycles)", &shift, 0.0f, 1.0f, "%.3f");
+    const char* functions[] = {"as in the project", "linear", "piecewise", "exponential", "sigmoid", "sine"};
+    changed |= ImGui::Combo("function", &function, functions, 6);
+    float time = static_cast<float>(std::fmod(t, period));
+    if (ImGui::SliderFloat("time (s)", &time, 0.0f, static_cast<float>(period), "%.3f")) {
+      t = time;
+      paused = true;
     }
-  }
+    ImGui::Checkbox("pause (space)", &paused);
+    if (l.project.images.size() > 1) {
+      std::vector<const char*> ids;
+      for (const ImageEntry& e : l.project.images) {
+        ids.push_back(e.id.c_str());
+      }
+      ImGui::Combo("image", &index, ids.data(), static_cast<int>(ids.size()));
+    }
+    if (changed) {
+      updateProfiles();
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+    shell.endUi();
+  });
 }
 #endif
 

@@ -8,7 +8,7 @@
 #include "Commands.hpp"
 
 #include <sylva/core/Error.hpp>
-#include <sylva/ui/ImGuiLayer.hpp>
+#include <sylva/ui/WindowShell.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
@@ -279,16 +279,12 @@ struct FlowPanel {
 class FoldEditor {
 public:
   explicit FoldEditor(const FoldEditOptions& o)
-      : mOptions(o), mWindow(o.width, o.height, "Sylva fold editor"), mLibrary(o.shaderDir),
-        mRenderer(mLibrary),
-        mRecent(o.recentFile.empty() ? RecentFiles::defaultPath() : fs::path(o.recentFile)),
-        mClock(o.fixedStep) {
-    mWindow.setVsync(o.frames == 0);
+      : mOptions(o), mShell(shellOptions(o)), mLibrary(o.shaderDir), mRenderer(mLibrary),
+        mRecent(o.recentFile.empty() ? RecentFiles::defaultPath() : fs::path(o.recentFile)) {
     if (o.pausedAt >= 0.0) {
       mPlaying = false;
       mTime = o.pausedAt;
     }
-    mGlRenderer = gl::queryContextInfo().renderer;
     std::string warning;
     mRecent.load(&warning);
     if (!warning.empty()) {
@@ -307,7 +303,10 @@ public:
         newProject(images, o.project.empty() ? defaultProjectFile(first) : fs::path(o.project));
       }
     }
-    mWindow.setKeyCallback([this](int key, int mods) { onKey(key, mods); });
+    mShell.setKeyHandler([this](int key, int mods) {
+      onKey(key, mods);
+      return true;
+    });
   }
 
   void run();
@@ -407,7 +406,7 @@ private:
     for (const Image& image : mSession->images().images) {
       pixels += static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height());
     }
-    if (mOptions.frames > 0 || mClock.fixed() || pixels < kBackgroundPixels ||
+    if (mOptions.frames > 0 || mShell.clock().fixed() || pixels < kBackgroundPixels ||
         !mSession->needsFullSynthesis()) {
       return false;
     }
@@ -511,7 +510,7 @@ private:
       mShownZone = mZone;
     }
     if (title != mTitle) {
-      glfwSetWindowTitle(mWindow.handle(), title.c_str());
+      glfwSetWindowTitle(mShell.window().handle(), title.c_str());
       mTitle = title;
     }
   }
@@ -533,10 +532,12 @@ private:
     }
   }
 
-  double mClockNow() const { return mClock.time(); }
+  double mClockNow() const { return mShell.clock().time(); }
 
   /** A wall-clock duration for display; hidden under --fixed-step, whose screenshots must be reproducible. */
-  std::string timing(double ms) const { return mClock.fixed() ? "- ms" : fmt::format("{:.1f} ms", ms); }
+  std::string timing(double ms) const {
+    return mShell.clock().fixed() ? "- ms" : fmt::format("{:.1f} ms", ms);
+  }
 
   /**
    * Replaces a texture the current frame's ImGui draw lists may still name: the old one is deleted only at
@@ -553,11 +554,24 @@ private:
     mImageTextures.clear();
   }
 
+  /** The window: at most 60 frames/s while interactive; Esc and Tab are the editor's keys. */
+  static ui::ShellOptions shellOptions(const FoldEditOptions& o) {
+    ui::ShellOptions s;
+    s.width = o.width;
+    s.height = o.height;
+    s.title = "Sylva fold editor";
+    s.frames = o.frames;
+    s.screenshot = o.screenshot;
+    s.fixedStep = o.fixedStep;
+    s.maxFps = 60.0;
+    s.tabTogglesPanel = false;
+    s.escapeQuits = false;
+    s.keysBesideWidgets = true;
+    return s;
+  }
+
   // --- input ------------------------------------------------------------------------------------------
   void onKey(int key, int mods) {
-    if (ImGui::GetIO().WantTextInput) {
-      return;
-    }
     const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
     const bool shift = (mods & GLFW_MOD_SHIFT) != 0;
     if (ctrl) {
@@ -584,7 +598,7 @@ private:
         synthesizeNow();
         return;
       case GLFW_KEY_Q:
-        glfwSetWindowShouldClose(mWindow.handle(), GLFW_TRUE);
+        glfwSetWindowShouldClose(mShell.window().handle(), GLFW_TRUE);
         return;
       default:
         return;
@@ -850,10 +864,10 @@ private:
 
   void pollFiles() {
     reapChildren();
-    if (!mSession || mClock.time() - mLastPoll < 0.5) {
+    if (!mSession || mShell.clock().time() - mLastPoll < 0.5) {
       return;
     }
-    mLastPoll = mClock.time();
+    mLastPoll = mShell.clock().time();
     const std::vector<fs::path> changed = mWatcher.poll();
     if (changed.empty()) {
       return;
@@ -876,11 +890,11 @@ private:
 
   void autosaveTick() {
     if (!mSession || mOptions.autosaveSeconds <= 0.0 || !mSession->history().dirty()) {
-      mLastAutosave = mClock.time();
+      mLastAutosave = mShell.clock().time();
       return;
     }
-    if (mClock.time() - mLastAutosave >= mOptions.autosaveSeconds) {
-      mLastAutosave = mClock.time();
+    if (mShell.clock().time() - mLastAutosave >= mOptions.autosaveSeconds) {
+      mLastAutosave = mShell.clock().time();
       try {
         mSession->autosaveNow();
       } catch (const Error& e) {
@@ -957,12 +971,10 @@ private:
   int workflowStep() const;
 
   FoldEditOptions mOptions;
-  platform::GlfwWindow mWindow;
-  std::string mGlRenderer;
+  ui::WindowShell mShell;
   shader::Library mLibrary;
   folding::gpu::FoldRenderer mRenderer;
   RecentFiles mRecent;
-  render::FrameClock mClock;
   FileWatcher mWatcher;
 
   std::unique_ptr<Session> mSession;
@@ -1045,7 +1057,6 @@ private:
 
   std::string mStatus = "Open a project (Ctrl+O) or start from an image (Ctrl+N)";
   bool mStatusError = false;
-  std::deque<float> mFrameTimes;
 };
 
 // ---------------------------------------------------------------------------------------------------------
@@ -1118,7 +1129,7 @@ void FoldEditor::drawMenuBar() {
     }
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) {
-      glfwSetWindowShouldClose(mWindow.handle(), GLFW_TRUE);
+      glfwSetWindowShouldClose(mShell.window().handle(), GLFW_TRUE);
     }
     ImGui::EndMenu();
   }
@@ -2528,28 +2539,14 @@ void FoldEditor::drawHelp() {
 }
 
 void FoldEditor::run() {
-  ui::ImGuiLayer ui(mWindow);
   ImGui::GetStyle().WindowRounding = 0.0f;
-  int frame = 0;
-  auto frameStart = std::chrono::steady_clock::now();
-  while (mWindow.pollEvents()) {
-    if (mOptions.frames == 0) {
-      // At most 60 frames/s: swap intervals are not honoured everywhere (Xvfb, some compositors), and an
-      // editor must not spin a core while the user thinks.
-      std::this_thread::sleep_until(frameStart + std::chrono::microseconds(16667));
-      frameStart = std::chrono::steady_clock::now();
-    }
-    const double dt = mClock.tick();
+  mShell.run([this](const ui::ShellFrame& f) {
     if (mPlaying) {
-      mTime += dt * mSpeed;
-    }
-    const glm::ivec2 size = mWindow.framebufferSize();
-    if (size.x == 0 || size.y == 0) {
-      continue;
+      mTime += f.dt * mSpeed;
     }
     mRetired.clear(); // last frame's draw lists are rendered: their old textures can go
     updateTitleAndSelection();
-    if (glfwGetKey(mWindow.handle(), GLFW_KEY_F1) == GLFW_PRESS) {
+    if (glfwGetKey(mShell.window().handle(), GLFW_KEY_F1) == GLFW_PRESS) {
       mShowHelp = true;
     }
     pollFiles();
@@ -2558,12 +2555,12 @@ void FoldEditor::run() {
       refresh();
     }
     updateOverlays();
-    ui.begin();
+    mShell.beginUi();
     drawMenuBar();
     const float menu = ImGui::GetFrameHeight();
     const float bar = ImGui::GetFrameHeightWithSpacing() + 8.0f;
     const float status = ImGui::GetFrameHeightWithSpacing() + 6.0f;
-    const ImVec2 full(static_cast<float>(size.x), static_cast<float>(size.y));
+    const ImVec2 full(static_cast<float>(f.size.x), static_cast<float>(f.size.y));
     drawWorkflowBar(menu, bar);
     if (mSession) {
       const float top = menu + bar;
@@ -2585,13 +2582,10 @@ void FoldEditor::run() {
     if (mSession && !ImGui::IsAnyItemActive() && !mGesture.active) {
       mSession->history().endCoalescing();
     }
-    gl::bindDefaultFramebuffer(size.x, size.y);
+    gl::bindDefaultFramebuffer(f.size.x, f.size.y);
     gl::clear(glm::vec4(0.1f, 0.1f, 0.11f, 1.0f));
-    ui.end();
-    if (ui::endWindowFrame(mWindow, size, mOptions.screenshot, mOptions.frames, frame, dt, mFrameTimes)) {
-      break;
-    }
-  }
+    mShell.endUi();
+  });
   cancelBackground();
   if (mSession && mSession->history().dirty() && mOptions.autosaveSeconds > 0.0) {
     // Closing with unsaved work: keep it in the sidecar so the next open offers it back.

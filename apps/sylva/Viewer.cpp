@@ -11,7 +11,7 @@
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
-#include <sylva/ui/ImGuiLayer.hpp>
+#include <sylva/ui/WindowShell.hpp>
 
 #include "ViewerPanels.hpp"
 
@@ -139,10 +139,16 @@ void passToggles(scene::SceneWorld& world) {
  */
 void runViewer(const ViewerOptions& o, const std::string& title,
                const std::function<ViewerContent(const shader::Library&, float aspect)>& build) {
-  const auto startup = std::chrono::steady_clock::now();
-  platform::GlfwWindow window(o.width, o.height, title);
-  window.setVsync(o.frames == 0);
-  const gl::ContextInfo info = gl::queryContextInfo();
+  ui::ShellOptions shellOptions;
+  shellOptions.width = o.width;
+  shellOptions.height = o.height;
+  shellOptions.title = title;
+  shellOptions.frames = o.frames;
+  shellOptions.screenshot = o.screenshot;
+  shellOptions.fixedStep = o.fixedStep;
+  shellOptions.panelShown = !o.noUi;
+  shellOptions.logName = "viewer";
+  ui::WindowShell shell(shellOptions);
   const shader::Library library(o.shaderDir); // outlives the world (it rebuilds its simulation from it)
   const float startAspect = static_cast<float>(o.width) / static_cast<float>(o.height);
   ViewerContent content = build(library, startAspect);
@@ -194,7 +200,6 @@ void runViewer(const ViewerOptions& o, const std::string& title,
   float flySpeed = std::clamp(0.05f * orbit.distance, 10.0f, 200.0f); // metres per second
   float walkSpeed = 4.0f;
   bool paused = false;
-  bool showUi = !o.noUi;
   bool throwRequested = false;
   bool reloadRequested = false;
   std::string status =
@@ -203,10 +208,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
                        : "F5: reload shaders  Space: pause  Tab: panel";
   bool wireframe = false; // the demo's
 
-  window.setKeyCallback([&](int key, int) {
-    if (ImGui::GetIO().WantCaptureKeyboard) {
-      return;
-    }
+  shell.setKeyHandler([&](int key, int) {
     if (key == GLFW_KEY_F5) {
       reloadRequested = true;
     } else if (key == GLFW_KEY_F && world != nullptr) {
@@ -229,29 +231,18 @@ void runViewer(const ViewerOptions& o, const std::string& title,
         passes.setEnabled(pass, !passes.enabled(pass));
         log::info("pass {} {}", scene::passName(pass), passes.enabled(pass) ? "on" : "off");
       }
-    } else if (key == GLFW_KEY_TAB) {
-      showUi = !showUi;
-    } else if (key == GLFW_KEY_ESCAPE) {
-      glfwSetWindowShouldClose(window.handle(), GLFW_TRUE);
+    } else {
+      return false;
     }
+    return true;
   });
 
-  ui::ImGuiLayer ui(window);
   std::optional<render::RenderTarget> target;
   render::GpuTimers timers;
-  render::FrameClock clock(o.fixedStep);
-  std::deque<float> frameTimes;
-  int frame = 0;
-  long long shownFrames = 0;
-  while (window.pollEvents()) {
-    // Frame 0 shows the start time; later frames advance by the clock (the fixed step when scripted, so
-    // screenshots repeat; a long real-time hitch counts as 0.1 s so the physics does not catch up at once).
-    const double dt = clock.tick();
-    const glm::ivec2 size = window.framebufferSize();
-    if (size.x == 0 || size.y == 0) {
-      continue;
-    }
-    const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
+  shell.run([&](const ui::ShellFrame& f) {
+    const double dt = f.dt;
+    const glm::ivec2 size = f.size;
+    const float aspect = f.aspect;
     if (reloadRequested) {
       reloadRequested = false;
       // From the source tree unless a directory was given: the point is editing shaders live.
@@ -271,9 +262,9 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     }
 
     // The camera: a file camera at the scene time, the orbit, or the fly/walk camera.
-    const platform::InputState& in = window.input();
+    const platform::InputState& in = shell.window().input();
     const bool mouseFree = !ImGui::GetIO().WantCaptureMouse;
-    const glm::vec3 move = ui::flyKeys(window, !choice.walk);
+    const glm::vec3 move = ui::flyKeys(shell.window(), !choice.walk);
     const bool dragged = in.cursorDelta.x != 0.0 || in.cursorDelta.y != 0.0;
     if (world != nullptr &&
         (move != glm::vec3(0.0f) || (choice.file() && mouseFree && in.mouseLeft && dragged))) {
@@ -348,7 +339,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     }
     gl::bindDefaultFramebuffer(size.x, size.y);
 
-    if (showUi) {
+    if (shell.panelShown()) {
       const render::GpuTimerScope timed(&timers, "ui");
       if (world != nullptr) {
         if (grassPanel->active(*world) && grassPanel->open) {
@@ -356,8 +347,8 @@ void runViewer(const ViewerOptions& o, const std::string& title,
         }
         treesPanel->readCounts(*world);
       }
-      ui.begin();
-      const float avg = ui::beginPanel("Sylva", info.renderer, frameTimes);
+      shell.beginUi();
+      const float avg = ui::beginPanel("Sylva", shell.renderer(), shell.frameTimes());
       if (world != nullptr && content.flags == nullptr) {
         ImGui::Text("%s  (%s)", world->desc().name.c_str(),
                     std::filesystem::path(world->desc().path).filename().c_str());
@@ -421,29 +412,21 @@ void runViewer(const ViewerOptions& o, const std::string& title,
                               ImVec2(1.0f, 0.0f));
       ImGui::SetNextWindowBgAlpha(0.8f);
       ImGui::Begin("Timings", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-      std::vector<float> plot(frameTimes.begin(), frameTimes.end());
+      std::vector<float> plot(shell.frameTimes().begin(), shell.frameTimes().end());
       ImGui::PlotLines("##frametimes", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, 50.0f,
                        ImVec2(220, 36));
       ui::passTimingTable(timers);
       ImGui::End();
-      ui.end();
+      shell.endUi();
     }
     timers.endFrame();
-    const bool last = ui::endWindowFrame(window, size, o.screenshot, o.frames, frame, dt, frameTimes);
-    // One line a frame at debug level, once swapped: the GUI end-to-end tests wait on it (frames take
-    // seconds on llvmpipe).
-    log::debug("viewer: frame {} shown, scene time {:.3f} s", shownFrames, time);
-    if (shownFrames++ == 0) {
-      log::info("viewer: first frame shown after {:.1f} s",
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - startup).count());
-    }
-    if (last) {
-      break;
-    }
+    shell.setFrameNote(fmt::format(", scene time {:.3f} s", time));
+    // The next frame shows a later time (the fixed step when scripted, so screenshots repeat; a long
+    // real-time hitch counts as 0.1 s so the physics does not catch up at once).
     if (!paused) {
-      time += clock.fixed() ? dt : std::min(dt, 0.1);
+      time += f.fixedClock ? dt : std::min(dt, 0.1);
     }
-  }
+  });
 }
 
 } // namespace

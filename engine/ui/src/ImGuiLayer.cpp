@@ -52,22 +52,6 @@ float beginPanel(const char* title, const std::string& renderer, const std::dequ
   return frameTimes.empty() ? 0.0f : sum / static_cast<float>(frameTimes.size());
 }
 
-bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::string& screenshot, int frames,
-                    int& frame, double dtSeconds, std::deque<float>& frameTimes) {
-  if (!screenshot.empty() && frames > 0 && frame + 1 == frames) {
-    gl::finish();
-    gl::bindWindowFramebuffer();
-    saveImage(screenshot, render::readFramebuffer(size.x, size.y));
-    std::printf("%s\n", screenshot.c_str());
-  }
-  window.swapBuffers();
-  frameTimes.push_back(static_cast<float>(dtSeconds * 1000.0));
-  if (frameTimes.size() > 120) {
-    frameTimes.pop_front();
-  }
-  return frames > 0 && ++frame >= frames;
-}
-
 glm::vec3 flyKeys(const platform::GlfwWindow& window, bool vertical) {
   glm::vec3 move(0.0f);
   if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureKeyboard) {

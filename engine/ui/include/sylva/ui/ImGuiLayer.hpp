@@ -1,7 +1,7 @@
 #pragma once
-// The ui module (docs/engine.md): Dear ImGui bound to a GLFW window (the GLFW and OpenGL 3 backends), the
-// viewer-style panel and the end of a windowed frame (scripted screenshots, the frame-time ring), shared by
-// the windowed commands (view, scene viewer, fold view, fold editor).
+// The ui module (docs/engine.md): Dear ImGui bound to a GLFW window (the GLFW and OpenGL 3 backends) and the
+// widgets the windowed commands share (the viewer-style panel, fly keys, the pass timing table). Their window
+// loop is ui::WindowShell (WindowShell.hpp).
 
 #include <sylva/platform/GlfwWindow.hpp>
 #include <sylva/render/gpu/GpuTimers.hpp>
@@ -32,14 +32,6 @@ public:
  * with ImGui::PopItemWidth() and ImGui::End().
  */
 float beginPanel(const char* title, const std::string& renderer, const std::deque<float>& frameTimes);
-
-/**
- * Ends one frame of a windowed command: with `screenshot` set, saves the window's framebuffer (size pixels)
- * after the last of `frames` scripted frames and prints its path; swaps; keeps the last 120 frame times (ms)
- * in `frameTimes`. Returns true when `frames` > 0 frames have been shown (the command should stop).
- */
-bool endWindowFrame(platform::GlfwWindow& window, glm::ivec2 size, const std::string& screenshot, int frames,
-                    int& frame, double dtSeconds, std::deque<float>& frameTimes);
 
 /**
  * The fly keys as a move in camera axes (x right, y up, z forward, each −1, 0 or 1): W/S forward and back,
