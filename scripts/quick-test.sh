@@ -2,17 +2,18 @@
 # The developers' loop between commits (also `scripts/test.sh --quick`): rebuilds the release preset
 # incrementally, then runs every unit test and the gl + golden tests of the modules named, or, with none named,
 # of the modules the working tree changes against HEAD (tracked changes and new files):
-#   scripts/quick-test.sh [MODULE ...]      MODULE: core gl platform shader render terrain blades capture grass
-#                                           trees texsynth folding physics scene wind cli fuzz, or all
+#   scripts/quick-test.sh [MODULE ...]      MODULE: core gl platform shader render ui media terrain blades capture
+#                                           grass trees texsynth folding physics scene wind cli fuzz, or all
 # A change under engine/M, shaders/M, tests/*/M or bench/M selects M; apps/, bench/areas (what `sylva bench`
-# runs) and tests/cli, tests/gui select cli
+# runs) and tests/cli, tests/gui select cli, and so does ui (only the program's windows use it)
 # (the program's end-to-end tests); a change to a module every other builds on (core gl platform shader render),
 # to shaders/common or shaders/shared, to tests/support or to the build files selects all. The README's test
 # command (scripts/test.sh) still runs everything, with the sanitizers and the fuzz targets.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc 2>/dev/null || echo 2)"
-known=(core gl platform shader render terrain blades capture grass trees texsynth folding physics scene wind cli fuzz)
+known=(core gl platform shader render ui media terrain blades capture grass trees texsynth folding physics scene wind cli
+  fuzz)
 foundation=" core gl platform shader render "
 
 selected=()
@@ -35,7 +36,11 @@ else
       engine/*/* | shaders/*/* | bench/*/*)
         m="${f#*/}"
         m="${m%%/*}"
-        case "$m" in common | shared) add all ;; *) add "$m" ;; esac
+        case "$m" in
+          common | shared) add all ;;
+          ui) add ui && add cli ;;
+          *) add "$m" ;;
+        esac
         ;;
       tests/support/* | cmake/* | CMakeLists.txt | CMakePresets.json) add all ;;
       tests/*/*/*)

@@ -11,6 +11,7 @@
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
+#include <sylva/ui/CameraRig.hpp>
 #include <sylva/ui/WindowShell.hpp>
 
 #include "ViewerPanels.hpp"
@@ -34,8 +35,6 @@ namespace sylva::app {
 namespace {
 
 constexpr int kPassCount = static_cast<int>(scene::Pass::Count);
-/** Eye height above the ground while walking (G), metres. */
-constexpr float kEyeHeight = 1.8f;
 
 /** What a viewer shows: a world (scene file or options) or the demo scene, and where it starts. */
 struct ViewerContent {
@@ -59,48 +58,6 @@ double timelineEnd(const scene::SceneDesc& desc) {
   }
   return end;
 }
-
-/** Fly-controller angles and position that reproduce `camera`'s view. */
-void syncFly(render::FlyController& fly, const render::Camera& camera) {
-  fly.position = camera.position;
-  const glm::vec3 d = glm::normalize(camera.target - camera.position);
-  fly.yaw = std::atan2(d.x, d.z);
-  fly.pitch = std::asin(std::clamp(d.y, -1.0f, 1.0f));
-}
-
-/** The camera choice: one of the file's cameras, orbit, or fly (walk: fly on the ground). */
-struct CameraChoice {
-  std::vector<std::string> names; ///< the file's cameras; then "orbit", then "fly"
-  int index = 0;
-  int lastFileCamera = -1; ///< where F goes back to from fly (-1: orbit)
-  bool walk = false;
-
-  int orbitIndex() const { return static_cast<int>(names.size()); }
-  int flyIndex() const { return orbitIndex() + 1; }
-  bool file() const { return index < orbitIndex(); }
-  bool orbit() const { return index == orbitIndex(); }
-  bool fly() const { return index == flyIndex(); }
-  /** Leaves a file camera or the orbit for fly at `current`. */
-  void goFly(render::FlyController& flyer, const render::Camera& current) {
-    if (!fly()) {
-      lastFileCamera = file() ? index : -1;
-      syncFly(flyer, current);
-      index = flyIndex();
-    }
-  }
-  /** Back from fly to the file camera or orbit it left. */
-  void back(render::OrbitController& orbiter, const render::Camera& current) {
-    walk = false;
-    index = lastFileCamera >= 0 ? lastFileCamera : orbitIndex();
-    if (orbit()) {
-      orbiter.target = current.target;
-      const render::OrbitController from = render::OrbitController::from(current);
-      orbiter.yaw = from.yaw;
-      orbiter.pitch = from.pitch;
-      orbiter.distance = std::clamp(from.distance, orbiter.minDistance, orbiter.maxDistance);
-    }
-  }
-};
 
 /** The box the free cameras' clip planes must hold: the terrain and every forest's crowns. */
 Aabb sceneBox(scene::SceneWorld& world) {
@@ -155,17 +112,16 @@ void runViewer(const ViewerOptions& o, const std::string& title,
   scene::SceneWorld* world = content.world.get();
   render::DemoScene* demo = content.demo.get();
 
-  CameraChoice choice;
   double time = content.time;
   double end = time;
-  render::Camera camera = content.start;
+  std::vector<std::string> cameraNames;
   std::optional<TerrainPanel> terrainPanel;
   std::optional<GrassPanel> grassPanel;
   std::optional<TreesPanel> treesPanel;
   const WorldFlags defaults;
   if (world != nullptr) {
     for (const auto& [name, path] : world->desc().cameras) {
-      choice.names.push_back(name);
+      cameraNames.push_back(name);
     }
     end = std::max(end, timelineEnd(world->desc()));
     const WorldFlags& flags = content.flags != nullptr ? *content.flags : defaults;
@@ -178,27 +134,24 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     treesPanel->open = treesPanel->open && content.flags != nullptr;
     terrainPanel->open = content.flags != nullptr && !grassPanel->open && !treesPanel->open;
   }
-  const auto output = world != nullptr
-                          ? std::find(choice.names.begin(), choice.names.end(), world->desc().output.camera)
-                          : choice.names.end();
-  choice.index =
-      output != choice.names.end() ? static_cast<int>(output - choice.names.begin()) : choice.orbitIndex();
-  if (choice.file()) {
-    camera = world->camera(choice.names[static_cast<std::size_t>(choice.index)], time, startAspect);
+  ui::CameraRig::World answers;
+  if (world != nullptr) {
+    answers.namedCamera = [&](const std::string& name, float aspect) {
+      return world->camera(name, time, aspect);
+    };
+    answers.groundHeight = [world](float x, float z) { return world->groundHeight(x, z); };
   }
-  const float fovY = camera.fovY;
-  render::OrbitController orbit = render::OrbitController::from(camera);
+  ui::CameraRig rig(cameraNames, world != nullptr ? world->desc().output.camera : std::string(),
+                    content.start, answers, startAspect);
   if (world != nullptr) {
     // Zoom out until the whole terrain is a small part of the view, in until a few samples fill it.
     const Aabb box = world->terrain().bounds();
     const terrain::HeightField& field = world->terrain().field();
-    orbit.maxDistance = std::max(4.0f * orbit.distance, 2.0f * glm::length(box.max - box.min));
-    orbit.minDistance = std::max(0.5f, 2.0f * std::min(field.spacingX(), field.spacingZ()));
+    rig.setOrbitLimits(std::max(0.5f, 2.0f * std::min(field.spacingX(), field.spacingZ())),
+                       std::max(4.0f * rig.orbitDistance(), 2.0f * glm::length(box.max - box.min)));
   }
-  render::FlyController fly;
-  syncFly(fly, camera);
-  float flySpeed = std::clamp(0.05f * orbit.distance, 10.0f, 200.0f); // metres per second
-  float walkSpeed = 4.0f;
+  rig.flySpeed = std::clamp(0.05f * rig.orbitDistance(), 10.0f, 200.0f);
+  render::Camera camera = rig.camera();
   bool paused = false;
   bool throwRequested = false;
   bool reloadRequested = false;
@@ -211,15 +164,10 @@ void runViewer(const ViewerOptions& o, const std::string& title,
   shell.setKeyHandler([&](int key, int) {
     if (key == GLFW_KEY_F5) {
       reloadRequested = true;
-    } else if (key == GLFW_KEY_F && world != nullptr) {
-      if (choice.fly()) {
-        choice.back(orbit, camera);
-      } else {
-        choice.goFly(fly, camera);
-      }
-    } else if (key == GLFW_KEY_G && world != nullptr) {
-      choice.goFly(fly, camera);
-      choice.walk = !choice.walk;
+    } else if (key == GLFW_KEY_F && rig.flyAllowed()) {
+      rig.toggleFly();
+    } else if (key == GLFW_KEY_G && rig.flyAllowed()) {
+      rig.toggleWalk();
     } else if (key == GLFW_KEY_B) {
       throwRequested = world != nullptr; // thrown once the frame's camera is known
     } else if (key == GLFW_KEY_SPACE) {
@@ -262,53 +210,12 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     }
 
     // The camera: a file camera at the scene time, the orbit, or the fly/walk camera.
-    const platform::InputState& in = shell.window().input();
-    const bool mouseFree = !ImGui::GetIO().WantCaptureMouse;
-    const glm::vec3 move = ui::flyKeys(shell.window(), !choice.walk);
-    const bool dragged = in.cursorDelta.x != 0.0 || in.cursorDelta.y != 0.0;
-    if (world != nullptr &&
-        (move != glm::vec3(0.0f) || (choice.file() && mouseFree && in.mouseLeft && dragged))) {
-      choice.goFly(fly, camera); // flying (or looking around from a file camera) leaves it
-    }
-    if (choice.file()) {
-      camera = world->camera(choice.names[static_cast<std::size_t>(choice.index)], time, aspect);
-      syncFly(fly, camera); // flying starts where the file camera is
-    } else {
-      if (choice.orbit()) {
-        if (mouseFree && in.mouseLeft) {
-          orbit.rotate(static_cast<float>(in.cursorDelta.x), static_cast<float>(in.cursorDelta.y));
-        }
-        if (mouseFree && (in.mouseRight || in.mouseMiddle)) {
-          orbit.pan(static_cast<float>(in.cursorDelta.x), static_cast<float>(in.cursorDelta.y));
-        }
-        if (mouseFree) {
-          orbit.zoom(static_cast<float>(in.scrollDelta));
-        }
-        orbit.apply(camera);
-        syncFly(fly, camera); // flying starts where the orbit camera is
-      } else {
-        const bool look = mouseFree && in.mouseLeft;
-        fly.speed = choice.walk ? walkSpeed : flySpeed;
-        fly.update(move, look ? static_cast<float>(in.cursorDelta.x) : 0.0f,
-                   look ? static_cast<float>(in.cursorDelta.y) : 0.0f, static_cast<float>(dt));
-        if (choice.walk) {
-          const float ground = world->groundHeight(fly.position.x, fly.position.z);
-          if (!std::isnan(ground)) {
-            fly.position.y = ground + kEyeHeight;
-          }
-        }
-        camera = render::Camera{};
-        fly.apply(camera);
-      }
-      camera.fovY = fovY;
-      if (world != nullptr) {
-        render::fitClipPlanes(camera, sceneBox(*world)); // wherever the orbit or fly camera went
-        if (grassPanel->active(*world)) {
-          camera.nearPlane = std::min(camera.nearPlane, 0.05f); // blades right below the eye
-        }
-      } else {
-        camera.nearPlane = content.start.nearPlane;
-        camera.farPlane = content.start.farPlane;
+    camera = rig.update(shell.window().input(), ui::flyKeys(shell.window(), !rig.walking()),
+                        !ImGui::GetIO().WantCaptureMouse, static_cast<float>(dt), aspect);
+    if (!rig.named() && world != nullptr) {
+      render::fitClipPlanes(camera, sceneBox(*world)); // wherever the orbit or fly camera went
+      if (grassPanel->active(*world)) {
+        camera.nearPlane = std::min(camera.nearPlane, 0.05f); // blades right below the eye
       }
     }
 
@@ -357,26 +264,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
       if (world != nullptr) {
         passToggles(*world);
         ImGui::Separator();
-        std::vector<const char*> labels;
-        for (const std::string& name : choice.names) {
-          labels.push_back(name.c_str());
-        }
-        labels.push_back("orbit (drag, right-drag, wheel)");
-        labels.push_back("fly (F; G: walk)");
-        int index = choice.index;
-        if (ImGui::Combo("camera", &index, labels.data(), static_cast<int>(labels.size()))) {
-          if (index == choice.flyIndex()) {
-            choice.goFly(fly, camera);
-          } else {
-            choice.walk = false;
-            choice.lastFileCamera = index < choice.orbitIndex() ? index : -1;
-            choice.index = choice.flyIndex();
-            choice.back(orbit, camera);
-          }
-        }
-        if (ImGui::Checkbox("walk (G)", &choice.walk) && choice.walk) {
-          choice.goFly(fly, camera);
-        }
+        rig.selector();
         ImGui::SameLine(118.0f);
       }
       ImGui::Checkbox("pause (Space)", &paused);
@@ -386,12 +274,12 @@ void runViewer(const ViewerOptions& o, const std::string& title,
         time = t; // earlier: the simulations restart from time 0 and step there
       }
       if (world != nullptr) {
-        ImGui::SliderFloat("fly speed (m/s)", &flySpeed, 1.0f, 200.0f, "%.0f",
+        ImGui::SliderFloat("fly speed (m/s)", &rig.flySpeed, 1.0f, 200.0f, "%.0f",
                            ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
         const float ground = world->groundHeight(camera.position.x, camera.position.z);
         ImGui::Text("camera %.0f, %.0f m, %.1f m above ground", camera.position.x, camera.position.z,
                     std::isnan(ground) ? 0.0f : camera.position.y - ground);
-        terrainPanel->show(*world, camera, aspect, choice.walk);
+        terrainPanel->show(*world, camera, aspect, rig);
         grassPanel->show(*world);
         grassPanel->showSimulation(*world, camera);
         treesPanel->show(*world, timers);

@@ -125,7 +125,8 @@ TerrainPanel::TerrainPanel(scene::SceneWorld& world) : lod(world.terrain().quadt
   world.setDrawOptions(draw);
 }
 
-void TerrainPanel::show(scene::SceneWorld& world, const render::Camera& camera, float aspect, bool& walk) {
+void TerrainPanel::show(scene::SceneWorld& world, const render::Camera& camera, float aspect,
+                        ui::CameraRig& rig) {
   terrain::TerrainScene& scene = world.terrain();
   scene::SceneDrawOptions draw = world.drawOptions();
   if (section("Terrain LOD", open)) {
@@ -154,7 +155,10 @@ void TerrainPanel::show(scene::SceneWorld& world, const render::Camera& camera, 
     if (ImGui::Checkbox("freeze frustum", &freeze)) {
       draw.frozenFrustum = freeze ? std::optional<Frustum>(camera.frustum(aspect)) : std::nullopt;
     }
-    ImGui::Checkbox("walk on the ground (G)", &walk);
+    bool walk = rig.walking();
+    if (ImGui::Checkbox("walk on the ground (G)", &walk)) {
+      rig.toggleWalk();
+    }
     const terrain::QuadtreeSelection& sel = scene.selection();
     ImGui::Text("nodes drawn       %d", sel.stats.leaves);
     ImGui::Text("nodes culled      %d", sel.stats.nodesCulled);

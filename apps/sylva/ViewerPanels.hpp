@@ -7,6 +7,7 @@
 #include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
+#include <sylva/ui/CameraRig.hpp>
 
 #include "WorldFlags.hpp"
 
@@ -28,8 +29,8 @@ struct TerrainPanel {
 
   /** Starts at `world`'s terrain settings. */
   explicit TerrainPanel(scene::SceneWorld& world);
-  /** Draws the section; `walk` is the viewer's walk toggle (shown here as in the other sections). */
-  void show(scene::SceneWorld& world, const render::Camera& camera, float aspect, bool& walk);
+  /** Draws the section; `rig`'s walk toggle is shown here too (G). */
+  void show(scene::SceneWorld& world, const render::Camera& camera, float aspect, ui::CameraRig& rig);
 };
 
 /**
