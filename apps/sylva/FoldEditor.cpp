@@ -2,12 +2,14 @@
 // bar (zones → motion → profiles → synthesise → preview → export), the toolbox and the current tool's
 // properties on the left, the canvas in the middle, the live GPU preview with its timeline and the
 // zone / jump-path / profile panels on the right, and a status bar. Every change goes through the GL-free
-// model (Session, EditHistory, Handles, CanvasView), so this file only maps input to edits and draws.
+// model (Session, EditHistory, Handles); the window loop and the canvas are engine/ui's (WindowShell,
+// ImageCanvas), so this file only maps input to edits and draws.
 #include "FoldEditor.hpp"
 
 #include "Commands.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/ui/ImageCanvas.hpp>
 #include <sylva/ui/WindowShell.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
@@ -117,9 +119,6 @@ constexpr const char* kFoldingNames[] = {"none", "polygons", "alpha mask", "obje
 constexpr const char* kSteps[] = {"1 Zones",      "2 Motion",  "3 Profiles",
                                   "4 Synthesise", "5 Preview", "6 Export"};
 
-Vec2 dv(ImVec2 v) {
-  return {v.x, v.y};
-}
 ImTextureID textureId(const gl::Texture& t) {
   return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t.id()));
 }
@@ -303,6 +302,7 @@ public:
         newProject(images, o.project.empty() ? defaultProjectFile(first) : fs::path(o.project));
       }
     }
+    mCanvas.fitZoom = o.zoom;
     mShell.setKeyHandler([this](int key, int mods) {
       onKey(key, mods);
       return true;
@@ -352,7 +352,7 @@ private:
     for (const fs::path& f : mSession->imageFiles()) {
       mWatcher.watch(f);
     }
-    mFitPending = true;
+    mCanvas.requestFit();
     mUploaded = false;
     mOverlaysStale = true;
     mLastAutosave = mClockNow();
@@ -626,18 +626,18 @@ private:
       mGesture = {};
       break;
     case GLFW_KEY_HOME:
-      mFitPending = true;
+      mCanvas.requestFit();
       break;
     case GLFW_KEY_EQUAL:
     case GLFW_KEY_KP_ADD:
-      mView.zoomAround(dv(mCanvasCentre) - dv(mCanvasMin), 2.0);
+      mCanvas.zoomAtCentre(2.0);
       break;
     case GLFW_KEY_MINUS:
     case GLFW_KEY_KP_SUBTRACT:
-      mView.zoomAround(dv(mCanvasCentre) - dv(mCanvasMin), 0.5);
+      mCanvas.zoomAtCentre(0.5);
       break;
     case GLFW_KEY_1:
-      mView.zoomAround(dv(mCanvasCentre) - dv(mCanvasMin), 1.0 / mView.zoom);
+      mCanvas.actualSize();
       break;
     case GLFW_KEY_DELETE:
       deleteSelectedZone();
@@ -962,8 +962,8 @@ private:
   void drawFlowWindow();
   void drawStartScreen(ImVec2 size);
   void drawHelp();
-  void canvasInput(const ImVec2& origin, const ImVec2& size);
-  void drawOverlays(ImDrawList* dl, const ImVec2& origin);
+  void canvasInput();
+  void drawOverlays(ImDrawList* dl);
   void updateOverlays();
   void finishClicks();
   void addPoints(Vec2 a, Vec2 b);
@@ -987,12 +987,9 @@ private:
   std::vector<gl::Texture> mImageTextures;
   std::vector<gl::Texture> mRetired; ///< textures replaced this frame, deleted at the start of the next
 
-  CanvasView mView;
-  bool mFitPending = true;
+  ui::ImageCanvas mCanvas;
   bool mSnapEnabled = true;
   SnapOptions mSnap;
-  ImVec2 mCanvasMin{0, 0};
-  ImVec2 mCanvasCentre{0, 0};
   Vec2 mCursor{-1.0};
   bool mCursorInImage = false;
   Gesture mGesture;
@@ -1007,7 +1004,6 @@ private:
   bool mShowHeat0 = false;
   bool mShowHeat1 = false;
   bool mShowFreeze = true;
-  bool mShowGrid = true;
   bool mOverlaysStale = true;
   gl::Texture mHsvTex{gl::NoCreate};
   gl::Texture mHeat0Tex{gl::NoCreate};
@@ -1157,22 +1153,22 @@ void FoldEditor::drawMenuBar() {
     ImGui::MenuItem("t0 heat map", nullptr, &mShowHeat0);
     ImGui::MenuItem("t1 heat map", nullptr, &mShowHeat1);
     ImGui::MenuItem("Freeze mask", nullptr, &mShowFreeze);
-    ImGui::MenuItem("Pixel grid (high zoom)", nullptr, &mShowGrid);
+    ImGui::MenuItem("Pixel grid (high zoom)", nullptr, &mCanvas.showGrid);
     ImGui::Separator();
     ImGui::MenuItem("Snapping", nullptr, &mSnapEnabled);
     ImGui::MenuItem("Snap to pixel centres", "G", &mSnap.pixelCentres);
     ImGui::Separator();
     if (ImGui::MenuItem("Fit image", "Home")) {
-      mFitPending = true;
+      mCanvas.requestFit();
     }
     if (ImGui::MenuItem("Zoom in", "+")) {
-      mView.zoomAround(dv(mCanvasCentre) - dv(mCanvasMin), 2.0);
+      mCanvas.zoomAtCentre(2.0);
     }
     if (ImGui::MenuItem("Zoom out", "-")) {
-      mView.zoomAround(dv(mCanvasCentre) - dv(mCanvasMin), 0.5);
+      mCanvas.zoomAtCentre(0.5);
     }
     if (ImGui::MenuItem("Actual pixels", "1")) {
-      mView.zoomAround(dv(mCanvasCentre) - dv(mCanvasMin), 1.0 / mView.zoom);
+      mCanvas.actualSize();
     }
     ImGui::EndMenu();
   }
@@ -1376,13 +1372,10 @@ void FoldEditor::updateOverlays() {
   }
 }
 
-void FoldEditor::drawOverlays(ImDrawList* dl, const ImVec2& origin) {
+void FoldEditor::drawOverlays(ImDrawList* dl) {
   const Project& p = mSession->project();
   const std::string& imageId = p.images[static_cast<std::size_t>(mImage)].id;
-  auto screen = [&](Vec2 v) {
-    return ImVec2(origin.x + static_cast<float>(mView.toScreen(v).x),
-                  origin.y + static_cast<float>(mView.toScreen(v).y));
-  };
+  auto screen = [&](Vec2 v) { return mCanvas.toScreen(v); };
   const glm::ivec2 size = mSession->imageSize(mImage);
   // Texture overlays over the image's crop (atlas rect) in image pixels.
   if (mSession->textures() && !mSession->stale()) {
@@ -1421,16 +1414,7 @@ void FoldEditor::drawOverlays(ImDrawList* dl, const ImVec2& origin) {
     dl->AddImage(textureId(mFreezeTex), screen(Vec2(0.0)), screen(Vec2(size)));
   }
   // Pixel grid at high zoom.
-  if (mShowGrid && mView.showsPixelGrid()) {
-    const Vec2 lo = glm::max(glm::floor(mView.toImage(Vec2(0.0))), Vec2(0.0));
-    const Vec2 hi = glm::min(glm::ceil(mView.toImage(dv(ImGui::GetWindowSize()))), Vec2(size));
-    for (double x = lo.x; x <= hi.x; x += 1.0) {
-      dl->AddLine(screen({x, lo.y}), screen({x, hi.y}), IM_COL32(0, 0, 0, 60));
-    }
-    for (double y = lo.y; y <= hi.y; y += 1.0) {
-      dl->AddLine(screen({lo.x, y}), screen({hi.x, y}), IM_COL32(0, 0, 0, 60));
-    }
-  }
+  mCanvas.drawPixelGrid(dl);
   for (std::size_t z = 0; z < p.zones.size(); ++z) {
     const Zone& zone = p.zones[z];
     if (zone.image != imageId) {
@@ -1551,7 +1535,7 @@ void FoldEditor::drawOverlays(ImDrawList* dl, const ImVec2& origin) {
     dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), kZoneSelected, 0, 1.5f);
   }
   if (mTool == ToolKind::Freeze && mCursorInImage) {
-    dl->AddCircle(screen(mCursor), static_cast<float>(mBrushRadius * mView.zoom),
+    dl->AddCircle(screen(mCursor), static_cast<float>(mBrushRadius * mCanvas.view.zoom),
                   IM_COL32(40, 120, 255, 255));
   }
 }
@@ -1685,15 +1669,10 @@ void FoldEditor::paintFreeze(Vec2 centre, bool erase, bool finish) {
   });
 }
 
-void FoldEditor::canvasInput(const ImVec2& origin, const ImVec2& size) {
+void FoldEditor::canvasInput() {
   ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetCursorScreenPos(origin);
-  ImGui::InvisibleButton("canvas", size,
-                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
-                             ImGuiButtonFlags_MouseButtonMiddle);
-  const bool hovered = ImGui::IsItemHovered();
-  const Vec2 local = dv(io.MousePos) - dv(origin);
-  const Vec2 raw = mView.toImage(local);
+  const bool hovered = mCanvas.input(); // zooms and pans; the canvas button is the last item
+  const Vec2 raw = mCanvas.toImage(io.MousePos);
   const Project& p = mSession->project(); // the same object after edits (its contents change)
   const std::string imageId = p.images[static_cast<std::size_t>(mImage)].id;
   const std::vector<Handle> handles = imageHandles(p, imageId);
@@ -1705,18 +1684,10 @@ void FoldEditor::canvasInput(const ImVec2& origin, const ImVec2& size) {
   }
   candidates.insert(candidates.end(), mClicks.begin(), mClicks.end());
   const glm::ivec2 imageSize = mSession->imageSize(mImage);
-  Vec2 at = mSnapEnabled && !io.KeyAlt ? snapPoint(raw, mView, candidates, mSnap) : raw;
+  Vec2 at = mSnapEnabled && !io.KeyAlt ? snapPoint(raw, mCanvas.view, candidates, mSnap) : raw;
   at = glm::clamp(at, Vec2(0.0), Vec2(imageSize));
   mCursor = at;
   mCursorInImage = hovered && raw.x >= 0 && raw.y >= 0 && raw.x <= imageSize.x && raw.y <= imageSize.y;
-
-  if (hovered && io.MouseWheel != 0.0f) {
-    mView.zoomAround(local, std::pow(1.25, static_cast<double>(io.MouseWheel)));
-  }
-  if ((ImGui::IsItemActive() || hovered) && (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f) ||
-                                             ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f))) {
-    mView.pan(dv(io.MouseDelta));
-  }
 
   const bool pressed = hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left);
   const bool released = mGesture.active && ImGui::IsMouseReleased(ImGuiMouseButton_Left);
@@ -1731,7 +1702,7 @@ void FoldEditor::canvasInput(const ImVec2& origin, const ImVec2& size) {
     switch (mTool) {
     case ToolKind::Select: {
       const std::vector<Handle> grabbable = imageHandles(p, imageId);
-      if (std::optional<Handle> h = nearestHandle(grabbable, raw, 7.0 / mView.zoom)) {
+      if (std::optional<Handle> h = nearestHandle(grabbable, raw, 7.0 / mCanvas.view.zoom)) {
         mGesture.active = true;
         mGesture.handle = h;
         mGesture.handleLast = h->pos;
@@ -1884,7 +1855,7 @@ void FoldEditor::drawCanvas(ImVec2 pos, ImVec2 size) {
       if (ImGui::BeginTabItem(p.images[i].id.c_str())) {
         if (mImage != static_cast<int>(i)) {
           mImage = static_cast<int>(i);
-          mFitPending = true;
+          mCanvas.requestFit();
           mOverlaysStale = true;
           replaceTexture(mFreezeTex, gl::Texture(gl::NoCreate));
         }
@@ -1893,26 +1864,8 @@ void FoldEditor::drawCanvas(ImVec2 pos, ImVec2 size) {
     }
     ImGui::EndTabBar();
   }
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const ImVec2 avail = ImGui::GetContentRegionAvail();
-  mCanvasMin = origin;
-  mCanvasCentre = ImVec2(origin.x + avail.x * 0.5f, origin.y + avail.y * 0.5f);
   const glm::ivec2 imageSize = mSession->imageSize(mImage);
-  if (mFitPending && avail.x > 0 && avail.y > 0) {
-    mView = CanvasView::fit(Vec2(imageSize), dv(avail));
-    if (mOptions.zoom > 0.0) {
-      mView.zoomAround(dv(avail) * 0.5, mOptions.zoom / mView.zoom);
-    }
-    mFitPending = false;
-  }
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  dl->PushClipRect(origin, ImVec2(origin.x + avail.x, origin.y + avail.y), true);
-  dl->AddRectFilled(origin, ImVec2(origin.x + avail.x, origin.y + avail.y), IM_COL32(38, 38, 42, 255));
-  const ImVec2 a(origin.x + static_cast<float>(mView.offset.x),
-                 origin.y + static_cast<float>(mView.offset.y));
-  const ImVec2 b(a.x + static_cast<float>(imageSize.x * mView.zoom),
-                 a.y + static_cast<float>(imageSize.y * mView.zoom));
-  dl->AddImage(textureId(mImageTextures.at(static_cast<std::size_t>(mImage))), a, b);
+  ImDrawList* dl = mCanvas.begin(textureId(mImageTextures.at(static_cast<std::size_t>(mImage))), imageSize);
   if (mZone < 0 && mFreezeZone >= 0) {
     replaceTexture(mFreezeTex, gl::Texture(gl::NoCreate));
     mFreezeZone = -1;
@@ -1925,9 +1878,8 @@ void FoldEditor::drawCanvas(ImVec2 pos, ImVec2 size) {
     mFreezeZone = mZone;
     mFreezePaint.clear();
   }
-  drawOverlays(dl, origin);
-  dl->PopClipRect();
-  canvasInput(origin, avail);
+  drawOverlays(dl);
+  canvasInput();
   ImGui::End();
 }
 
@@ -2013,7 +1965,7 @@ void FoldEditor::drawZonePanel() {
           mZone = static_cast<int>(z);
           if (mImage != static_cast<int>(i)) {
             mImage = static_cast<int>(i);
-            mFitPending = true;
+            mCanvas.requestFit();
             mOverlaysStale = true;
           }
         }
@@ -2366,7 +2318,7 @@ void FoldEditor::drawStatusBar(ImVec2 pos, ImVec2 size) {
       ImGui::TextDisabled("x -  y -");
     }
     ImGui::SameLine(300);
-    ImGui::Text("zoom %.0f%%", 100.0 * mView.zoom);
+    ImGui::Text("zoom %.0f%%", 100.0 * mCanvas.view.zoom);
     ImGui::SameLine(400);
     if (mJob) {
       const float done = static_cast<float>(mJob->progress->done()) / static_cast<float>(mJob->total);

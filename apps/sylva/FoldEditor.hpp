@@ -2,7 +2,7 @@
 
 // `sylva fold edit`: the folding-texture editor (docs/folding-editor.md). The window, its panels and the
 // canvas gestures live in FoldEditor.cpp; the model it edits (sylva::folding::Session, EditHistory, Handles,
-// CanvasView) is GL-free and unit-tested on its own.
+// render::CanvasView) is GL-free and unit-tested on its own.
 
 #include <CLI/CLI.hpp>
 

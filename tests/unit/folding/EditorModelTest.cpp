@@ -172,27 +172,6 @@ TEST(FoldingEditorModel, NewEditsUndoByteForByte) {
   EXPECT_EQ(projectText(history.project()), edited);
 }
 
-TEST(FoldingEditorModel, CanvasZoomsAroundTheCursorWithinItsLimits) {
-  CanvasView v = CanvasView::fit({400.0, 300.0}, {800.0, 632.0});
-  EXPECT_DOUBLE_EQ(v.zoom, 1.92); // min((800 − 32) / 400, (632 − 32) / 300)
-  const Vec2 cursor(321.0, 123.0);
-  const Vec2 under = v.toImage(cursor);
-  v.zoomAround(cursor, 3.0);
-  EXPECT_NEAR(glm::distance(v.toImage(cursor), under), 0.0, 1e-9);
-  for (int i = 0; i < 40; ++i) {
-    v.zoomAround(cursor, 2.0);
-  }
-  EXPECT_DOUBLE_EQ(v.zoom, CanvasView::kMaxZoom);
-  EXPECT_TRUE(v.showsPixelGrid());
-  for (int i = 0; i < 80; ++i) {
-    v.zoomAround(cursor, 0.5);
-  }
-  EXPECT_DOUBLE_EQ(v.zoom, CanvasView::kMinZoom);
-  EXPECT_NEAR(glm::distance(v.toImage(cursor), under), 0.0, 1e-9);
-  v.pan({10.0, -4.0});
-  EXPECT_NEAR(glm::distance(v.toImage(cursor + Vec2(10.0, -4.0)), under), 0.0, 1e-9);
-}
-
 TEST(FoldingEditorModel, SnappingPrefersPointsThenPixelCentres) {
   CanvasView v;
   v.zoom = 4.0; // radius 8 screen px = 2 image px
