@@ -8,6 +8,7 @@
 
 #include <imgui.h>
 #include <sylva/core/Error.hpp>
+#include <sylva/ui/ImageCanvas.hpp>
 #include <sylva/ui/WindowShell.hpp>
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
@@ -393,18 +394,10 @@ struct ViewOptions {
   std::string screenshot;
   double fixedStep = 0.0;
   bool noUi = false;
+  double zoom = 0.0;
 };
 
 #ifdef SYLVA_HAVE_FOLDING_GPU
-/** The largest rectangle of the image's aspect centred in the framebuffer (x, y, w, h; GL origin). */
-glm::ivec4 letterbox(glm::ivec2 framebuffer, glm::ivec2 image) {
-  const double scale =
-      std::min(static_cast<double>(framebuffer.x) / image.x, static_cast<double>(framebuffer.y) / image.y);
-  const int w = std::max(1, static_cast<int>(std::lround(image.x * scale)));
-  const int h = std::max(1, static_cast<int>(std::lround(image.y * scale)));
-  return {(framebuffer.x - w) / 2, (framebuffer.y - h) / 2, w, h};
-}
-
 void runFoldViewer(const ViewOptions& o) {
   const Loaded l = load(o.project);
   int index = imageOption(l.project, o.image);
@@ -442,12 +435,29 @@ void runFoldViewer(const ViewOptions& o) {
     }
     renderer.setProfiles(applyPlayback(l.project.profiles, playback));
   };
+  // The frame is drawn at the image's size and shown on a canvas filling the window (wheel: zoom, right or
+  // middle drag: pan, Home: fit, +/-: zoom, 1: one texel per pixel).
+  ui::ImageCanvas canvas;
+  canvas.fitMargin = 0.0;
+  canvas.fitOnWholePixels = true;
+  canvas.fitZoom = o.zoom;
+  canvas.showGrid = false; // a preview: the panel turns the grid on
+  ui::CanvasImage frameImage;
   shell.setKeyHandler([&](int key, int) {
     if (key == GLFW_KEY_SPACE) {
       paused = !paused;
-      return true;
+    } else if (key == GLFW_KEY_HOME) {
+      canvas.requestFit();
+    } else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) {
+      canvas.zoomAtCentre(2.0);
+    } else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) {
+      canvas.zoomAtCentre(0.5);
+    } else if (key == GLFW_KEY_1) {
+      canvas.actualSize();
+    } else {
+      return false;
     }
-    return false;
+    return true;
   });
   shell.run([&](const ui::ShellFrame& f) {
     if (!paused) {
@@ -455,17 +465,29 @@ void runFoldViewer(const ViewOptions& o) {
     }
     const AtlasEntry& entry = textures.atlas.entries[static_cast<std::size_t>(index)];
     const Rect region = entry.atlasRect();
+    frameImage.bindForDraw({region.width(), region.height()});
+    renderer.draw(t, region);
     gl::bindDefaultFramebuffer(f.size.x, f.size.y);
     gl::clear(glm::vec4(0.12f, 0.12f, 0.13f, 1.0f));
-    const glm::ivec4 view = letterbox(f.size, {region.width(), region.height()});
-    gl::setViewport({view.x, view.y}, {view.z, view.w});
-    renderer.draw(t, region);
-    gl::setViewport({0, 0}, f.size);
+    shell.beginUi();
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(f.size.x), static_cast<float>(f.size.y)));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
+    ImGui::Begin("##frame", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
+    ImGui::PopStyleVar();
+    // draw() puts the region's first row at the top of the viewport, GL's last row: flipped on the way.
+    canvas.drawPixelGrid(canvas.begin(frameImage.texture(), frameImage.size(), true));
+    canvas.input();
+    frameImage.showAt(canvas.view.zoom); // this frame's zoom: the texture is drawn when the frame ends
+    ImGui::End();
     if (!shell.panelShown()) {
+      shell.endUi();
       return;
     }
-    shell.beginUi();
-    shell.beginPanel("Fold", fmt::format(", {}x{}", region.width(), region.height()));
+    shell.beginPanel(
+        "Fold", fmt::format(", {}x{} at {:.0f}%", region.width(), region.height(), 100.0 * canvas.view.zoom));
     bool changed = false;
     ImGui::SliderFloat("speed", &speed, 0.0f, 4.0f, "%.2fx");
     changed |= ImGui::SliderFloat("shift (cycles)", &shift, 0.0f, 1.0f, "%.3f");
@@ -477,12 +499,16 @@ void runFoldViewer(const ViewOptions& o) {
       paused = true;
     }
     ImGui::Checkbox("pause (space)", &paused);
+    ImGui::SameLine();
+    ImGui::Checkbox("pixel grid", &canvas.showGrid);
     if (l.project.images.size() > 1) {
       std::vector<const char*> ids;
       for (const ImageEntry& e : l.project.images) {
         ids.push_back(e.id.c_str());
       }
-      ImGui::Combo("image", &index, ids.data(), static_cast<int>(ids.size()));
+      if (ImGui::Combo("image", &index, ids.data(), static_cast<int>(ids.size()))) {
+        canvas.requestFit();
+      }
     }
     if (changed) {
       updateProfiles();
@@ -497,7 +523,8 @@ void runFoldViewer(const ViewOptions& o) {
 void registerFoldView(CLI::App& fold) {
   auto* command = fold.add_subcommand(
       "view", "Preview a project live in a window with sliders for speed, shift, position function and time "
-              "(space: pause; Tab: hide the panel)");
+              "(Space: pause; Tab: hide the panel; wheel or +/-: zoom, right/middle drag: pan, Home: fit, 1: "
+              "one texel per pixel)");
   auto o = std::make_shared<ViewOptions>();
   command->add_option("project", o->project, "Project file (.json, format sylva-fold)")->required();
   command->add_option("--image", o->image, "Id of the image to show first (default: the project's canvas)");
@@ -505,6 +532,8 @@ void registerFoldView(CLI::App& fold) {
       ->check(CLI::ExistingDirectory);
   addScriptedWindowOptions(*command, o->frames, o->screenshot, o->fixedStep);
   command->add_flag("--no-ui", o->noUi, "Start with the panel hidden");
+  command->add_option("--zoom", o->zoom, "Zoom at start, screen pixels per image pixel (0: fit the window)")
+      ->check(CLI::Range(0.0, 32.0));
   command->callback([o] {
 #ifdef SYLVA_HAVE_FOLDING_GPU
     runFoldViewer(*o);

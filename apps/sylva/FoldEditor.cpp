@@ -1024,9 +1024,7 @@ private:
   bool mPlaying = true;
   float mSpeed = 1.0f;
   double mTime = 0.0;
-  gl::Texture mPreviewTex{gl::NoCreate};
-  gl::Framebuffer mPreviewFbo{gl::NoCreate};
-  glm::ivec2 mPreviewSize{0};
+  ui::CanvasImage mPreview;
   double mLastSynthMs = 0.0;
   Rect mLastRegion;
 
@@ -1904,19 +1902,11 @@ void FoldEditor::drawPreview(ImVec2 pos, ImVec2 size) {
     const glm::ivec2 shown(std::max(1, static_cast<int>(std::lround(region.width() * scale))),
                            std::max(1, static_cast<int>(std::lround(region.height() * scale))));
     const glm::ivec2 want = glm::min(shown, glm::ivec2(region.width(), region.height()));
-    if (mPreviewSize != want) {
-      replaceTexture(mPreviewTex, gl::Texture::create2D(GL_RGBA8, want.x, want.y));
-      mPreviewTex.setSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
-      mPreviewFbo = gl::Framebuffer();
-      mPreviewFbo.attachColor(0, mPreviewTex);
-      mPreviewFbo.checkComplete();
-      mPreviewSize = want;
-    }
-    mPreviewFbo.bindForDraw(want.x, want.y);
+    mPreview.bindForDraw(want); // re-created at a new size (the last frame's draw list has been drawn)
     mRenderer.draw(mTime, region);
     gl::bindWindowFramebuffer();
     // draw() puts the region's row 0 at the top of the viewport (GL's last row): flip v.
-    ImGui::Image(textureId(mPreviewTex), ImVec2(static_cast<float>(shown.x), static_cast<float>(shown.y)),
+    ImGui::Image(mPreview.texture(), ImVec2(static_cast<float>(shown.x), static_cast<float>(shown.y)),
                  ImVec2(0, 1), ImVec2(1, 0));
   } else {
     ImGui::TextDisabled(mJob ? "(synthesising in the background...)" : "(synthesise to preview: Ctrl+Enter)");

@@ -541,5 +541,52 @@ TEST(CliFold, ViewOpensAWindowAndSavesAScreenshot) {
   EXPECT_GE(image.height(), kHeight);
 }
 
+// At --zoom 1 the viewer's canvas shows every texel of the frame once, centred on whole pixels: the window's
+// pixels there are the GL renderer's frame at the same time (`fold render --renderer gl`), exactly. At --zoom
+// 8 each texel is an 8×8 block of its colour (nearest magnification from 4×), compared at the block centres.
+TEST(CliFold, ViewShowsTheRenderedFrameTexelForTexelOnItsCanvas) {
+  if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr) {
+    GTEST_SKIP() << "no display (set DISPLAY or run under xvfb-run); fold view test skipped";
+  }
+  const test::TempDir dir;
+  const fs::path file = writeProject(dir, project());
+  // The viewer's first frame shows t = one fixed step; frame 3 at 10 fps is t = 0.3 s.
+  const test::RunResult frames =
+      runSylva(dir, "fold render " + quote(file.string()) + " --renderer gl --fps 10 --frames 4 --out " +
+                        quote((dir / "frames").string()));
+  ASSERT_EQ(frames.status, 0) << frames.err;
+  const Image expected = loadImage(dir / "frames" / "frame_0003.png").converted(PixelType::U8);
+  ASSERT_EQ(expected.width(), kWidth);
+  ASSERT_EQ(expected.height(), kHeight);
+  for (const int zoom : {1, 8}) {
+    const fs::path shot = dir / fmt::format("view{}.png", zoom);
+    const test::RunResult r = runSylva(
+        dir, fmt::format("fold view {} --zoom {} --no-ui --frames 1 --fixed-step 0.3 --screenshot {}",
+                         quote(file.string()), zoom, quote(shot.string())));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Image window = loadImage(shot).converted(PixelType::U8);
+    // The canvas centres the image, its corner rounded to a whole pixel.
+    const int x0 = static_cast<int>(std::lround(window.width() / 2.0 - zoom * kWidth / 2.0));
+    const int y0 = static_cast<int>(std::lround(window.height() / 2.0 - zoom * kHeight / 2.0));
+    ASSERT_GE(x0, 0);
+    ASSERT_GE(y0, 0);
+    ASSERT_LE(x0 + zoom * kWidth, window.width());
+    ASSERT_LE(y0 + zoom * kHeight, window.height());
+    int worst = 0;
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = 0; x < kWidth; ++x) {
+        for (int c = 0; c < 3; ++c) {
+          const float shown = window.get(x0 + x * zoom + zoom / 2, y0 + y * zoom + zoom / 2, c);
+          worst = std::max(worst,
+                           static_cast<int>(std::lround(255.0f * std::abs(shown - expected.get(x, y, c)))));
+        }
+      }
+    }
+    EXPECT_EQ(worst, 0) << "zoom " << zoom << ": the canvas does not show the frame texel for texel";
+    // Outside the image: the canvas's background.
+    EXPECT_LT(window.get(x0 / 2, y0 / 2, 0), 0.2f);
+  }
+}
+
 } // namespace
 } // namespace sylva

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace sylva::ui {
 namespace {
@@ -12,7 +13,7 @@ glm::dvec2 dv(ImVec2 v) {
 
 } // namespace
 
-ImDrawList* ImageCanvas::begin(ImTextureID texture, glm::ivec2 imageSize) {
+ImDrawList* ImageCanvas::begin(ImTextureID texture, glm::ivec2 imageSize, bool flipV) {
   mOrigin = ImGui::GetCursorScreenPos();
   mSize = ImGui::GetContentRegionAvail();
   mImageSize = imageSize;
@@ -21,13 +22,17 @@ ImDrawList* ImageCanvas::begin(ImTextureID texture, glm::ivec2 imageSize) {
     if (fitZoom > 0.0) {
       view.zoomAround(dv(mSize) * 0.5, fitZoom / view.zoom);
     }
+    if (fitOnWholePixels) {
+      view.offset = glm::round(view.offset);
+    }
     mFitPending = false;
   }
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 end(mOrigin.x + mSize.x, mOrigin.y + mSize.y);
   dl->PushClipRect(mOrigin, end, true);
   dl->AddRectFilled(mOrigin, end, IM_COL32(38, 38, 42, 255));
-  dl->AddImage(texture, toScreen(glm::dvec2(0.0)), toScreen(glm::dvec2(imageSize)));
+  dl->AddImage(texture, toScreen(glm::dvec2(0.0)), toScreen(glm::dvec2(imageSize)),
+               ImVec2(0.0f, flipV ? 1.0f : 0.0f), ImVec2(1.0f, flipV ? 0.0f : 1.0f));
   return dl;
 }
 
@@ -74,6 +79,31 @@ ImVec2 ImageCanvas::toScreen(glm::dvec2 image) const {
 
 glm::dvec2 ImageCanvas::toImage(ImVec2 screen) const {
   return view.toImage(dv(screen) - dv(mOrigin));
+}
+
+void CanvasImage::bindForDraw(glm::ivec2 size) {
+  if (size != mSize) {
+    mTexture = gl::Texture::create2D(GL_RGBA8, size.x, size.y);
+    mTexture.setSampler(
+        {GL_LINEAR, static_cast<GLenum>(mNearest ? GL_NEAREST : GL_LINEAR), GL_CLAMP_TO_EDGE});
+    mFramebuffer = gl::Framebuffer();
+    mFramebuffer.attachColor(0, mTexture);
+    mFramebuffer.checkComplete();
+    mSize = size;
+  }
+  mFramebuffer.bindForDraw(size.x, size.y);
+}
+
+void CanvasImage::showAt(double zoom) {
+  const bool nearest = zoom >= 4.0;
+  if (nearest != mNearest && mTexture.id() != 0) {
+    mTexture.setSampler({GL_LINEAR, static_cast<GLenum>(nearest ? GL_NEAREST : GL_LINEAR), GL_CLAMP_TO_EDGE});
+  }
+  mNearest = nearest;
+}
+
+ImTextureID CanvasImage::texture() const {
+  return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(mTexture.id()));
 }
 
 } // namespace sylva::ui

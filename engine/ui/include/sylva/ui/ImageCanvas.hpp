@@ -2,6 +2,8 @@
 // The ui module's image canvas (docs/engine.md): an image in an ImGui window, zoomed and panned through a
 // render::CanvasView, shared by the fold viewer and the fold editor.
 
+#include <sylva/gl/Framebuffer.hpp>
+#include <sylva/gl/Texture.hpp>
 #include <sylva/render/CanvasView.hpp>
 
 #include <glm/glm.hpp>
@@ -22,10 +24,11 @@ public:
 
   /**
    * Lays the canvas over the window's remaining region (fitting it first when asked), fills it with a dark
-   * background and draws `texture` (`imageSize` pixels) at the view. Returns the window's draw list clipped
-   * to the canvas, for overlays; call input() after them.
+   * background and draws `texture` (`imageSize` pixels; `flipV`: its first row is the image's last, as GL
+   * draws) at the view. Returns the window's draw list clipped to the canvas, for overlays; call input()
+   * after them.
    */
-  ImDrawList* begin(ImTextureID texture, glm::ivec2 imageSize);
+  ImDrawList* begin(ImTextureID texture, glm::ivec2 imageSize, bool flipV = false);
   /** Lines between pixels where each pixel is at least 8 screen pixels wide (with showGrid). */
   void drawPixelGrid(ImDrawList* drawList) const;
   /**
@@ -50,12 +53,36 @@ public:
   double fitZoom = 0.0;    ///< > 0: the zoom a fit ends at (centred), instead of the whole image
   double fitMargin = 16.0; ///< screen pixels around a fitted image
   bool showGrid = true;
+  /** A fit puts the image's corner on a whole screen pixel, so integer zooms show every texel exactly. */
+  bool fitOnWholePixels = false;
 
 private:
   ImVec2 mOrigin{0, 0};
   ImVec2 mSize{0, 0};
   glm::ivec2 mImageSize{0};
   bool mFitPending = true;
+};
+
+/**
+ * An offscreen RGBA8 image that GL draws into and an ImageCanvas (or ImGui::Image) shows: the fold viewer's
+ * frame, the fold editor's preview. Shown at a zoom of 4 or more, its texels stay sharp squares (nearest
+ * magnification) so single pixels can be inspected; below, it is filtered linearly.
+ */
+class CanvasImage {
+public:
+  /** Binds the image for drawing at `size` pixels (re-created when the size changes) and sets the viewport.
+   */
+  void bindForDraw(glm::ivec2 size);
+  /** Chooses the magnification for showing at `zoom` screen pixels per texel. */
+  void showAt(double zoom);
+  ImTextureID texture() const;
+  glm::ivec2 size() const { return mSize; }
+
+private:
+  gl::Texture mTexture{gl::NoCreate};
+  gl::Framebuffer mFramebuffer{gl::NoCreate};
+  glm::ivec2 mSize{0};
+  bool mNearest = false;
 };
 
 } // namespace sylva::ui
