@@ -1,7 +1,7 @@
 // The `sylva` command line as a library: every subcommand registered on one CLI11 app, and the error policy
 // (one line on stderr, exit 2; internal errors exit 3). Main.cpp and the CLI fuzz target share it.
 #include "Commands.hpp"
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>

@@ -3,7 +3,7 @@
 // Sylva's measured benchmarks, `sylva bench <area>` (docs/cli.md, docs/testing.md): one file per area
 // (BenchTerrain.cpp, BenchGrass.cpp, BenchTrees.cpp, BenchScene.cpp, BenchFold.cpp, BenchCapture.cpp; the
 // demo and the shared frame loop in Bench.cpp), and the target tables: each row is a measured value against a
-// target from the specs, printed as a table and returned as JSON. The app (apps/sylva/CmdBench.cpp) turns its
+// target from the specs, printed as a table and returned as JSON. The app (apps/sylva/cmd/CmdBench.cpp) turns its
 // options into BenchOptions; the Google Benchmark kernels of the CPU code sit beside this, in
 // bench/<module>/.
 

@@ -2,7 +2,7 @@
 
 #include <sylva/terrain/gpu/TerrainScene.hpp>
 
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <CLI/CLI.hpp>
 

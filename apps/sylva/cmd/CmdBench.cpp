@@ -1,8 +1,8 @@
 // `sylva bench <area>` (docs/cli.md): the command line of the benchmarks in bench/areas (sylva::bench), which
 // measure; this file only turns options into a bench::BenchOptions and picks the area.
 #include "Commands.hpp"
-#include "TerrainFlags.hpp"
-#include "WorldFlags.hpp"
+#include "flags/TerrainFlags.hpp"
+#include "flags/WorldFlags.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>

@@ -1,4 +1,4 @@
-#include "WorldFlags.hpp"
+#include "flags/WorldFlags.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>

@@ -6,7 +6,7 @@
 // context with --impostor (only then: every other export is CPU only). Every error is one line naming the
 // file and field (or option), found before any output is written.
 #include "Commands.hpp"
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>

@@ -2,9 +2,9 @@
 // optical flow, suggests point anchors inside one zone of a project, prints what it found, and with --out
 // writes the project with the suggestion applied as a points tool (one "motion from video" edit). Every input
 // error is one line naming the file or option, found before any output is written.
-#include "CmdFoldFlow.hpp"
+#include "cmd/CmdFoldFlow.hpp"
 #include "Commands.hpp"
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>

@@ -9,7 +9,7 @@
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/ui/CameraRig.hpp>
 
-#include "WorldFlags.hpp"
+#include "flags/WorldFlags.hpp"
 
 #include <cstdint>
 #include <optional>

@@ -1,5 +1,5 @@
 // `sylva view`: one window loop for scene files, the options' world and the demo scene (Viewer.hpp).
-#include "Viewer.hpp"
+#include "view/Viewer.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
@@ -14,7 +14,7 @@
 #include <sylva/ui/CameraRig.hpp>
 #include <sylva/ui/WindowShell.hpp>
 
-#include "ViewerPanels.hpp"
+#include "view/ViewerPanels.hpp"
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "ViewerPanels.hpp"
+#include "view/ViewerPanels.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>

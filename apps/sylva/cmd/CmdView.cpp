@@ -3,8 +3,8 @@
 
 #include <sylva/core/Error.hpp>
 
-#include "Viewer.hpp"
-#include "WorldFlags.hpp"
+#include "view/Viewer.hpp"
+#include "flags/WorldFlags.hpp"
 
 #include <memory>
 #include <string>

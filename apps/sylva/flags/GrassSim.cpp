@@ -1,6 +1,6 @@
-#include "GrassSim.hpp"
+#include "flags/GrassSim.hpp"
 
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/terrain/HeightQuery.hpp>

@@ -2,9 +2,9 @@
 // render writes PNG frames, GIF, sprite sheet or video, view previews live with sliders, export-shader writes
 // the GLSL and its textures for a game, info describes a project. Every input error is one line naming the
 // file and the JSON field, found before any output is written.
-#include "CmdFoldFlow.hpp"
+#include "cmd/CmdFoldFlow.hpp"
 #include "Commands.hpp"
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <imgui.h>
 #include <sylva/core/Error.hpp>
@@ -31,7 +31,7 @@
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/shader/Library.hpp>
 
-#include "FoldEditor.hpp"
+#include "fold/FoldEdit.hpp"
 
 #include <GLFW/glfw3.h>
 #endif

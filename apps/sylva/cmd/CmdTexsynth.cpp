@@ -3,7 +3,7 @@
 // `wang` builds a complete Wang tile set and a preview of a random tiling. Inputs and options are checked
 // before any work; outputs are written atomically (a tile set directory appears whole or not at all).
 #include "Commands.hpp"
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>

@@ -1,6 +1,6 @@
-#include "GrassFlags.hpp"
+#include "flags/GrassFlags.hpp"
 
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/scene/gpu/Ground.hpp>

@@ -5,7 +5,7 @@
 // option error is one line naming the file, frame or option, found before any output is written; outputs are
 // written atomically.
 #include "Commands.hpp"
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/blades/BladeModel.hpp>
 #include <sylva/capture/Depth.hpp>

@@ -1,8 +1,12 @@
 #pragma once
 
-// `sylva fold edit`: the folding-texture editor (docs/folding-editor.md). The window, its panels and the
-// canvas gestures live in FoldEditor.cpp; the model it edits (sylva::folding::Session, EditHistory, Handles,
-// render::CanvasView) is GL-free and unit-tested on its own.
+// `sylva fold edit`: the folding-texture editor (docs/folding-editor.md; thesis FoldingGen, Fig. 28 layout).
+// A menu bar, the workflow bar (zones → motion → profiles → synthesise → preview → export), the toolbox and
+// the current tool's properties on the left, the canvas in the middle, the live GPU preview with its timeline
+// and the zone / jump-path / profile panels on the right, and a status bar. One file per screen in
+// apps/sylva/fold/ (Editor.hpp lists them). Every change goes through the GL-free model
+// (sylva::folding::Session, EditHistory, Handles); the window loop and the canvas are engine/ui's
+// (WindowShell, ImageCanvas over render::CanvasView), so these files only map input to edits and draw.
 
 #include <CLI/CLI.hpp>
 

@@ -6,10 +6,10 @@
 #include <sylva/render/Camera.hpp>
 #include <sylva/scene/SceneFile.hpp>
 
-#include "GrassFlags.hpp"
-#include "GrassSim.hpp"
-#include "TerrainFlags.hpp"
-#include "TreeFlags.hpp"
+#include "flags/GrassFlags.hpp"
+#include "flags/GrassSim.hpp"
+#include "flags/TerrainFlags.hpp"
+#include "flags/TreeFlags.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -2,7 +2,7 @@
 // and answers questions about it (info, query). Every subcommand reads its heights through SourceOptions
 // below.
 #include "Commands.hpp"
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>

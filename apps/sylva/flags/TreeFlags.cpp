@@ -1,10 +1,10 @@
-#include "TreeFlags.hpp"
+#include "flags/TreeFlags.hpp"
 
 #include <sylva/core/Error.hpp>
 #include <sylva/scene/gpu/Ground.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 
-#include "SourceOptions.hpp"
+#include "flags/SourceOptions.hpp"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

@@ -1,6 +1,6 @@
 // `sylva render SCENE.json`: stills and resumable, splittable, deterministic frame sequences of a scene file
 // (docs/scenes.md "Rendering sequences").
-#include "CmdScene.hpp"
+#include "cmd/CmdScene.hpp"
 
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/core/Error.hpp>

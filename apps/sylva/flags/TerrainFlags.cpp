@@ -1,4 +1,4 @@
-#include "TerrainFlags.hpp"
+#include "flags/TerrainFlags.hpp"
 
 #include <sylva/core/Error.hpp>
 

@@ -4,7 +4,7 @@
 // path exactly as `sylva render` draws it, into an offscreen target of the window's size (whose depth the sun
 // flare tests), then blitted under the ImGui panel.
 
-#include "WorldFlags.hpp"
+#include "flags/WorldFlags.hpp"
 
 #include <string>
 

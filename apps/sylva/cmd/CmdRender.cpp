@@ -11,8 +11,8 @@
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 
-#include "CmdScene.hpp"
-#include "WorldFlags.hpp"
+#include "cmd/CmdScene.hpp"
+#include "flags/WorldFlags.hpp"
 
 #include <algorithm>
 #include <cmath>
