@@ -321,67 +321,28 @@ std::vector<int> parseLevels(const std::string& text) {
   return levels;
 }
 
-/** What `tree export --impostor` bakes. */
-struct ImpostorBake {
-  int views = 8;
-  int cell = 128;
-  bool foliage = true;
-  /** The bark tiles the tree is drawn with; none: flat bark colour. */
-  std::optional<trees::BarkSet> bark;
-  /** Set by bakeImpostor(): seconds from the context's creation to the atlas read back. */
-  double seconds = 0.0;
-};
-
 /**
- * Bakes the impostor atlas of exactly the exported tree (its topology and pose, metres per rim unit `scale`)
- * on a headless GL context, as `sylva render --trees-far` bakes a species: hemi-octahedral views with bark
- * tiles and foliage (ez-tree's oak leaf when fetched, else the procedural leaf). Returns the atlas (RGBA8,
- * file order) with the sphere its views frame, in metres, and sets bake.seconds.
+ * Bakes the impostor atlas of the exported tree on a headless GL context, as `sylva render --trees-far` bakes
+ * a species (ez-tree's oak leaf when fetched, else the procedural leaf); returns it with the seconds from the
+ * context's creation to the atlas read back.
  */
-trees::ImpostorAtlas bakeImpostor(const ContextFlags& context, const trees::PieceSet& pieces,
-                                  const trees::Species& species, const trees::TreeTopology& topology,
-                                  const std::vector<glm::vec2>& pose, float scale, ImpostorBake& bake) {
+std::pair<trees::ImpostorAtlas, double>
+bakeImpostor(const ContextFlags& context, const trees::PieceSet& pieces, const trees::Species& species,
+             const trees::TreeTopology& topology, const std::vector<glm::vec2>& pose, float scale,
+             trees::TreeImpostorBake bake) {
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<platform::GlContext> glContext = platform::createHeadlessContext(context.options());
   log::info("impostor: baking {} x {} views of {} px ({} px atlas{}{})", bake.views, bake.views, bake.cell,
             bake.views * bake.cell, bake.bark ? ", bark tiles" : "", bake.foliage ? ", foliage" : "");
-  const shader::Library library;
-  auto forest = std::make_shared<trees::Forest>();
-  forest->pieces = pieces;
-  forest->species = {species};
-  trees::ForestTree one;
-  one.topology = topology;
-  one.species = 0;
-  one.base = trees::baseFrame(glm::vec3(0.0f), 0.0f, scale);
-  one.pose = pose;
-  forest->trees = {std::move(one)};
-  forest->index();
   std::optional<Image> leaf;
   const fs::path autoLeaf = "data/external/ez-tree/leaves/oak_color.png";
   if (bake.foliage && fs::exists(autoLeaf)) {
     leaf = trees::loadLeafImage(autoLeaf);
+    bake.leafImage = &*leaf;
   }
-  std::vector<trees::BarkSet> bark;
-  std::vector<int> speciesSet;
-  if (bake.bark) {
-    bark.push_back(*bake.bark);
-    speciesSet.push_back(0);
-  }
-  trees::ImpostorSettings settings;
-  settings.layout.views = bake.views;
-  settings.layout.cell = bake.cell;
-  trees::ImpostorRenderer impostors(library, settings);
-  impostors.bake(*forest, trees::sceneBakeOptions(library, std::move(bark), std::move(speciesSet),
-                                                  bake.foliage, leaf ? &*leaf : nullptr));
-  trees::ImpostorAtlas atlas;
-  atlas.image = impostors.readAtlas(0);
-  atlas.viewsPerSide = bake.views;
-  atlas.layout = "hemi-octahedral";
-  // speciesSphere is in crown heights (the tree's height in rim units times the scale, as the bake measures).
-  const float height = std::max(trees::treeStats(pieces, topology).height * scale, 1e-3f);
-  atlas.sphere = impostors.speciesSphere(0) * height;
-  bake.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return atlas;
+  const shader::Library library;
+  trees::ImpostorAtlas atlas = trees::bakeTreeImpostor(library, pieces, species, topology, pose, scale, bake);
+  return {std::move(atlas), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
 }
 
 void registerExport(CLI::App& tree) {
@@ -553,7 +514,8 @@ void registerExport(CLI::App& tree) {
     if (!o->straight) {
       options.pose = trees::randomPose(tree, species, o->seed);
     }
-    ImpostorBake bake;
+    trees::TreeImpostorBake bake;
+    double bakeSeconds = 0.0;
     if (o->impostor) {
       bake.views = o->impostorViews;
       bake.cell = o->impostorCell;
@@ -561,8 +523,10 @@ void registerExport(CLI::App& tree) {
       if (tiles) {
         bake.bark = bark;
       }
-      options.impostor =
+      auto [atlas, seconds] =
           bakeImpostor(o->context, pieces, species, tree, options.pose, species.trunkRadius, bake);
+      options.impostor = std::move(atlas);
+      bakeSeconds = seconds;
     }
     const trees::TreeExportStats stats = ext == ".obj"
                                              ? trees::exportTreeObj(pieces, tree, species, o->out, options)
@@ -581,7 +545,7 @@ void registerExport(CLI::App& tree) {
       std::printf("impostor: baked %d x %d hemi-octahedral views of %d px (%dx%d px atlas, bounding sphere "
                   "radius %.2f m) in %.2f s\n",
                   bake.views, bake.views, bake.cell, atlas.image.width(), atlas.image.height(),
-                  static_cast<double>(atlas.sphere->w), bake.seconds);
+                  static_cast<double>(atlas.sphere->w), bakeSeconds);
     }
     if (!o->impostorPng.empty()) {
       savePng(o->impostorPng, options.impostor->image);

@@ -393,4 +393,39 @@ std::size_t ImpostorRenderer::gpuBytes() const {
          sizeof(gpu::ImpostorUniforms);
 }
 
+ImpostorAtlas bakeTreeImpostor(const shader::Library& library, const PieceSet& pieces, const Species& species,
+                               const TreeTopology& topology, const std::vector<glm::vec2>& pose, float scale,
+                               const TreeImpostorBake& bake) {
+  auto forest = std::make_shared<Forest>();
+  forest->pieces = pieces;
+  forest->species = {species};
+  ForestTree one;
+  one.topology = topology;
+  one.species = 0;
+  one.base = baseFrame(glm::vec3(0.0f), 0.0f, scale);
+  one.pose = pose;
+  forest->trees = {std::move(one)};
+  forest->index();
+  std::vector<BarkSet> bark;
+  std::vector<int> speciesSet;
+  if (bake.bark) {
+    bark.push_back(*bake.bark);
+    speciesSet.push_back(0);
+  }
+  ImpostorSettings settings;
+  settings.layout.views = bake.views;
+  settings.layout.cell = bake.cell;
+  ImpostorRenderer impostors(library, settings);
+  impostors.bake(*forest, sceneBakeOptions(library, std::move(bark), std::move(speciesSet), bake.foliage,
+                                           bake.foliage ? bake.leafImage : nullptr));
+  ImpostorAtlas atlas;
+  atlas.image = impostors.readAtlas(0);
+  atlas.viewsPerSide = bake.views;
+  atlas.layout = "hemi-octahedral";
+  // speciesSphere is in crown heights (the tree's height in rim units times the scale, as the bake measures).
+  const float height = std::max(treeStats(pieces, topology).height * scale, 1e-3f);
+  atlas.sphere = impostors.speciesSphere(0) * height;
+  return atlas;
+}
+
 } // namespace sylva::trees

@@ -17,6 +17,7 @@
 #include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/trees/Bark.hpp>
+#include <sylva/trees/Export.hpp>
 #include <sylva/trees/FarField.hpp>
 #include <sylva/trees/Foliage.hpp>
 #include <sylva/trees/Forest.hpp>
@@ -24,6 +25,7 @@
 #include <shared/Trees.h>
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -67,6 +69,26 @@ render::Environment impostorBakeEnvironment();
 ImpostorBakeOptions sceneBakeOptions(const shader::Library& library, std::vector<BarkSet> bark,
                                      std::vector<int> speciesSet, bool foliage,
                                      const Image* leafImage = nullptr, const LeafCloud* cloud = nullptr);
+
+/** What bakeTreeImpostor() bakes (`tree export --impostor`). */
+struct TreeImpostorBake {
+  int views = 8;  ///< views per side of the hemi-octahedral grid
+  int cell = 128; ///< pixels per view
+  bool foliage = true;
+  /** The bark tiles the tree is drawn with; none: flat bark colour. */
+  std::optional<BarkSet> bark;
+  /** The leaf picture of the foliage (null: the procedural leaf). */
+  const Image* leafImage = nullptr;
+};
+
+/**
+ * Bakes the impostor atlas of exactly one tree (its topology and pose, metres per rim unit `scale`) as a
+ * scene bakes a species: hemi-octahedral views with bark tiles and foliage. Needs a current GL context.
+ * Returns the atlas (RGBA8, file order) with the sphere its views frame, in metres.
+ */
+ImpostorAtlas bakeTreeImpostor(const shader::Library& library, const PieceSet& pieces, const Species& species,
+                               const TreeTopology& topology, const std::vector<glm::vec2>& pose, float scale,
+                               const TreeImpostorBake& bake);
 
 class ImpostorRenderer {
 public:
