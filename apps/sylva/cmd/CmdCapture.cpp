@@ -19,6 +19,7 @@
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Progress.hpp>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <glm/geometric.hpp>
@@ -324,33 +325,6 @@ std::string stem(const std::string& label) {
   return s.empty() ? std::string("capture") : s;
 }
 
-Image maskImage(const ExtractResult& r) {
-  Image img(r.width, r.height, 1, PixelType::U8);
-  std::copy(r.mask.begin(), r.mask.end(), img.values<std::uint8_t>().begin());
-  return img;
-}
-
-void writeStages(const fs::path& dir, const DepthFrame& frame, const ExtractResult& result) {
-  const auto range = depthRange(frame);
-  saveImage(dir / "1-depth.png", depthPreview(frame, range.first, range.second));
-  saveImage(dir / "2-mask.png", maskImage(result));
-  ExtractResult contours = result;
-  contours.blades.clear();
-  std::size_t junctions = 0;
-  for (const Cluster& c : result.clusters) {
-    junctions += c.junctions.size();
-  }
-  saveImage(
-      dir / "3-contour.png",
-      overlayImage(frame, contours,
-                   fmt::format("{}: contours of {} cluster{}, centres and {} junctions", frame.label(),
-                               result.clusters.size(), result.clusters.size() == 1 ? "" : "s", junctions)));
-  if (!result.clusters.empty()) {
-    saveImage(dir / "4-signal.png", signalPlot(result.clusters.front(), 960, 280));
-  }
-  saveImage(dir / "5-blades.png", overlayImage(frame, result));
-}
-
 void runCapture(const CaptureOptions& o) {
   const ExtractOptions extract = extractOptions(o);
   const std::vector<int> levels = parseLevels(o.levels);
@@ -371,38 +345,29 @@ void runCapture(const CaptureOptions& o) {
     overlay = "out/capture/" + base + "-overlay.png";
   }
 
-  // Extraction, frame by frame (a progress line on recordings).
-  std::vector<ExtractResult> results;
-  std::vector<std::string> warnings;
-  DepthFrame reference;
-  {
-    std::unique_ptr<Progress> progress;
-    if (source.count() > 1) {
-      progress =
-          std::make_unique<Progress>("capturing " + source.label, static_cast<std::size_t>(source.count()));
-    }
-    for (int i = source.first; i <= source.last; ++i) {
-      if (progress && progress->cancelled()) {
-        fail("capture: cancelled");
-      }
-      DepthFrame frame = source.frame(i);
-      ExtractResult r = extractBlades(frame, extract);
-      warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-      if (i == source.first) {
-        reference = std::move(frame);
-      }
-      results.push_back(std::move(r));
-      if (progress) {
-        progress->advance();
-      }
-    }
+  CaptureSettings settings;
+  settings.extract = extract;
+  settings.model.levels = levels;
+  settings.model.mu = o.mu;
+  settings.model.measure =
+      o.variance == "distance" ? RefineOptions::Measure::Distance : RefineOptions::Measure::Displacement;
+  settings.model.rawMetres = o.rawMetres;
+  settings.motion = o.motion == "recording" ? CaptureMotion::Recording
+                    : o.motion == "sway"    ? CaptureMotion::Sway
+                    : o.motion == "none"    ? CaptureMotion::None
+                                            : CaptureMotion::Auto;
+  if (settings.motion == CaptureMotion::Recording && source.count() < 2) {
+    fail("--motion recording: needs a recording with at least 2 frames in --frames");
   }
-  const ExtractResult& first = results.front();
-  // Checked before the warnings are shown, so the failure stays one line (it quotes the first warning).
-  if (first.blades.empty()) {
-    fail("{}: no blades found{}", reference.label(),
-         first.warnings.empty() ? std::string() : " (" + first.warnings.front() + ")");
-  }
+  settings.name = base;
+  settings.scaleToMetres = o.scaleTo;
+  settings.generator = fmt::format("sylva capture {}: {}", SYLVA_VERSION, source.label);
+  const CaptureRun run = captureBlades(
+      source.count(), [&](int i) { return source.frame(source.first + i); }, settings, source.label,
+      "capturing " + source.label);
+  const ExtractResult& first = run.results.front();
+  const DepthFrame& reference = run.reference;
+  const std::vector<std::string>& warnings = run.warnings;
   const std::size_t shownWarnings = 8;
   for (std::size_t i = 0; i < warnings.size() && i < shownWarnings; ++i) {
     std::fprintf(stderr, "warning: %s\n", warnings[i].c_str());
@@ -410,59 +375,9 @@ void runCapture(const CaptureOptions& o) {
   if (warnings.size() > shownWarnings) {
     std::fprintf(stderr, "warning: … and %zu more\n", warnings.size() - shownWarnings);
   }
-
-  // Models: tracked through the recording, or swayed in simulation.
-  std::string motion = o.motion;
-  if (motion == "auto") {
-    motion = results.size() > 1 ? "recording" : "sway";
-  }
-  if (motion == "recording" && results.size() < 2) {
-    fail("--motion recording: needs a recording with at least 2 frames in --frames");
-  }
-  ModelOptions model;
-  model.levels = levels;
-  model.mu = o.mu;
-  model.measure =
-      o.variance == "distance" ? RefineOptions::Measure::Distance : RefineOptions::Measure::Displacement;
-  model.rawMetres = o.rawMetres;
-  model.simulateSway = motion == "sway";
-  std::vector<TrackedBlade> tracks = trackBlades(results);
-  blades::BladeModelFile file;
-  file.generator = fmt::format("sylva capture {}: {}", SYLVA_VERSION, source.label);
-  for (std::size_t b = 0; b < tracks.size(); ++b) {
-    blades::BladeSource meta;
-    meta.file = source.label;
-    meta.kind = depthSourceName(reference.kind);
-    meta.frame = reference.frame;
-    meta.cluster = tracks[b].reference.cluster;
-    meta.blade = static_cast<int>(b);
-    meta.intrinsics = reference.intrinsics;
-    meta.relativeDepth = reference.relativeDepth;
-    const KnotFrames empty;
-    blades::BladeModel m =
-        makeBladeModel(tracks[b].reference, motion == "recording" ? tracks[b].motion : empty, model, meta);
-    m.name = fmt::format("{}-{}", base, b);
-    file.blades.push_back(std::move(m));
-  }
-
-  if (o.scaleTo > 0.0) {
-    // Relative depth (Middlebury without calibration) has no true scale: the user gives the longest blade's.
-    float longest = 0.0f;
-    for (const blades::BladeModel& m : file.blades) {
-      longest = std::max(longest, m.length());
-    }
-    const float factor = static_cast<float>(o.scaleTo) / std::max(longest, 1e-9f);
-    for (blades::BladeModel& m : file.blades) {
-      for (blades::BladeLod& lod : m.lods) {
-        for (glm::vec3& p : lod.positions) {
-          p *= factor;
-        }
-        for (float& w : lod.widths) {
-          w *= factor;
-        }
-      }
-    }
-    file.generator += fmt::format(" (scaled by {:.4g} so the longest blade is {} m)", factor, o.scaleTo);
+  blades::BladeModelFile file = run.file;
+  if (run.scale != 1.0f) {
+    file.generator += fmt::format(" (scaled by {:.4g} so the longest blade is {} m)", run.scale, o.scaleTo);
   }
   if (!o.quiet) {
     std::printf("%s (%s, %dx%d%s): %zu blade%s in %zu cluster%s, depth %.3f-%.3f m%s\n",
@@ -484,9 +399,9 @@ void runCapture(const CaptureOptions& o) {
     std::printf("  refined to %s knots over %d frame%s (%s)\n", o.levels.c_str(),
                 file.blades.front().source.motionFrames,
                 file.blades.front().source.motionFrames == 1 ? "" : "s",
-                motion == "recording" ? "tracked through the recording"
-                : motion == "sway"    ? "simulated sway"
-                                      : "static");
+                run.motion == CaptureMotion::Recording ? "tracked through the recording"
+                : run.motion == CaptureMotion::Sway    ? "simulated sway"
+                                                       : "static");
     if (o.explain) {
       for (std::size_t c = 0; c < first.clusters.size(); ++c) {
         const Cluster& cluster = first.clusters[c];
@@ -506,19 +421,19 @@ void runCapture(const CaptureOptions& o) {
         }
       }
     }
-    if (results.size() > 1) {
+    if (run.results.size() > 1) {
       int missing = 0;
-      for (const TrackedBlade& t : tracks) {
+      for (const TrackedBlade& t : run.tracks) {
         missing += t.missingFrames;
       }
-      std::printf("  %zu frames, %d blade-frame%s not found (held)\n", results.size(), missing,
+      std::printf("  %zu frames, %d blade-frame%s not found (held)\n", run.results.size(), missing,
                   missing == 1 ? "" : "s");
     }
   }
 
   // Outputs last, each written atomically.
   if (!o.stages.empty()) {
-    writeStages(o.stages, reference, first);
+    writeCaptureStages(o.stages, reference, first);
   }
   if (!overlay.empty()) {
     saveImage(overlay, overlayImage(reference, first));

@@ -1,12 +1,15 @@
 #include <sylva/capture/Pipeline.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Image.hpp>
+#include <sylva/core/Progress.hpp>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace sylva::capture {
 namespace {
@@ -180,6 +183,112 @@ blades::BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& 
   source.medialAxis = blade.medialAxis;
   model.source = std::move(source);
   return model;
+}
+
+CaptureRun captureBlades(int frameCount, const std::function<DepthFrame(int)>& frame,
+                         const CaptureSettings& settings, const std::string& source,
+                         const std::string& label) {
+  if (frameCount < 1) {
+    fail("{}: no depth frames to capture", source);
+  }
+  CaptureRun run;
+  {
+    std::unique_ptr<Progress> progress;
+    if (frameCount > 1) {
+      progress = std::make_unique<Progress>(label, static_cast<std::size_t>(frameCount));
+    }
+    for (int i = 0; i < frameCount; ++i) {
+      if (progress && progress->cancelled()) {
+        fail("capture: cancelled");
+      }
+      DepthFrame depth = frame(i);
+      ExtractResult r = extractBlades(depth, settings.extract);
+      run.warnings.insert(run.warnings.end(), r.warnings.begin(), r.warnings.end());
+      if (i == 0) {
+        run.reference = std::move(depth);
+      }
+      run.results.push_back(std::move(r));
+      if (progress) {
+        progress->advance();
+      }
+    }
+  }
+  const ExtractResult& first = run.results.front();
+  if (first.blades.empty()) {
+    fail("{}: no blades found{}", run.reference.label(),
+         first.warnings.empty() ? std::string() : " (" + first.warnings.front() + ")");
+  }
+  run.motion = settings.motion;
+  if (run.motion == CaptureMotion::Auto) {
+    run.motion = run.results.size() > 1 ? CaptureMotion::Recording : CaptureMotion::Sway;
+  }
+  if (run.motion == CaptureMotion::Recording && run.results.size() < 2) {
+    fail("{}: refining by the recording's motion needs at least 2 frames", source);
+  }
+  ModelOptions model = settings.model;
+  model.simulateSway = run.motion == CaptureMotion::Sway;
+  run.tracks = trackBlades(run.results);
+  run.file.generator = settings.generator;
+  const KnotFrames still;
+  for (std::size_t b = 0; b < run.tracks.size(); ++b) {
+    blades::BladeSource meta;
+    meta.file = source;
+    meta.kind = depthSourceName(run.reference.kind);
+    meta.frame = run.reference.frame;
+    meta.cluster = run.tracks[b].reference.cluster;
+    meta.blade = static_cast<int>(b);
+    meta.intrinsics = run.reference.intrinsics;
+    meta.relativeDepth = run.reference.relativeDepth;
+    blades::BladeModel m =
+        makeBladeModel(run.tracks[b].reference,
+                       run.motion == CaptureMotion::Recording ? run.tracks[b].motion : still, model, meta);
+    m.name = settings.name + "-" + std::to_string(b);
+    run.file.blades.push_back(std::move(m));
+  }
+  if (settings.scaleToMetres > 0.0) {
+    // Relative depth (Middlebury without calibration) has no true scale: the user gives the longest blade's.
+    float longest = 0.0f;
+    for (const blades::BladeModel& m : run.file.blades) {
+      longest = std::max(longest, m.length());
+    }
+    run.scale = static_cast<float>(settings.scaleToMetres) / std::max(longest, 1e-9f);
+    for (blades::BladeModel& m : run.file.blades) {
+      for (blades::BladeLod& lod : m.lods) {
+        for (glm::vec3& p : lod.positions) {
+          p *= run.scale;
+        }
+        for (float& w : lod.widths) {
+          w *= run.scale;
+        }
+      }
+    }
+  }
+  return run;
+}
+
+void writeCaptureStages(const std::filesystem::path& dir, const DepthFrame& frame,
+                        const ExtractResult& result) {
+  const auto range = depthRange(frame);
+  saveImage(dir / "1-depth.png", depthPreview(frame, range.first, range.second));
+  Image mask(result.width, result.height, 1, PixelType::U8);
+  std::copy(result.mask.begin(), result.mask.end(), mask.values<std::uint8_t>().begin());
+  saveImage(dir / "2-mask.png", mask);
+  ExtractResult contours = result;
+  contours.blades.clear();
+  std::size_t junctions = 0;
+  for (const Cluster& c : result.clusters) {
+    junctions += c.junctions.size();
+  }
+  const std::size_t clusters = result.clusters.size();
+  saveImage(dir / "3-contour.png",
+            overlayImage(frame, contours,
+                         frame.label() + ": contours of " + std::to_string(clusters) +
+                             (clusters == 1 ? " cluster" : " clusters") + ", centres and " +
+                             std::to_string(junctions) + " junctions"));
+  if (!result.clusters.empty()) {
+    saveImage(dir / "4-signal.png", signalPlot(result.clusters.front(), 960, 280));
+  }
+  saveImage(dir / "5-blades.png", overlayImage(frame, result));
 }
 
 } // namespace sylva::capture

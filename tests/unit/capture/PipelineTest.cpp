@@ -432,5 +432,68 @@ TEST(FakenectSway, ARecordingOfTheSequenceExtractsTheSame) {
   }
 }
 
+// The whole run as `sylva capture` makes it: frames loaded lazily, one model per blade of the first frame,
+// the recording's motion by default when there are several frames, scaling to a given longest blade, and the
+// stage pictures.
+TEST(CapturePipeline, CaptureBladesRunsFramesToModelsAsTheCommandDoes) {
+  const SyntheticScene scene = makeCluster(BladeShape::SlimGrass, 5, 0.3f, 0.0f, 51);
+  const std::vector<SyntheticFrame> frames = swaySequence(scene, 4, 10.0, 0.15f, 1.0);
+  std::vector<int> loaded;
+  CaptureSettings settings;
+  settings.name = "fan";
+  settings.generator = "test";
+  const CaptureRun run = captureBlades(
+      4,
+      [&](int i) {
+        loaded.push_back(i);
+        return frames[static_cast<std::size_t>(i)].frame;
+      },
+      settings, "synthetic:slim", "capturing");
+  EXPECT_EQ(loaded, (std::vector<int>{0, 1, 2, 3}));
+  ASSERT_EQ(run.results.size(), 4u);
+  EXPECT_EQ(run.motion, CaptureMotion::Recording);
+  ASSERT_EQ(run.file.blades.size(), run.results.front().blades.size());
+  EXPECT_EQ(run.file.blades.size(), 5u);
+  EXPECT_EQ(run.file.generator, "test");
+  EXPECT_EQ(run.file.blades.front().name, "fan-0");
+  EXPECT_EQ(run.file.blades.front().source.file, "synthetic:slim");
+  EXPECT_EQ(run.file.blades.front().source.motionFrames, 4);
+  EXPECT_FLOAT_EQ(run.scale, 1.0f);
+
+  // One frame: a simulated sway, and every model scaled so the longest blade is 0.25 m.
+  settings.scaleToMetres = 0.25;
+  const CaptureRun one = captureBlades(
+      1, [&](int) { return frames.front().frame; }, settings, "synthetic:slim", "capturing");
+  EXPECT_EQ(one.motion, CaptureMotion::Sway);
+  float longest = 0.0f;
+  for (const blades::BladeModel& m : one.file.blades) {
+    longest = std::max(longest, m.length());
+  }
+  EXPECT_NEAR(longest, 0.25f, 1e-4f);
+  EXPECT_NE(one.scale, 1.0f);
+
+  // The recording's motion needs two frames; a frame without blades names the frame.
+  settings.motion = CaptureMotion::Recording;
+  EXPECT_NE(errorOf([&] {
+              captureBlades(
+                  1, [&](int) { return frames.front().frame; }, settings, "synthetic:slim", "c");
+            }).find("at least 2 frames"),
+            std::string::npos);
+  DepthFrame empty = frames.front().frame;
+  std::fill(empty.depth.begin(), empty.depth.end(), 0.0f);
+  const std::string none = errorOf([&] {
+    captureBlades(
+        1, [&](int) { return empty; }, settings, "x", "c");
+  });
+  EXPECT_NE(none.find("no blades found"), std::string::npos) << none;
+  EXPECT_NE(none.find(empty.label()), std::string::npos) << none;
+
+  const test::TempDir dir;
+  writeCaptureStages(dir.path(), run.reference, run.results.front());
+  for (const char* stage : {"1-depth.png", "2-mask.png", "3-contour.png", "4-signal.png", "5-blades.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / stage)) << stage;
+  }
+}
+
 } // namespace
 } // namespace sylva::capture

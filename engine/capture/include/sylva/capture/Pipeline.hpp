@@ -1,11 +1,15 @@
 #pragma once
-// From captured blades to blade models: tracking blades through a recording (their movement drives refining),
-// simulated sway when there is no recording, the change from camera to blade space, and refining to levels.
+// From depth frames to blade models: extraction frame by frame, tracking blades through a recording (their
+// movement drives refining), simulated sway when there is no recording, the change from camera to blade
+// space, refining to levels, and the whole run as `sylva capture` makes it (captureBlades).
 
 #include <sylva/blades/BladeModel.hpp>
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Refine.hpp>
 
+#include <filesystem>
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace sylva::capture {
@@ -55,5 +59,58 @@ struct ModelOptions {
  */
 blades::BladeModel makeBladeModel(const CapturedBlade& blade, const KnotFrames& motion,
                                   const ModelOptions& options, blades::BladeSource source);
+
+/** How the blades of a run move while they are refined. */
+enum class CaptureMotion {
+  Auto,      ///< Recording when the run has several frames, else Sway
+  Recording, ///< tracked through the frames (needs at least 2)
+  Sway,      ///< a simulated sway of the reference frame's pose
+  None,      ///< the static pose alone
+};
+
+/** What captureBlades() does with a run of depth frames. */
+struct CaptureSettings {
+  ExtractOptions extract;
+  /** Levels, μ and the variance measure (simulateSway is set from motion). */
+  ModelOptions model;
+  CaptureMotion motion = CaptureMotion::Auto;
+  /** Models are named "<name>-<index>". */
+  std::string name = "capture";
+  /** > 0: every model is scaled so that the longest blade is this long, metres (relative depth has no scale).
+   */
+  double scaleToMetres = 0.0;
+  /** The models file's generator line. */
+  std::string generator;
+};
+
+/** What a capture run found and made. */
+struct CaptureRun {
+  std::vector<ExtractResult> results;         ///< per frame of the run, the first being the reference
+  std::vector<TrackedBlade> tracks;           ///< the reference frame's blades through the run
+  DepthFrame reference;                       ///< the first frame (its blades are the models)
+  blades::BladeModelFile file;                ///< one model per tracked blade
+  std::vector<std::string> warnings;          ///< every frame's extraction warnings, in order
+  CaptureMotion motion = CaptureMotion::Auto; ///< the motion used (never Auto)
+  float scale = 1.0f;                         ///< the factor scaleToMetres applied (1: none)
+};
+
+/**
+ * Captures the blades of `frameCount` depth frames (`frame(i)` loads frame i of the run, 0-based, lazily:
+ * recordings can be long): extraction per frame (a progress line `label` when there are several; Ctrl-C
+ * cancels), tracking through the frames, one blade model per blade of the first frame with `source` as each
+ * model's file label. Throws sylva::Error naming the frame when the first frame has no blade, when
+ * CaptureMotion::Recording has fewer than 2 frames, and "capture: cancelled" when cancelled.
+ */
+CaptureRun captureBlades(int frameCount, const std::function<DepthFrame(int)>& frame,
+                         const CaptureSettings& settings, const std::string& source,
+                         const std::string& label);
+
+/**
+ * The stages of extracting `frame` as PNGs in `dir` (each written atomically): 1-depth (the depth in grey),
+ * 2-mask, 3-contour (clusters, centres and junctions), 4-signal (the first cluster's contour distance with
+ * its junctions), 5-blades (the blades over the depth).
+ */
+void writeCaptureStages(const std::filesystem::path& dir, const DepthFrame& frame,
+                        const ExtractResult& result);
 
 } // namespace sylva::capture
