@@ -1,7 +1,7 @@
 #pragma once
 // The command line of the grass simulation (docs/grass-simulation.md; the simulation itself is
-// scene::GrassSimulation): `sylva render --grass --physics balls`, `sylva view`, and where the demo drops its
-// balls and looks at them.
+// scene::GrassSimulation, where balls drop scene::ballDropPoint): `sylva render --grass --physics balls` and
+// `sylva view`.
 
 #include <sylva/grass/GrassField.hpp>
 #include <sylva/scene/gpu/GrassSimulation.hpp>
@@ -33,18 +33,5 @@ struct SimulationFlags {
   /** The engine's description (checked: throws for bad settings). */
   scene::GrassSimSettings settings() const { return {poolSettings(), solverSettings(), solver == "gpu"}; }
 };
-
-/**
- * Where the demo drops its balls: the steepest grassy slope (at most 25°) within `radius` metres of `camera`,
- * so they roll down through the grass.
- */
-glm::vec2 ballDropPoint(const terrain::HeightField& terrain, const grass::GrassField& field,
-                        const render::Camera& camera, float radius = 40.0f);
-
-/**
- * A camera that watches balls dropped at `drop` roll down towards it: downhill of the drop point and a little
- * to the side, 1.8 m above the ground, looking back up the slope.
- */
-render::Camera ballCamera(const terrain::TerrainScene& scene, glm::vec2 drop, float fovY);
 
 } // namespace sylva::app

@@ -1,6 +1,7 @@
 #include "flags/WorldFlags.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/scene/BallDrop.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
@@ -108,14 +109,14 @@ render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
   }
   if (simulation.enabled()) {
     scene::BodyDrop drop;
-    drop.centre = ballDropPoint(ground.field(), world.grass(0).field(), view);
+    drop.centre = scene::ballDropPoint(ground.field(), world.grass(0).field(), view);
     drop.radius = 1.5f;
     drop.count = simulation.balls;
     drop.seed = simulation.seed;
     drop.height = 0.5f;
     world.addDrop(drop);
     if (!placed) {
-      view = ballCamera(ground, drop.centre, fov);
+      view = scene::ballCamera(ground.field(), ground.bounds(), drop.centre, fov);
     }
   }
   return view;

@@ -1,6 +1,7 @@
 #include "view/ViewerPanels.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/scene/BallDrop.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/scene/SceneForest.hpp>
 #include <sylva/scene/SceneGrass.hpp>
@@ -328,7 +329,7 @@ bool GrassPanel::dropBalls(scene::SceneWorld& world, const render::Camera& camer
     return false;
   }
   const auto layer = static_cast<std::size_t>(world.simulatedLayer());
-  const glm::vec2 drop = ballDropPoint(world.terrain().field(), world.grass(layer).field(), camera);
+  const glm::vec2 drop = scene::ballDropPoint(world.terrain().field(), world.grass(layer).field(), camera);
   world.simulation()->spawnBalls(drop, 1.5f, count, dropSeed + static_cast<std::uint64_t>(++drops), 0.5f);
   return true;
 }
