@@ -191,45 +191,4 @@ std::string GrassFlags::option(std::string_view field) {
   return fmt::format("--grass-{}", field);
 }
 
-render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,
-                           float windDirectionDegrees) {
-  const terrain::HeightField& t = scene.field();
-  // The densest grass on a coarse grid over the middle half of the terrain (ties: nearest the centre).
-  glm::vec2 best(0.5f * t.extentX(), 0.5f * t.extentZ());
-  float bestScore = -1.0f;
-  for (int j = 0; j <= 24; ++j) {
-    for (int i = 0; i <= 24; ++i) {
-      const glm::vec2 p(t.extentX() * (0.25f + 0.5f * i / 24.0f), t.extentZ() * (0.25f + 0.5f * j / 24.0f));
-      float d = 0.0f;
-      for (int k = 0; k < 9; ++k) {
-        d += field.density().at(p.x + 6.0f * static_cast<float>(k % 3 - 1),
-                                p.y + 6.0f * static_cast<float>(k / 3 - 1));
-      }
-      const glm::vec3 n = terrain::normalAt(t, p.x, p.y);
-      const float score =
-          d -
-          0.01f * glm::length(p - 0.5f * glm::vec2(t.extentX(), t.extentZ())) / std::max(t.extentX(), 1.0f) -
-          2.0f * (1.0f - n.y);
-      if (score > bestScore) {
-        bestScore = score;
-        best = p;
-      }
-    }
-  }
-  const float a = glm::radians(windDirectionDegrees + 35.0f);
-  const glm::vec2 dir(std::cos(a), std::sin(a));
-  const glm::vec2 ahead = best + dir * 25.0f;
-  render::Camera camera;
-  camera.position = glm::vec3(best.x, terrain::heightAt(t, best.x, best.y) + 1.7f, best.y);
-  camera.target = glm::vec3(ahead.x, terrain::heightAt(t, ahead.x, ahead.y) - 1.0f, ahead.y);
-  if (std::isnan(camera.position.y) || std::isnan(camera.target.y)) {
-    camera.position.y = scene.maxHeight() + 1.7f;
-    camera.target.y = scene.maxHeight();
-  }
-  camera.fovY = fovY;
-  render::fitClipPlanes(camera, scene.bounds());
-  camera.nearPlane = 0.05f;
-  return camera;
-}
-
 } // namespace sylva::app

@@ -51,13 +51,6 @@ struct GrassFlags {
   static std::string option(std::string_view field);
 };
 
-/**
- * A camera at eye height (1.7 m) over the densest grass near the terrain's centre, looking along the wind
- * across the field, slightly down: the default view of a grass render.
- */
-render::Camera grassCamera(const terrain::TerrainScene& scene, const grass::GrassField& field, float fovY,
-                           float windDirectionDegrees);
-
 /** "shaded" | "lod" | "tiles" → GrassView; throws naming the option otherwise. */
 grass::GrassView parseGrassView(const std::string& name);
 

@@ -180,44 +180,4 @@ scene::ForestDesc TreeFlags::forestDesc() const {
   return f;
 }
 
-render::Camera forestCamera(const terrain::TerrainScene& scene, const trees::Forest& forest, float fovY) {
-  render::Camera camera = scene.defaultCamera();
-  camera.fovY = fovY;
-  if (forest.trees.empty()) {
-    return camera;
-  }
-  // The tree nearest the footprint's centre.
-  const glm::vec2 centre(scene.field().extentX() * 0.5f, scene.field().extentZ() * 0.5f);
-  std::size_t best = 0;
-  float bestDistance = 1e30f;
-  for (std::size_t i = 0; i < forest.trees.size(); ++i) {
-    const glm::vec4& at = forest.trees[i].base[3];
-    const float d = glm::length(glm::vec2(at.x, at.z) - centre);
-    if (d < bestDistance) {
-      bestDistance = d;
-      best = i;
-    }
-  }
-  // Its height from the joints at rest (the crown's pieces reach a little past the last joints).
-  std::vector<gpu::JointFrame> frames;
-  trees::forestFrames(forest, {}, frames);
-  const glm::vec3 foot(forest.trees[best].base[3]);
-  float top = foot.y;
-  const std::size_t first = forest.jointOffset[best];
-  for (std::size_t j = first; j < first + forest.trees[best].topology.jointCount(); ++j) {
-    top = std::max(top, frames[j].y.w);
-  }
-  const float height = std::max(top - foot.y, 1.0f) * 1.1f;
-  // Seen from a little above eye height, far enough that the whole tree and a few neighbours show.
-  const float distance = std::clamp(2.5f * height, 8.0f, 60.0f);
-  const glm::vec3 eye = foot + distance * glm::vec3(0.8f, 0.0f, 0.6f);
-  const float ground = terrain::heightAt(scene.field(), std::clamp(eye.x, 0.0f, scene.field().extentX()),
-                                         std::clamp(eye.z, 0.0f, scene.field().extentZ())) *
-                       scene.exaggeration();
-  camera.position = glm::vec3(eye.x, (std::isnan(ground) ? foot.y : ground) + 2.5f, eye.z);
-  camera.target = foot + glm::vec3(0.0f, 0.45f * height, 0.0f);
-  camera.nearPlane = 0.1f;
-  return camera;
-}
-
 } // namespace sylva::app

@@ -67,10 +67,4 @@ struct TreeFlags {
 /** "shaded" | "pieces" | "bones" | "lod" | "tiles" → TreeView; throws naming the option otherwise. */
 trees::TreeView parseTreeView(const std::string& name);
 
-/**
- * A camera 2.5 m above the ground, 2.5 tree heights (8 … 60 m) from the tree nearest the terrain's centre,
- * looking at that tree's middle: the default view of `sylva render --trees` and `sylva view --trees`.
- */
-render::Camera forestCamera(const terrain::TerrainScene& scene, const trees::Forest& forest, float fovY);
-
 } // namespace sylva::app

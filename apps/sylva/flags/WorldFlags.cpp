@@ -1,7 +1,7 @@
 #include "flags/WorldFlags.hpp"
 
 #include <sylva/core/Error.hpp>
-#include <sylva/scene/BallDrop.hpp>
+#include <sylva/scene/Viewpoints.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
@@ -90,7 +90,8 @@ render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
               field.layout().tileSize, field.estimateBlades(),
               static_cast<double>(grass::patchBytes(field.patch().size(), field.types().size())) / 1e6);
     if (!placed) {
-      view = grassCamera(ground, field, fov, grass.windDirection);
+      view = scene::grassCamera(ground.field(), ground.bounds(), ground.maxHeight(), field, fov,
+                                grass.windDirection);
       const float e = ground.exaggeration();
       log::info("grass: camera at {:.1f},{:.1f},{:.1f} looking at {:.1f},{:.1f},{:.1f} (--camera-pos, "
                 "--look-at)",
@@ -104,7 +105,8 @@ render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
               forest.renderer().instances().instances.size(), forest.forest().jointCount,
               trees.wind ? "in the wind (--no-trees-wind: rest pose)" : "rest pose");
     if (!placed && !grass.enabled) {
-      view = forestCamera(ground, forest.forest(), fov);
+      view = scene::forestCamera(ground.field(), ground.exaggeration(), ground.defaultCamera(),
+                                 forest.forest(), fov);
     }
   }
   if (simulation.enabled()) {

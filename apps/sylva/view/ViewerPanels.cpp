@@ -1,7 +1,7 @@
 #include "view/ViewerPanels.hpp"
 
 #include <sylva/core/Error.hpp>
-#include <sylva/scene/BallDrop.hpp>
+#include <sylva/scene/Viewpoints.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/scene/SceneForest.hpp>
 #include <sylva/scene/SceneGrass.hpp>
