@@ -8,10 +8,6 @@ const ToolInfo& info(ToolKind kind) {
   return kTools[static_cast<std::size_t>(kind)];
 }
 
-ImTextureID textureId(const gl::Texture& t) {
-  return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t.id()));
-}
-
 void arrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 colour, float thickness) {
   dl->AddLine(a, b, colour, thickness);
   const float dx = b.x - a.x;

@@ -56,6 +56,7 @@
 namespace sylva::app::fold {
 
 namespace fs = std::filesystem;
+using ui::textureId;
 
 using namespace sylva::folding;
 using namespace sylva::media;
@@ -178,7 +179,6 @@ struct FlowPanel {
 };
 
 const ToolInfo& info(ToolKind kind);
-ImTextureID textureId(const gl::Texture& t);
 void arrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 colour, float thickness = 1.5f);
 /** An RGBA8 texture for ImGui::Image, nearest filtering when zoomed in. */
 gl::Texture imageTexture(const Image& image);

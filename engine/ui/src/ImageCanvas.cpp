@@ -103,7 +103,11 @@ void CanvasImage::showAt(double zoom) {
 }
 
 ImTextureID CanvasImage::texture() const {
-  return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(mTexture.id()));
+  return textureId(mTexture);
+}
+
+ImTextureID textureId(const gl::Texture& texture) {
+  return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture.id()));
 }
 
 } // namespace sylva::ui

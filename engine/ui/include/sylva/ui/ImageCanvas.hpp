@@ -63,6 +63,9 @@ private:
   bool mFitPending = true;
 };
 
+/** The ImGui handle of a GL texture (what ImGui::Image and ImDrawList::AddImage take). */
+ImTextureID textureId(const gl::Texture& texture);
+
 /**
  * An offscreen RGBA8 image that GL draws into and an ImageCanvas (or ImGui::Image) shows: the fold viewer's
  * frame, the fold editor's preview. Shown at a zoom of 4 or more, its texels stay sharp squares (nearest
