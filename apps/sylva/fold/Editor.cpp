@@ -23,12 +23,6 @@ void arrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 colour, float thickness) {
                         ImVec2(b.x - h * ux - 0.5f * h * uy, b.y - h * uy + 0.5f * h * ux), colour);
 }
 
-gl::Texture imageTexture(const Image& image) {
-  gl::Texture t = gl::Texture::fromImage(image.channels() == 4 ? image : image.converted(PixelType::U8));
-  t.setSampler({GL_LINEAR, GL_NEAREST, GL_CLAMP_TO_EDGE});
-  return t;
-}
-
 Image jumpHsvPicture(const Textures& tex, Rect rect) {
   Image out(rect.width(), rect.height(), 4, PixelType::U8);
   const std::span<const float> j = tex.jump.at(0).values<float>();

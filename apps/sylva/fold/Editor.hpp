@@ -56,6 +56,7 @@
 namespace sylva::app::fold {
 
 namespace fs = std::filesystem;
+using ui::imageTexture;
 using ui::textureId;
 
 using namespace sylva::folding;
@@ -180,8 +181,6 @@ struct FlowPanel {
 
 const ToolInfo& info(ToolKind kind);
 void arrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 colour, float thickness = 1.5f);
-/** An RGBA8 texture for ImGui::Image, nearest filtering when zoomed in. */
-gl::Texture imageTexture(const Image& image);
 /** HSV colouring of layer 0's jump field over `rect` (atlas texels): hue = direction, value = length. */
 Image jumpHsvPicture(const Textures& tex, Rect rect);
 /** A painted freeze mask as a translucent blue overlay (RGBA8). */

@@ -106,6 +106,12 @@ ImTextureID CanvasImage::texture() const {
   return textureId(mTexture);
 }
 
+gl::Texture imageTexture(const Image& image) {
+  gl::Texture t = gl::Texture::fromImage(image.channels() == 4 ? image : image.converted(PixelType::U8));
+  t.setSampler({GL_LINEAR, GL_NEAREST, GL_CLAMP_TO_EDGE});
+  return t;
+}
+
 ImTextureID textureId(const gl::Texture& texture) {
   return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture.id()));
 }

@@ -2,6 +2,7 @@
 // The ui module's image canvas (docs/engine.md): an image in an ImGui window, zoomed and panned through a
 // render::CanvasView, shared by the fold viewer and the fold editor.
 
+#include <sylva/core/Image.hpp>
 #include <sylva/gl/Framebuffer.hpp>
 #include <sylva/gl/Texture.hpp>
 #include <sylva/render/CanvasView.hpp>
@@ -65,6 +66,10 @@ private:
 
 /** The ImGui handle of a GL texture (what ImGui::Image and ImDrawList::AddImage take). */
 ImTextureID textureId(const gl::Texture& texture);
+
+/** `image` as a texture for an ImageCanvas or ImGui::Image: RGBA8 when it is not 4-channel, texels kept sharp
+ * when magnified. */
+gl::Texture imageTexture(const Image& image);
 
 /**
  * An offscreen RGBA8 image that GL draws into and an ImageCanvas (or ImGui::Image) shows: the fold viewer's
