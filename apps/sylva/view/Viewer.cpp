@@ -9,6 +9,7 @@
 #include <sylva/render/gpu/DemoScene.hpp>
 #include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
+#include <sylva/scene/CameraPath.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 #include <sylva/ui/CameraRig.hpp>
@@ -47,27 +48,6 @@ struct ViewerContent {
   /** The options the world was described by (the sections' defaults for what they add); null: a file. */
   const WorldFlags* flags = nullptr;
 };
-
-/** Seconds of the end of the scene's timeline: its output range or its longest camera path. */
-double timelineEnd(const scene::SceneDesc& desc) {
-  double end = static_cast<double>(desc.output.lastFrame + 1) / desc.output.fps;
-  for (const auto& [name, camera] : desc.cameras) {
-    if (!camera.keys.empty()) {
-      end = std::max(end, camera.keys.back().time);
-    }
-  }
-  return end;
-}
-
-/** The box the free cameras' clip planes must hold: the terrain and every forest's crowns. */
-Aabb sceneBox(scene::SceneWorld& world) {
-  Aabb box = world.terrain().bounds();
-  for (std::size_t i = 0; i < world.forestCount(); ++i) {
-    box.min = glm::min(box.min, world.forest(i).bounds().min);
-    box.max = glm::max(box.max, world.forest(i).bounds().max);
-  }
-  return box;
-}
 
 /** The scene panel's world lines: pass toggles, trees and bodies, GPU memory. */
 void passToggles(scene::SceneWorld& world) {
@@ -123,7 +103,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     for (const auto& [name, path] : world->desc().cameras) {
       cameraNames.push_back(name);
     }
-    end = std::max(end, timelineEnd(world->desc()));
+    end = std::max(end, scene::timelineEnd(world->desc()));
     const WorldFlags& flags = content.flags != nullptr ? *content.flags : defaults;
     terrainPanel.emplace(*world);
     grassPanel.emplace(*world, flags);
@@ -213,7 +193,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     camera = rig.update(shell.window().input(), ui::flyKeys(shell.window(), !rig.walking()),
                         !ImGui::GetIO().WantCaptureMouse, static_cast<float>(dt), aspect);
     if (!rig.named() && world != nullptr) {
-      render::fitClipPlanes(camera, sceneBox(*world)); // wherever the orbit or fly camera went
+      render::fitClipPlanes(camera, world->bounds()); // wherever the orbit or fly camera went
       if (grassPanel->active(*world)) {
         camera.nearPlane = std::min(camera.nearPlane, 0.05f); // blades right below the eye
       }

@@ -261,6 +261,15 @@ void SceneWorld::setForest(std::size_t i, ForestDesc forest) {
   registerPasses();
 }
 
+Aabb SceneWorld::bounds() {
+  Aabb box = terrain().bounds();
+  for (std::size_t i = 0; i < forestCount(); ++i) {
+    box.min = glm::min(box.min, forest(i).bounds().min);
+    box.max = glm::max(box.max, forest(i).bounds().max);
+  }
+  return box;
+}
+
 float SceneWorld::groundHeight(float x, float z) const {
   return terrain::heightAt(mTerrain->field(), x,
                            z); // the scene's field holds the drawn (exaggerated) heights

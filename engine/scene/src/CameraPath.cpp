@@ -145,4 +145,14 @@ CameraSample evaluate(const std::vector<WorldCameraKey>& keys, double time, bool
   return s;
 }
 
+double timelineEnd(const SceneDesc& desc) {
+  double end = static_cast<double>(desc.output.lastFrame + 1) / desc.output.fps;
+  for (const auto& [name, camera] : desc.cameras) {
+    if (!camera.keys.empty()) {
+      end = std::max(end, camera.keys.back().time);
+    }
+  }
+  return end;
+}
+
 } // namespace sylva::scene

@@ -157,5 +157,21 @@ TEST(CameraPath, ResolvesAboveGroundPoints) {
   EXPECT_THROW((void)resolveKeys(camera, GroundHeight{}), Error);
 }
 
+TEST(CameraPath, TheTimelineEndsWithTheOutputOrTheLongestPath) {
+  SceneDesc desc;
+  desc.output.fps = 24.0;
+  desc.output.lastFrame = 47; // 48 frames: 2 s
+  CameraKey key;
+  desc.cameras["main"].keys = {key};
+  EXPECT_DOUBLE_EQ(timelineEnd(desc), 2.0);
+  key.time = 0.5;
+  CameraKey last = key;
+  last.time = 7.5;
+  desc.cameras["fly"].keys = {key, last};
+  EXPECT_DOUBLE_EQ(timelineEnd(desc), 7.5);
+  desc.output.lastFrame = 239; // 10 s
+  EXPECT_DOUBLE_EQ(timelineEnd(desc), 10.0);
+}
+
 } // namespace
 } // namespace sylva::scene

@@ -54,4 +54,10 @@ CameraSample evaluate(const std::vector<WorldCameraKey>& keys, double time, bool
 glm::vec3 centripetalCatmullRom(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
                                 const glm::vec3& p3, float u);
 
+/**
+ * Seconds at which the scene's timeline ends: the end of its output frame range ((lastFrame + 1) / fps) or
+ * the last key of its longest camera path, whichever is later (the viewer's time slider runs to it).
+ */
+double timelineEnd(const SceneDesc& desc);
+
 } // namespace sylva::scene

@@ -107,6 +107,8 @@ public:
   terrain::TerrainScene& terrain() { return *mTerrain; }
   /** Drawn terrain height at world (x, z) (exaggerated metres); NaN outside or over nodata. */
   float groundHeight(float x, float z) const;
+  /** The box free cameras' clip planes must hold: the terrain and every forest's crowns, world metres. */
+  Aabb bounds();
 
   /** Adds a ball at `position` with `velocity` (needs a simulated grass layer: the physics world lives
    * there). */
