@@ -385,13 +385,13 @@ TEST(CliFold, BadProjectsFailWithOneLineNamingFileAndField) {
       {"missing image",
        [](nlohmann::json& j) { j["atlas"]["images"][0]["file"] = "missing.png"; },
        nullptr,
-       {"atlas.images[0].file", "missing.png"}},
+       {"/atlas/images/0/file", "missing.png"}},
       {"zone outside the image",
        [](nlohmann::json& j) {
          j["zones"][0]["shape"]["pts"][2] = {400, 46};
        },
        nullptr,
-       {"zones[0]"}},
+       {"/zones/0"}},
       // The JSON reader itself refuses the overflow (before any field is known), naming the number.
       {"infinite number", nullptr, nullptr, {"1e999"}},
       {"unknown field", [](nlohmann::json& j) { j["zones"][0]["colour"] = "red"; }, nullptr, {"colour"}},
@@ -399,7 +399,7 @@ TEST(CliFold, BadProjectsFailWithOneLineNamingFileAndField) {
       {"unknown profile",
        [](nlohmann::json& j) { j["zones"][0]["profile"] = "wink"; },
        nullptr,
-       {"zones[0].profile", "wink"}},
+       {"/zones/0/profile", "wink"}},
   };
   for (const BadCase& c : cases) {
     SCOPED_TRACE(c.name);

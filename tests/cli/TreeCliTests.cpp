@@ -182,7 +182,7 @@ TEST(TreeCli, BadInputsFailWithOneLineAndWriteNothing) {
   const std::string piece = " -o " + test::at(dir, "out/p.gltf");
   const std::vector<Case> cases = {
       {"tree generate --species " + test::at(dir, "bad-species.json") + out,
-       {"bad-species.json", "orders[0]", "fork + trifurcation + sideBranch must be"}},
+       {"bad-species.json", "/orders/0", "fork + trifurcation + sideBranch must be"}},
       {"tree generate --species " + test::at(dir, "deep-species.json") + out,
        {"deep-species.json", "maxDepth"}},
       {"tree generate --species " + test::at(dir, "nan-species.json") + out,
@@ -193,11 +193,11 @@ TEST(TreeCli, BadInputsFailWithOneLineAndWriteNothing) {
       {"tree generate --species almond --seed -1" + out, {"--seed", "-1"}},
       {"tree generate --species almond -o " + test::at(dir, "out/t.txt"), {"out/t.txt", ".json"}},
       {"tree info " + test::at(dir, "unknown-piece.json"),
-       {"unknown-piece.json", "nodes[1].piece", "unknown piece 'Q'"}},
+       {"unknown-piece.json", "/nodes/1/piece", "unknown piece 'Q'"}},
       {"tree info " + test::at(dir, "nan-tree.json"), {"nan-tree.json", "invalid JSON"}},
-      {"tree info " + test::at(dir, "deep.json"), {"deep.json", "nodes[65]", "recursion limit 64"}},
+      {"tree info " + test::at(dir, "deep.json"), {"deep.json", "/nodes/65", "recursion limit 64"}},
       {"tree info " + test::at(dir, "good.json") + " --species " + test::at(dir, "bad-species.json"),
-       {"bad-species.json", "orders[0]"}},
+       {"bad-species.json", "/orders/0"}},
       {"tree import-piece " + test::at(dir, "tri.obj") + piece,
        {"tri.obj", "not a quad mesh (face 1 has 3 corners)"}},
       {"tree import-piece " + test::at(dir, "lifted.obj") + piece, {"lifted.obj", "missing root rim"}},

@@ -31,8 +31,9 @@
 //     ]
 //   }
 // Unknown fields are errors at every level. Numbers are written with enough digits to round-trip floats.
-// Errors read "<file>: <json path>: <reason>", e.g. `grass.json: blades[2].lods[0].widths[5]: expected a
-// finite number ≥ 0`; the envelope's are `<file>: field 'version' must be 1` (sylva::requireJsonVersion).
+// Errors read "<file>: <JSON pointer>: <reason>" (sylva::JsonNode), e.g. `grass.json:
+// /blades/2/lods/0/widths/5: -0.5 is less than 0`; the envelope's are `<file>: /version: must be 1`
+// (sylva::requireJsonVersion).
 #include <sylva/blades/BladeModel.hpp>
 
 #include <sylva/core/Error.hpp>

@@ -1,4 +1,5 @@
 #include <sylva/core/Files.hpp>
+#include <sylva/core/JsonNode.hpp>
 
 #include <sylva/core/Error.hpp>
 
@@ -179,40 +180,17 @@ std::string readTextFile(const std::filesystem::path& path) {
 }
 
 nlohmann::json loadJsonFile(const std::filesystem::path& path) {
-  const std::string text = readTextFile(path);
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.byte is 1-based; report line and column, which people can jump to.
-    std::size_t line = 1;
-    std::size_t column = 1;
-    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    fail("{}:{}:{}: invalid JSON", path.string(), line, column);
-  } catch (const nlohmann::json::exception& e) {
-    // Not a syntax error but a value the parser cannot hold (a number overflowing a double, found by
-    // fuzzing): keep nlohmann's reason, without its "[json.exception.out_of_range.406] " tag.
-    std::string reason = e.what();
-    const auto tag = reason.find("] ");
-    fail("{}: invalid JSON: {}", path.string(), tag == std::string::npos ? reason : reason.substr(tag + 2));
-  }
+  return parseJsonStrict(readTextFile(path), path.string());
 }
 
 void requireJsonVersion(const nlohmann::json& json, int expected, const std::string& where) {
+  const JsonNode root(json, where);
   if (!json.is_object()) {
-    fail("{}: expected a JSON object", where);
+    root.error(fmt::format("expected an object, got {}", json.type_name()));
   }
-  if (!json.contains("version")) {
-    fail("{}: missing field 'version'", where);
-  }
+  const JsonNode version = root["version"];
   if (!json["version"].is_number_integer() || json["version"].get<long long>() != expected) {
-    fail("{}: field 'version' must be {}", where, expected);
+    version.error(fmt::format("must be {}", expected));
   }
 }
 

@@ -2,6 +2,7 @@
 #include <sylva/folding/Edit.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/JsonNode.hpp>
 #include <sylva/core/Files.hpp>
 
 #include <nlohmann/json.hpp>
@@ -267,17 +268,12 @@ namespace {
 Project parseInContext(const Project& project, const nlohmann::json& part, const char* field,
                        const char* format, const std::string& where) {
   requireJsonVersion(part, 1, where);
-  if (!part.contains("format") || part["format"] != format) {
-    fail("{}: format: expected \"{}\"", where, format);
+  const JsonNode root(part, where);
+  root.object({"format", "version", field});
+  if (root["format"].value() != format) {
+    root["format"].error(fmt::format("expected \"{}\"", format));
   }
-  for (const auto& [key, _] : part.items()) {
-    if (key != "format" && key != "version" && key != field) {
-      fail("{}: {}: unknown field", where, key);
-    }
-  }
-  if (!part.contains(field)) {
-    fail("{}: {}: missing field", where, field);
-  }
+  (void)root[field]; // missing field
   nlohmann::json combined = toJson(project);
   combined[field] = part[field];
   if (std::string(field) == "profiles") {

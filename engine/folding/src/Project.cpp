@@ -686,8 +686,8 @@ void validateAgainstImages(const Project& project, const std::vector<glm::ivec2>
       const Vec2 v = outline[i];
       if (v.x < 0.0 || v.y < 0.0 || v.x > size.x || v.y > size.y) {
         const std::string field = zone.shape.type == Shape::Type::Rect
-                                      ? fmt::format("zones[{}].shape", z)
-                                      : fmt::format("zones[{}].shape.pts[{}]", z, i);
+                                      ? fmt::format("/zones/{}/shape", z)
+                                      : fmt::format("/zones/{}/shape/pts/{}", z, i);
         fail("{}: {}: ({}, {}) lies outside image '{}' ({}×{} pixels)", where, field, v.x, v.y, zone.image,
              size.x, size.y);
       }

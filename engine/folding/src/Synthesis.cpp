@@ -137,7 +137,7 @@ ProjectImages loadProjectImages(const Project& project, const std::string& where
     try {
       image = loadImage(project.resolve(project.images[i].file));
     } catch (const Error& e) {
-      fail("{}: atlas.images[{}].file: {}", where, i, e.what());
+      fail("{}: /atlas/images/{}/file: {}", where, i, e.what());
     }
     out.images.push_back(toRgba8(image));
     sizes.emplace_back(image.width(), image.height());
@@ -148,10 +148,10 @@ ProjectImages loadProjectImages(const Project& project, const std::string& where
     const glm::ivec2 size = sizes[static_cast<std::size_t>(project.imageIndex(zone.image))];
     out.freezeMasks.push_back(zone.freezeMask.empty() ? std::vector<float>{}
                                                       : loadMask(project, zone.freezeMask, size, where,
-                                                                 fmt::format("zones[{}].freeze_mask", z)));
+                                                                 fmt::format("/zones/{}/freeze_mask", z)));
     out.foldMasks.push_back(
         zone.folding.type == Folding::Type::Mask
-            ? loadMask(project, zone.folding.mask, size, where, fmt::format("zones[{}].folding.file", z))
+            ? loadMask(project, zone.folding.mask, size, where, fmt::format("/zones/{}/folding/file", z))
             : std::vector<float>{});
   }
   return out;
@@ -194,7 +194,7 @@ Atlas packAtlas(const Project& project, const ProjectImages& images) {
       const auto obj = static_cast<std::size_t>(project.imageIndex(fly->object));
       const glm::ivec2 at = roundVec(fly->from);
       if (host[obj] >= 0 && (host[obj] != static_cast<int>(img) || offset[obj] != at)) {
-        fail("zones[{}].tools: image '{}' already flies from another place; one placement per object", z,
+        fail("/zones/{}/tools: image '{}' already flies from another place; one placement per object", z,
              fly->object);
       }
       host[obj] = static_cast<int>(img);

@@ -2,6 +2,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/JsonNode.hpp>
 #include <sylva/terrain/Quadtree.hpp>
 
 #include <nlohmann/json.hpp>
@@ -27,180 +28,29 @@ struct Context {
   fs::path dir;     ///< absolute directory of the file
 };
 
-/** JSON Pointer escaping of one reference token (RFC 6901): '~' → "~0", '/' → "~1". */
-std::string escapeToken(std::string_view token) {
-  std::string out;
-  for (char c : token) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-/** `text` with control characters written as \uXXXX, so an error message stays on one line. */
-std::string oneLine(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      out += fmt::format("\\u{:04x}", static_cast<unsigned>(static_cast<unsigned char>(c)));
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-/** Formats a number for messages: integers without a fraction, others shortest round-trip. */
-std::string show(double v) {
-  if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15) {
-    return fmt::format("{}", static_cast<long long>(v));
-  }
-  return fmt::format("{}", v);
-}
-
-/** One JSON value with its JSON Pointer path; every check throws "<file>: <path>: <what>". */
-class Node {
+/**
+ * One value of a scene file: core's JsonNode (JSON Pointer paths, `<file>: <pointer>: <what>` errors, key
+ * suggestions) with the scene's own readers: names, seeds, vectors, points, and files relative to the scene.
+ */
+class Node : public JsonNode {
 public:
   Node(const json& value, const Context& ctx, std::string path)
-      : mValue(value), mCtx(ctx), mPath(std::move(path)) {}
+      : JsonNode(value, ctx.file, std::move(path)), mCtx(ctx) {}
+  Node(const JsonNode& node, const Context& ctx) : JsonNode(node), mCtx(ctx) {}
 
-  const json& value() const { return mValue; }
   const Context& context() const { return mCtx; }
-  const std::string& path() const { return mPath; }
 
-  [[noreturn]] void error(const std::string& what) const {
-    fail("{}", oneLine(fmt::format("{}: {}: {}", mCtx.file, mPath.empty() ? "/" : mPath, what)));
-  }
-
-  /** Requires an object whose keys are all in `allowed`; unknown keys name the closest known one. */
   const Node& object(std::initializer_list<const char*> allowed) const {
-    if (!mValue.is_object()) {
-      error(fmt::format("expected an object, got {}", mValue.type_name()));
-    }
-    const std::vector<std::string> known(allowed.begin(), allowed.end());
-    for (const auto& [key, v] : mValue.items()) {
-      if (std::find(known.begin(), known.end(), key) == known.end()) {
-        const std::string suggestion = closestKey(key, known);
-        const Node at = child(key);
-        at.error(suggestion.empty() ? std::string("unknown field")
-                                    : fmt::format("unknown field (did you mean '{}'?)", suggestion));
-      }
-    }
+    JsonNode::object(allowed);
     return *this;
   }
+  Node child(std::string_view key) const { return Node(JsonNode::child(key), mCtx); }
+  Node operator[](const char* key) const { return Node(JsonNode::operator[](key), mCtx); }
+  Node item(std::size_t index) const { return Node(JsonNode::operator[](index), mCtx); }
 
-  bool has(const char* key) const { return mValue.is_object() && mValue.contains(key); }
-
-  Node child(std::string_view key) const {
-    return Node(mValue.at(std::string(key)), mCtx, mPath + "/" + escapeToken(key));
-  }
-  Node operator[](const char* key) const {
-    if (!has(key)) {
-      Node(mValue, mCtx, mPath + "/" + escapeToken(key)).error("missing field");
-    }
-    return child(key);
-  }
-  Node item(std::size_t index) const {
-    return Node(mValue.at(index), mCtx, mPath + "/" + std::to_string(index));
-  }
-
-  std::size_t array(std::size_t minCount, std::size_t maxCount) const {
-    if (!mValue.is_array()) {
-      error(fmt::format("expected an array, got {}", mValue.type_name()));
-    }
-    const std::size_t n = mValue.size();
-    if (n < minCount) {
-      error(fmt::format("expected at least {} entries, got {}", minCount, n));
-    }
-    if (n > maxCount) {
-      error(fmt::format("{} entries is more than {}", n, maxCount));
-    }
-    return n;
-  }
-
-  double number() const {
-    if (!mValue.is_number()) {
-      error(fmt::format("expected a number, got {}", mValue.type_name()));
-    }
-    const double v = mValue.get<double>();
-    if (!std::isfinite(v)) {
-      error("expected a finite number");
-    }
-    return v;
-  }
-
-  double number(double lo, double hi) const {
-    const double v = number();
-    if (v < lo) {
-      error(fmt::format("{} is less than {}", show(v), show(lo)));
-    }
-    if (v > hi) {
-      error(fmt::format("{} is more than {}", show(v), show(hi)));
-    }
-    return v;
-  }
-
-  /** A number in (lo, hi]: `lo` itself is refused ("must be more than lo"). */
-  double numberAbove(double lo, double hi) const {
-    const double v = number(lo, hi);
-    if (v <= lo) {
-      error(fmt::format("{} must be more than {}", show(v), show(lo)));
-    }
-    return v;
-  }
-
-  float real(double lo, double hi) const { return static_cast<float>(number(lo, hi)); }
-  float realAbove(double lo, double hi) const { return static_cast<float>(numberAbove(lo, hi)); }
-
-  int integer(long long lo, long long hi) const {
-    const double v = number();
-    if (v != std::floor(v)) {
-      error(fmt::format("expected a whole number, got {}", show(v)));
-    }
-    if (v < static_cast<double>(lo)) {
-      error(fmt::format("{} is less than {}", show(v), lo));
-    }
-    if (v > static_cast<double>(hi)) {
-      error(fmt::format("{} is more than {}", show(v), hi));
-    }
-    return static_cast<int>(v);
-  }
-
-  std::uint64_t seed() const {
-    if (mValue.is_number_unsigned()) {
-      return mValue.get<std::uint64_t>();
-    }
-    if (mValue.is_number_integer()) {
-      error(fmt::format("{} is less than 0", mValue.get<std::int64_t>()));
-    }
-    error(fmt::format("expected a whole number in [0, 2^64), got {}", mValue.type_name()));
-  }
-
-  bool boolean() const {
-    if (!mValue.is_boolean()) {
-      error(fmt::format("expected true or false, got {}", mValue.type_name()));
-    }
-    return mValue.get<bool>();
-  }
-
-  std::string string(bool allowEmpty = false) const {
-    if (!mValue.is_string()) {
-      error(fmt::format("expected a string, got {}", mValue.type_name()));
-    }
-    std::string s = mValue.get<std::string>();
-    if (!allowEmpty && s.empty()) {
-      error("must not be empty");
-    }
-    if (s.size() > 4096) {
-      error(fmt::format("{} characters is more than 4096", s.size()));
-    }
-    return s;
-  }
+  std::uint64_t seed() const { return unsignedInteger(); }
+  /** Scene strings (names, paths) are at most 4096 bytes. */
+  std::string string(bool allowEmpty = false) const { return JsonNode::string(allowEmpty, 4096); }
 
   /** A string made of [a-z0-9_-] only (names of presets, layers). */
   std::string name() const {
@@ -214,28 +64,15 @@ public:
     return s;
   }
 
-  std::string choice(std::initializer_list<const char*> names) const {
-    const std::string s = string();
-    std::string all;
-    for (const char* n : names) {
-      if (s == n) {
-        return s;
-      }
-      all += all.empty() ? "" : ", ";
-      all += n;
-    }
-    error(fmt::format("'{}' is not one of: {}", s, all));
-  }
-
   glm::vec3 vec3(double lo, double hi) const {
-    if (!mValue.is_array() || mValue.size() != 3) {
+    if (!value().is_array() || value().size() != 3) {
       error("expected an array of 3 numbers");
     }
     return {item(0).real(lo, hi), item(1).real(lo, hi), item(2).real(lo, hi)};
   }
 
   glm::vec2 vec2(double lo, double hi) const {
-    if (!mValue.is_array() || mValue.size() != 2) {
+    if (!value().is_array() || value().size() != 2) {
       error("expected an array of 2 numbers");
     }
     return {item(0).real(lo, hi), item(1).real(lo, hi)};
@@ -279,7 +116,7 @@ public:
   /** A point: [x, y, z] (absolute) or {"at": [x, y, z], "above_ground": true|false}. */
   Vec3Ground point() const {
     Vec3Ground g;
-    if (mValue.is_object()) {
+    if (value().is_object()) {
       object({"at", "above_ground"});
       g.p = (*this)["at"].vec3(-kMaxCoord, kMaxCoord);
       if (has("above_ground")) {
@@ -287,9 +124,9 @@ public:
       }
       return g;
     }
-    if (!mValue.is_array()) {
+    if (!value().is_array()) {
       error(fmt::format("expected [x, y, z] or {{\"at\": [x, y, z], \"above_ground\": true}}, got {}",
-                        mValue.type_name()));
+                        value().type_name()));
     }
     g.p = vec3(-kMaxCoord, kMaxCoord);
     return g;
@@ -298,9 +135,7 @@ public:
   static constexpr double kMaxCoord = 1e7; ///< metres; any world coordinate beyond is absurd
 
 private:
-  const json& mValue;
   const Context& mCtx;
-  std::string mPath;
 };
 
 constexpr double kBig = 1e7; ///< generic upper bound for lengths in metres
@@ -432,7 +267,7 @@ ForestDesc readForest(const Node& n) {
     f.maxHeight = n["max_height"].real(-20000.0, 20000.0);
     if (f.minHeight && *f.maxHeight <= *f.minHeight) {
       n["max_height"].error(
-          fmt::format("{} is not above min_height {}", show(*f.maxHeight), show(*f.minHeight)));
+          fmt::format("{} is not above min_height {}", showNumber(*f.maxHeight), showNumber(*f.minHeight)));
     }
   }
   if (n.has("density_map")) {
@@ -573,8 +408,8 @@ CameraDesc readCamera(const Node& n) {
   for (std::size_t i = 0; i < count; ++i) {
     c.keys.push_back(readKey(keys.item(i), count > 1));
     if (i > 0 && !(c.keys[i].time > c.keys[i - 1].time)) {
-      keys.item(i)["time"].error(fmt::format("{} is not after the previous key's {}", show(c.keys[i].time),
-                                             show(c.keys[i - 1].time)));
+      keys.item(i)["time"].error(fmt::format("{} is not after the previous key's {}",
+                                             showNumber(c.keys[i].time), showNumber(c.keys[i - 1].time)));
     }
   }
   if (n.has("loop")) {
@@ -609,144 +444,7 @@ void readOutput(const Node& n, OutputDesc& o) {
   }
 }
 
-/** The text's 1-based line and column of the 1-based byte offset `byte` (nlohmann's parse_error::byte). */
-std::pair<std::size_t, std::size_t> lineColumn(std::string_view text, std::size_t byte) {
-  std::size_t line = 1;
-  std::size_t column = 1;
-  for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return {line, column};
-}
-
-/** nlohmann's message without its "[json.exception…] parse error at line L, column C: " prefix. */
-std::string parseReason(const std::string& what) {
-  std::string reason = what;
-  const auto tag = reason.find("] ");
-  if (tag != std::string::npos) {
-    reason = reason.substr(tag + 2);
-  }
-  const auto colon = reason.find(": ");
-  if (reason.rfind("parse error", 0) == 0 && colon != std::string::npos) {
-    reason = reason.substr(colon + 2);
-  }
-  std::replace(reason.begin(), reason.end(), '\n', ' ');
-  return reason;
-}
-
-/**
- * Parses JSON, refusing duplicate keys in an object (nlohmann keeps the last one silently, hiding a typo
- * made by copy and paste). Errors: "<file>:<line>:<col>: invalid JSON: <reason>", "<file>: <path>: duplicate
- * field".
- */
-json parseStrict(std::string_view text, const Context& ctx) {
-  struct Level {
-    bool isObject = false;
-    std::set<std::string> keys;
-    std::string key;      ///< object: the current key
-    long long index = -1; ///< array: the current index
-  };
-  std::vector<Level> stack;
-  auto pathOf = [&stack](const std::string* lastKey) {
-    std::string p;
-    for (std::size_t i = 0; i < stack.size(); ++i) {
-      const Level& l = stack[i];
-      if (l.isObject) {
-        p.append("/").append(escapeToken(i + 1 == stack.size() && lastKey ? *lastKey : l.key));
-      } else {
-        p.append("/").append(std::to_string(l.index));
-      }
-    }
-    return p;
-  };
-  // Inside an array, every value or container start begins a new element.
-  auto nextElement = [&stack] {
-    if (!stack.empty() && !stack.back().isObject) {
-      ++stack.back().index;
-    }
-  };
-  json::parser_callback_t callback = [&](int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-    case json::parse_event_t::object_start:
-      nextElement();
-      stack.push_back(Level{true, {}, {}, -1});
-      break;
-    case json::parse_event_t::array_start:
-      nextElement();
-      stack.push_back(Level{false, {}, {}, -1});
-      break;
-    case json::parse_event_t::object_end:
-    case json::parse_event_t::array_end:
-      if (!stack.empty()) {
-        stack.pop_back();
-      }
-      break;
-    case json::parse_event_t::key: {
-      const std::string key = parsed.get<std::string>();
-      if (!stack.empty()) {
-        if (!stack.back().keys.insert(key).second) {
-          fail("{}", oneLine(fmt::format("{}: {}: duplicate field", ctx.file, pathOf(&key))));
-        }
-        stack.back().key = key;
-      }
-      break;
-    }
-    case json::parse_event_t::value:
-      nextElement();
-      break;
-    }
-    return true;
-  };
-  try {
-    return json::parse(text.begin(), text.end(), callback);
-  } catch (const json::parse_error& e) {
-    const auto [line, column] = lineColumn(text, e.byte);
-    fail("{}",
-         oneLine(fmt::format("{}:{}:{}: invalid JSON: {}", ctx.file, line, column, parseReason(e.what()))));
-  } catch (const json::exception& e) {
-    fail("{}", oneLine(fmt::format("{}: invalid JSON: {}", ctx.file, parseReason(e.what()))));
-  }
-}
-
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) {
-    row[j] = j;
-  }
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 } // namespace
-
-std::string closestKey(std::string_view key, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t bestDistance = std::numeric_limits<std::size_t>::max();
-  for (const std::string& c : candidates) {
-    const std::size_t d = editDistance(key, c);
-    if (d < bestDistance) {
-      bestDistance = d;
-      best = c;
-    }
-  }
-  // A typo: at most a third of the longer name differs (and at least one edit is allowed for short names).
-  const std::size_t longer = std::max(key.size(), best.size());
-  const std::size_t allowed = std::max<std::size_t>(2, longer / 3);
-  return bestDistance <= allowed ? best : std::string();
-}
 
 glm::vec3 SunDesc::direction() const {
   const float az = glm::radians(azimuth);
@@ -761,7 +459,7 @@ SceneDesc parseScene(std::string_view text, const std::filesystem::path& fileFor
   std::error_code ec;
   fs::path absolute = fs::absolute(fileForErrorsAndPaths, ec);
   ctx.dir = (ec ? fileForErrorsAndPaths : absolute).parent_path();
-  const json doc = parseStrict(text, ctx);
+  const json doc = parseJsonStrict(text, ctx.file);
   const Node root(doc, ctx, "");
 
   SceneDesc scene;

@@ -4,6 +4,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/JsonNode.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
@@ -272,31 +273,15 @@ std::optional<Sidecar> readSidecar(const std::filesystem::path& image) {
   }
   const nlohmann::json json = loadJsonFile(path);
   const std::string name = path.string();
-  if (!json.is_object()) {
-    fail("{}: expected a JSON object", name);
-  }
-  const auto field = [&](const char* key) -> const nlohmann::json& {
-    if (!json.contains(key)) {
-      fail("{}: missing field '{}'", name, key);
-    }
-    return json.at(key);
-  };
-  if (!field("version").is_number_integer() || field("version").get<int>() != kSidecarVersion) {
-    fail("{}: field 'version' must be {}", name, kSidecarVersion);
-  }
+  requireJsonVersion(json, kSidecarVersion, name);
+  const JsonNode root(json, name);
+  const auto field = [&](const char* key) -> const nlohmann::json& { return root[key].value(); };
   if (!field("format").is_string() || field("format").get<std::string>() != kSidecarFormat) {
-    fail("{}: field 'format' must be \"{}\"", name, kSidecarFormat);
+    root["format"].error(fmt::format("must be \"{}\"", kSidecarFormat));
   }
   const auto number = [&](const char* key, bool positive) {
-    const nlohmann::json& value = field(key);
-    if (!value.is_number()) {
-      fail("{}: field '{}' must be a number", name, key);
-    }
-    const auto v = value.get<double>();
-    if (!std::isfinite(v) || (positive && v <= 0.0) || std::abs(v) > std::numeric_limits<float>::max()) {
-      fail("{}: field '{}' is {} (must be finite{})", name, key, v, positive ? " and > 0" : "");
-    }
-    return static_cast<float>(v);
+    const double limit = std::numeric_limits<float>::max();
+    return positive ? root[key].realAbove(0.0, limit) : root[key].real(-limit, limit);
   };
   Sidecar sidecar{number("minHeight", false), number("maxHeight", false), number("spacingX", true),
                   number("spacingZ", true)};
@@ -307,7 +292,7 @@ std::optional<Sidecar> readSidecar(const std::filesystem::path& image) {
     const nlohmann::json& bytes = field("imageBytes");
     const nlohmann::json& crc = field("imageCrc32");
     if (!bytes.is_number_unsigned() || !crc.is_string()) {
-      fail("{}: fields 'imageBytes' (a byte count) and 'imageCrc32' (8 hex digits) are malformed", name);
+      fail("{}: /imageBytes, /imageCrc32: expected a byte count and 8 hex digits", name);
     }
     const Fingerprint actual = fingerprint(image);
     const std::string actualCrc = fmt::format("{:08x}", actual.crc);
@@ -320,7 +305,7 @@ std::optional<Sidecar> readSidecar(const std::filesystem::path& image) {
     }
   }
   if (sidecar.maxHeight < sidecar.minHeight) {
-    fail("{}: field 'maxHeight' ({}) is below 'minHeight' ({})", name, sidecar.maxHeight, sidecar.minHeight);
+    fail("{}: /maxHeight: {} is below minHeight {}", name, sidecar.maxHeight, sidecar.minHeight);
   }
   return sidecar;
 }

@@ -3,6 +3,7 @@
 #include <sylva/terrain/HeightSources.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/JsonNode.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Random.hpp>
@@ -81,26 +82,26 @@ const char* procedureTypeName(ProceduralSpec::Type type) {
 void validate(const ProceduralSpec& spec, const std::string& where) {
   const auto finite = [](float v) { return std::isfinite(v); };
   if (spec.octaves < 1 || spec.octaves > kMaxOctaves) {
-    fail("{}: field 'octaves' is {} (must be 1..{})", where, spec.octaves, kMaxOctaves);
+    fail("{}: /octaves: {} is not in 1..{}", where, spec.octaves, kMaxOctaves);
   }
   if (!finite(spec.frequency) || spec.frequency <= 0.0f) {
-    fail("{}: field 'frequency' is {} (must be finite and > 0 cycles per metre)", where, spec.frequency);
+    fail("{}: /frequency: {} must be finite and > 0 cycles per metre", where, spec.frequency);
   }
   if (!finite(spec.lacunarity) || spec.lacunarity < 1.0f) {
-    fail("{}: field 'lacunarity' is {} (must be finite and >= 1)", where, spec.lacunarity);
+    fail("{}: /lacunarity: {} must be finite and >= 1", where, spec.lacunarity);
   }
   if (!finite(spec.gain) || spec.gain <= 0.0f || spec.gain > 1.0f) {
-    fail("{}: field 'gain' is {} (must be in (0, 1])", where, spec.gain);
+    fail("{}: /gain: {} must be in (0, 1]", where, spec.gain);
   }
   if (!finite(spec.warpStrength) || spec.warpStrength < 0.0f) {
-    fail("{}: field 'warpStrength' is {} (must be finite and >= 0 metres)", where, spec.warpStrength);
+    fail("{}: /warpStrength: {} must be finite and >= 0 metres", where, spec.warpStrength);
   }
   if (!finite(spec.heightScale) || spec.heightScale <= 0.0f) {
-    fail("{}: field 'heightScale' is {} (must be finite and > 0 metres)", where, spec.heightScale);
+    fail("{}: /heightScale: {} must be finite and > 0 metres", where, spec.heightScale);
   }
   if (spec.type != ProceduralSpec::Type::Fbm && spec.type != ProceduralSpec::Type::Ridged &&
       spec.type != ProceduralSpec::Type::Warped) {
-    fail("{}: field 'type' is not fbm, ridged or warped", where);
+    fail("{}: /type: not fbm, ridged or warped", where);
   }
 }
 
@@ -264,56 +265,30 @@ nlohmann::json toJson(const ProceduralSpec& spec) {
 
 ProceduralSpec proceduralSpecFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, kFormatVersion, where);
+  const JsonNode root(json, where);
+  root.object({"version", "seed", "type", "octaves", "frequency", "lacunarity", "gain", "warpStrength",
+               "heightScale"});
   ProceduralSpec spec;
-  const auto number = [&](const std::string& key, float& out) {
-    const nlohmann::json& v = json[key];
-    if (!v.is_number()) {
-      fail("{}: field '{}' must be a number", where, key);
-    }
-    const auto value = v.get<double>();
-    if (!std::isfinite(value) || std::abs(value) > std::numeric_limits<float>::max()) {
-      fail("{}: field '{}' is out of range", where, key);
-    }
-    out = static_cast<float>(value);
-  };
-  for (const auto& [key, value] : json.items()) {
-    if (key == "version") {
-      continue;
-    }
-    if (key == "seed") {
-      if (!value.is_number_unsigned()) {
-        fail("{}: field 'seed' must be a non-negative integer", where);
-      }
-      spec.seed = value.get<std::uint64_t>();
-    } else if (key == "type") {
-      const std::string name = value.is_string() ? value.get<std::string>() : "";
-      if (name == "fbm") {
-        spec.type = ProceduralSpec::Type::Fbm;
-      } else if (name == "ridged") {
-        spec.type = ProceduralSpec::Type::Ridged;
-      } else if (name == "warped") {
-        spec.type = ProceduralSpec::Type::Warped;
-      } else {
-        fail("{}: field 'type' must be \"fbm\", \"ridged\" or \"warped\"", where);
-      }
-    } else if (key == "octaves") {
-      if (!value.is_number_integer()) {
-        fail("{}: field 'octaves' must be an integer", where);
-      }
-      const auto octaves = value.get<long long>();
-      spec.octaves = static_cast<int>(std::clamp<long long>(octaves, -1, kMaxOctaves + 1));
-    } else if (key == "frequency") {
-      number(key, spec.frequency);
-    } else if (key == "lacunarity") {
-      number(key, spec.lacunarity);
-    } else if (key == "gain") {
-      number(key, spec.gain);
-    } else if (key == "warpStrength") {
-      number(key, spec.warpStrength);
-    } else if (key == "heightScale") {
-      number(key, spec.heightScale);
-    } else {
-      fail("{}: unknown field '{}'", where, key);
+  const float limit = std::numeric_limits<float>::max();
+  if (root.has("seed")) {
+    spec.seed = root["seed"].unsignedInteger();
+  }
+  if (root.has("type")) {
+    const std::string name = root["type"].choice({"fbm", "ridged", "warped"});
+    spec.type = name == "fbm"      ? ProceduralSpec::Type::Fbm
+                : name == "ridged" ? ProceduralSpec::Type::Ridged
+                                   : ProceduralSpec::Type::Warped;
+  }
+  if (root.has("octaves")) {
+    spec.octaves = root["octaves"].integer(1, kMaxOctaves);
+  }
+  for (auto [key, out] : {std::pair{"frequency", &spec.frequency},
+                          {"lacunarity", &spec.lacunarity},
+                          {"gain", &spec.gain},
+                          {"warpStrength", &spec.warpStrength},
+                          {"heightScale", &spec.heightScale}}) {
+    if (root.has(key)) {
+      *out = root[key].real(-limit, limit);
     }
   }
   validate(spec, where);

@@ -1,6 +1,7 @@
 #include <sylva/terrain/TerrainMaps.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/JsonNode.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Parallel.hpp>
 
@@ -30,7 +31,7 @@ float ramp(float v, float lo, float hi, float blend) {
 
 void validateLayer(const SplatLayer& layer, const std::string& where, std::size_t k) {
   const auto bad = [&](const char* field, const std::string& reason) {
-    fail("{}: field 'layers[{}].{}': {}", where, k, field, reason);
+    fail("{}: /layers/{}/{}: {}", where, k, field, reason);
   };
   if (layer.name.empty()) {
     bad("name", "must not be empty");
@@ -59,13 +60,13 @@ void validateLayer(const SplatLayer& layer, const std::string& where, std::size_
 
 void validateLayers(std::span<const SplatLayer> layers, const std::string& where) {
   if (layers.empty() || layers.size() > static_cast<std::size_t>(kMaxSplatLayers)) {
-    fail("{}: field 'layers' holds {} layers (must be 1..{})", where, layers.size(), kMaxSplatLayers);
+    fail("{}: /layers: {} layers is not in 1..{}", where, layers.size(), kMaxSplatLayers);
   }
   std::set<std::string> names;
   for (std::size_t k = 0; k < layers.size(); ++k) {
     validateLayer(layers[k], where, k);
     if (!names.insert(layers[k].name).second) {
-      fail("{}: field 'layers[{}].name': duplicate layer name '{}'", where, k, layers[k].name);
+      fail("{}: /layers/{}/name: duplicate layer name '{}'", where, k, layers[k].name);
     }
   }
 }
@@ -240,54 +241,25 @@ nlohmann::json splatLayersToJson(std::span<const SplatLayer> layers) {
 
 std::vector<SplatLayer> splatLayersFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, kFormatVersion, where);
-  for (const auto& [key, value] : json.items()) {
-    if (key != "version" && key != "layers") {
-      fail("{}: unknown field '{}'", where, key);
-    }
-  }
-  if (!json.contains("layers") || !json["layers"].is_array()) {
-    fail("{}: field 'layers' must be an array", where);
-  }
-  const nlohmann::json& list = json["layers"];
-  if (list.empty() || list.size() > static_cast<std::size_t>(kMaxSplatLayers)) {
-    fail("{}: field 'layers' holds {} layers (must be 1..{})", where, list.size(), kMaxSplatLayers);
-  }
+  const JsonNode root(json, where);
+  root.object({"version", "layers"});
+  const JsonNode list = root["layers"];
+  const std::size_t count = list.array(1, static_cast<std::size_t>(kMaxSplatLayers));
   std::vector<SplatLayer> layers;
-  for (std::size_t k = 0; k < list.size(); ++k) {
-    const nlohmann::json& item = list[k];
-    const std::string field = fmt::format("layers[{}]", k);
-    if (!item.is_object()) {
-      fail("{}: field '{}' must be an object", where, field);
-    }
+  for (std::size_t k = 0; k < count; ++k) {
+    const JsonNode item = list[k];
+    item.object({"name", "minHeight", "maxHeight", "minSlope", "maxSlope", "heightBlend", "slopeBlend"});
     SplatLayer layer;
-    for (const auto& [key, value] : item.items()) {
-      float* target = key == "minHeight"     ? &layer.minHeight
-                      : key == "maxHeight"   ? &layer.maxHeight
-                      : key == "minSlope"    ? &layer.minSlope
-                      : key == "maxSlope"    ? &layer.maxSlope
-                      : key == "heightBlend" ? &layer.heightBlend
-                      : key == "slopeBlend"  ? &layer.slopeBlend
-                                             : nullptr;
-      if (key == "name") {
-        if (!value.is_string()) {
-          fail("{}: field '{}.name' must be a string", where, field);
-        }
-        layer.name = value.get<std::string>();
-      } else if (target != nullptr) {
-        if (!value.is_number()) {
-          fail("{}: field '{}.{}' must be a number", where, field, key);
-        }
-        const auto v = value.get<double>();
-        if (!std::isfinite(v) || std::abs(v) > 1.0e30) {
-          fail("{}: field '{}.{}' is out of range", where, field, key);
-        }
-        *target = static_cast<float>(v);
-      } else {
-        fail("{}: unknown field '{}.{}'", where, field, key);
+    layer.name = item["name"].string(true);
+    for (auto [key, target] : {std::pair{"minHeight", &layer.minHeight},
+                               {"maxHeight", &layer.maxHeight},
+                               {"minSlope", &layer.minSlope},
+                               {"maxSlope", &layer.maxSlope},
+                               {"heightBlend", &layer.heightBlend},
+                               {"slopeBlend", &layer.slopeBlend}}) {
+      if (item.has(key)) {
+        *target = item[key].real(-1.0e30, 1.0e30);
       }
-    }
-    if (!item.contains("name")) {
-      fail("{}: missing field '{}.name'", where, field);
     }
     layers.push_back(layer);
   }

@@ -172,9 +172,10 @@ const std::map<std::string, std::function<Species()>>& presets() {
   return table;
 }
 
+/** Fails `<where>/<field>: <reason>` where `where` reads `<file>: <JSON pointer of the object>`. */
 void check(bool ok, const std::string& where, const char* field, const std::string& reason) {
   if (!ok) {
-    fail("{}.{}: {}", where, field, reason);
+    fail("{}/{}: {}", where, field, reason);
   }
 }
 
@@ -203,7 +204,8 @@ const char* ruleName(AssemblyRule rule) {
   return "grammar";
 }
 
-void validate(const Species& s, const std::string& where) {
+void validate(const Species& s, const std::string& file) {
+  const std::string where = file + ": ";
   check(!s.name.empty(), where, "name", "must not be empty");
   check(s.maxOrder >= 0 && s.maxOrder <= 16, where, "maxOrder", "must be in [0, 16]");
   check(s.maxDepth >= 1 && s.maxDepth <= 64, where, "maxDepth", "must be in [1, 64]");
@@ -226,7 +228,7 @@ void validate(const Species& s, const std::string& where) {
         "must be in (0, 1]");
   for (std::size_t i = 0; i < s.orders.size(); ++i) {
     const OrderParams& o = s.orders[i];
-    const std::string w = fmt::format("{}.orders[{}]", where, i);
+    const std::string w = fmt::format("{}: /orders/{}", file, i);
     check(o.minSegments >= 0 && o.minSegments <= 64, w, "minSegments", "must be in [0, 64]");
     check(o.maxSegments >= o.minSegments && o.maxSegments <= 64, w, "maxSegments",
           "must be in [minSegments, 64]");

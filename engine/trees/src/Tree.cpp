@@ -183,39 +183,39 @@ void validate(const TreeTopology& tree, const PieceSet& pieces, const std::strin
   for (std::size_t n = 0; n < tree.nodes.size(); ++n) {
     const TreeNode& node = tree.nodes[n];
     if (node.piece < 0 || node.piece >= static_cast<int>(pieces.size())) {
-      fail("{}: nodes[{}].piece: unknown piece index {}", where, n, node.piece);
+      fail("{}: /nodes/{}/piece: unknown piece index {}", where, n, node.piece);
     }
     if (n == 0) {
       if (node.parent != -1) {
-        fail("{}: nodes[0].parent: the root has no parent", where);
+        fail("{}: /nodes/0/parent: the root has no parent", where);
       }
       continue;
     }
     if (node.parent < 0 || node.parent >= static_cast<int>(n)) {
-      fail("{}: nodes[{}].parent: {} must name an earlier node", where, n, node.parent);
+      fail("{}: /nodes/{}/parent: {} must name an earlier node", where, n, node.parent);
     }
     const Piece& parent =
         pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
     if (node.parentRim < 1 || node.parentRim > static_cast<int>(parent.leafRims())) {
-      fail("{}: nodes[{}].rim: piece '{}' has leaf rims 1 … {}, not {}", where, n, parent.name,
+      fail("{}: /nodes/{}/rim: piece '{}' has leaf rims 1 … {}, not {}", where, n, parent.name,
            parent.leafRims(), node.parentRim);
     }
     if (!used.insert({node.parent, node.parentRim}).second) {
-      fail("{}: nodes[{}].rim: rim {} of node {} is used twice", where, n, node.parentRim, node.parent);
+      fail("{}: /nodes/{}/rim: rim {} of node {} is used twice", where, n, node.parentRim, node.parent);
     }
     if (node.rotation < 0 || node.rotation > 5) {
-      fail("{}: nodes[{}].rotation: {} is not in 0 … 5", where, n, node.rotation);
+      fail("{}: /nodes/{}/rotation: {} is not in 0 … 5", where, n, node.rotation);
     }
     depth[n] = depth[static_cast<std::size_t>(node.parent)] + 1;
     if (depth[n] > kMaxDepth) {
-      fail("{}: nodes[{}]: depth {} exceeds the recursion limit {}", where, n, depth[n], kMaxDepth);
+      fail("{}: /nodes/{}: depth {} exceeds the recursion limit {}", where, n, depth[n], kMaxDepth);
     }
   }
   for (std::size_t n = 0; n < tree.nodes.size(); ++n) {
     const Piece& piece = pieces[static_cast<std::size_t>(tree.nodes[n].piece)];
     for (int r = 1; r <= static_cast<int>(piece.leafRims()); ++r) {
       if (used.count({static_cast<int>(n), r}) == 0) {
-        fail("{}: nodes[{}]: leaf rim {} of piece '{}' is open (close it with a Cap)", where, n, r,
+        fail("{}: /nodes/{}: leaf rim {} of piece '{}' is open (close it with a Cap)", where, n, r,
              piece.name);
       }
     }
@@ -300,7 +300,7 @@ TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, co
     const JsonNode n = nodes[i];
     n.object({"piece", "parent", "rim", "rotation", "order", "scale"});
     TreeNode node;
-    node.piece = pieces.require(n["piece"].string(), fmt::format("{}: {}.piece", where, n.path()));
+    node.piece = pieces.require(n["piece"].string(), fmt::format("{}: {}/piece", where, n.path()));
     if (i > 0) {
       node.parent = n["parent"].integer(0, static_cast<int>(i) - 1);
       node.parentRim = n["rim"].integer(1, 15);

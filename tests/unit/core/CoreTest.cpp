@@ -150,10 +150,10 @@ TEST(Files, JsonVersionEnvelope) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message(nlohmann::json::array()), "rules.json: expected a JSON object");
-  EXPECT_EQ(message(nlohmann::json{{"layers", 1}}), "rules.json: missing field 'version'");
-  EXPECT_EQ(message(nlohmann::json{{"version", "1"}}), "rules.json: field 'version' must be 1");
-  EXPECT_EQ(message(nlohmann::json{{"version", 3}}), "rules.json: field 'version' must be 1");
+  EXPECT_EQ(message(nlohmann::json::array()), "rules.json: /: expected an object, got array");
+  EXPECT_EQ(message(nlohmann::json{{"layers", 1}}), "rules.json: /version: missing field");
+  EXPECT_EQ(message(nlohmann::json{{"version", "1"}}), "rules.json: /version: must be 1");
+  EXPECT_EQ(message(nlohmann::json{{"version", 3}}), "rules.json: /version: must be 1");
 }
 
 } // namespace

@@ -174,7 +174,7 @@ TEST(FoldingSession, ZonesAndProfilesExportAndImportOnTheirOwn) {
     importZones(history, bad, "zones.json");
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("zones.json: zones[0].image: no image with id 'nope'"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("zones.json: /zones/0/image: no image with id 'nope'"));
   }
   EXPECT_THROW(importZones(history,
                            json{{"format", "sylva-fold-zones"}, {"version", 2}, {"zones", json::array()}},

@@ -295,12 +295,6 @@ TEST(SceneFile, CamerasAreValidated) {
   EXPECT_EQ(c.keys[1].fov, 30.0f);
 }
 
-TEST(SceneFile, ClosestKeyOnlySuggestsPlausibleTypos) {
-  EXPECT_EQ(closestKey("elevaton", {"azimuth", "elevation", "intensity"}), "elevation");
-  EXPECT_EQ(closestKey("zzzzzzzz", {"azimuth", "elevation", "intensity"}), "");
-  EXPECT_EQ(closestKey("x", {}), "");
-}
-
 } // namespace
 } // namespace sylva::scene
 

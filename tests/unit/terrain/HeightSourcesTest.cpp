@@ -279,11 +279,11 @@ TEST(HeightSources, BrokenSidecarNamesTheField) {
   nlohmann::json sidecar = loadJsonFile(dir / "h.png.json");
   sidecar["spacingX"] = -1.0;
   saveJsonFile(dir / "h.png.json", sidecar);
-  expectLoadError(dir / "h.png", "'spacingX'");
+  expectLoadError(dir / "h.png", "/spacingX: -1 is less than 0");
   sidecar["spacingX"] = 1.0;
   sidecar["version"] = 7;
   saveJsonFile(dir / "h.png.json", sidecar);
-  expectLoadError(dir / "h.png", "'version'");
+  expectLoadError(dir / "h.png", "/version: must be 1");
 }
 
 // What a run killed between renaming the sidecar and renaming the image leaves: the new sidecar beside the
@@ -311,7 +311,7 @@ TEST(HeightSources, SidecarOfAnotherImageIsRejected) {
   EXPECT_EQ(sidecar.at("imageCrc32").get<std::string>().size(), 8u);
   sidecar["imageCrc32"] = 12;
   saveJsonFile(dir / "new.png.json", sidecar);
-  expectLoadError(dir / "new.png", "'imageCrc32'");
+  expectLoadError(dir / "new.png", "/imageCrc32");
   // Sidecars without the binding (older files, or written by hand) still load.
   sidecar.erase("imageCrc32");
   sidecar.erase("imageBytes");

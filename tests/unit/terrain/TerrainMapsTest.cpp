@@ -224,31 +224,31 @@ TEST(TerrainMaps, LayerJsonRoundTripAndFieldErrors) {
   };
   nlohmann::json bad = json;
   bad["layers"][1]["maxSlope"] = -5.0;
-  expectError(bad, "field 'layers[1].maxSlope'");
+  expectError(bad, "/layers/1/maxSlope: -5 is below minSlope");
   bad = json;
   bad["layers"][2]["colour"] = "white";
-  expectError(bad, "unknown field 'layers[2].colour'");
+  expectError(bad, "/layers/2/colour: unknown field");
   bad = json;
   bad["layers"][0]["minHeight"] = "low";
-  expectError(bad, "field 'layers[0].minHeight' must be a number");
+  expectError(bad, "/layers/0/minHeight: expected a number, got string");
   bad = json;
   bad["layers"][3]["name"] = "sand";
-  expectError(bad, "field 'layers[3].name': duplicate layer name 'sand'");
+  expectError(bad, "/layers/3/name: duplicate layer name 'sand'");
   bad = json;
   bad["layers"][3].erase("name");
-  expectError(bad, "missing field 'layers[3].name'");
+  expectError(bad, "/layers/3/name: missing field");
   bad = json;
   bad["layers"][0]["heightBlend"] = -1.0;
-  expectError(bad, "field 'layers[0].heightBlend'");
+  expectError(bad, "/layers/0/heightBlend: -1 must be >= 0 metres");
   bad = json;
   bad["layers"] = nlohmann::json::array();
-  expectError(bad, "field 'layers' holds 0 layers");
+  expectError(bad, "/layers: expected at least 1 entries, got 0");
   bad = json;
   bad.erase("version");
-  expectError(bad, "missing field 'version'");
+  expectError(bad, "/version: missing field");
   bad = json;
   bad["extra"] = 1;
-  expectError(bad, "unknown field 'extra'");
+  expectError(bad, "/extra: unknown field");
 }
 
 TEST(TerrainMaps, SeaLevelRulesPutSandOnCoastsAndNoGrassUnderWater) {

@@ -517,14 +517,14 @@ TEST(TileSetFiles, StrictJsonErrorsNameFileAndField) {
     saveJsonFile(json, changed);
     return errorOf([&] { loadTileSet(dir / "set"); });
   };
-  EXPECT_THAT(errorWith([](nlohmann::json& j) { j["extra"] = 1; }), HasSubstr("unknown field 'extra'"));
+  EXPECT_THAT(errorWith([](nlohmann::json& j) { j["extra"] = 1; }), HasSubstr("/extra: unknown field"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["tileSize"] = "big"; }), HasSubstr("tileSize"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["version"] = 2; }), HasSubstr("version"));
-  EXPECT_THAT(errorWith([](nlohmann::json& j) { j["classes"][0]["tiles"] = 30; }), HasSubstr("atlas.rows"));
+  EXPECT_THAT(errorWith([](nlohmann::json& j) { j["classes"][0]["tiles"] = 30; }), HasSubstr("/atlas/rows: a 3x3 atlas grid"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["classes"][1]["edges"][2] = 1; }),
-              HasSubstr("classes[1].edges[2]"));
+              HasSubstr("/classes/1/edges/2: 1 is more than 0"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["atlas"]["color"] = "../x.png"; }),
-              HasSubstr("atlas.color"));
+              HasSubstr("/atlas/color: '../x.png' must be a plain"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["atlas"].erase("normal"); }), HasSubstr("atlas"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["tileSize"] = 64; }), HasSubstr("color.png: the atlas is"));
   EXPECT_THAT(errorWith([](nlohmann::json&) {}), HasSubstr("(no error)"));

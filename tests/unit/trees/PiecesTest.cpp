@@ -156,16 +156,16 @@ TEST(Assembly, TreeJsonRoundTripsAndRejectsBadFiles) {
   expectError(j, "unknown piece 'Q'");
   j = toJson(a, pieces);
   j["nodes"][1]["rotation"] = 6;
-  expectError(j, "nodes[1].rotation");
+  expectError(j, "/nodes/1/rotation: 6 is more than 5");
   j = toJson(a, pieces);
   j["nodes"].erase(j["nodes"].size() - 1);
   expectError(j, "is open");
   j = toJson(a, pieces);
   j["nodes"][2]["scale"] = std::nan("");
-  expectError(j, "nodes[2].scale");
+  expectError(j, "/nodes/2/scale");
   j = toJson(a, pieces);
   j["extra"] = 1;
-  expectError(j, "unknown field 'extra'");
+  expectError(j, "/extra: unknown field");
   // A chain deeper than the recursion limit.
   nlohmann::json deep{{"version", 1}, {"nodes", nlohmann::json::array({{{"piece", "Foot"}}})}};
   for (int i = 1; i < 70; ++i) {

@@ -179,7 +179,7 @@ TEST(Wind, JsonRoundTripAndValidation) {
   EXPECT_NE(message({{"speed", -1.0}}).find("speed"), std::string::npos);
   EXPECT_NE(message({{"direction", {0.0, 0.0}}}).find("direction"), std::string::npos);
   EXPECT_NE(message({{"gustLength", 0.0}}).find("gustLength"), std::string::npos);
-  EXPECT_NE(message({{"gale", 1.0}}).find("unknown field 'gale'"), std::string::npos);
+  EXPECT_NE(message({{"gale", 1.0}}).find("/gale: unknown field"), std::string::npos);
   WindSettings nan;
   nan.turbulence = std::nanf("");
   EXPECT_THROW(toUniforms(nan, 0.0f), Error);

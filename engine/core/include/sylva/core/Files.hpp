@@ -38,7 +38,10 @@ std::filesystem::path findOnPath(const std::string& name);
 /** Reads a whole file; throws sylva::Error naming the file if it is missing or unreadable. */
 std::string readTextFile(const std::filesystem::path& path);
 
-/** Parses a JSON file; throws sylva::Error naming the file, line and column on syntax errors. */
+/**
+ * Parses a JSON file with parseJsonStrict (JsonNode.hpp): throws sylva::Error naming the file, line and
+ * column on syntax errors, and the JSON Pointer of a duplicate key.
+ */
 nlohmann::json loadJsonFile(const std::filesystem::path& path);
 
 /**

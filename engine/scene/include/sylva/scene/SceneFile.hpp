@@ -260,7 +260,4 @@ SceneDesc parseScene(std::string_view json, const std::filesystem::path& fileFor
  */
 FieldName sceneFieldName(const SceneDesc& scene, const std::string& prefix);
 
-/** The closest of `candidates` to `key` by edit distance, or "" when none is plausibly a typo of it. */
-std::string closestKey(std::string_view key, const std::vector<std::string>& candidates);
-
 } // namespace sylva::scene
