@@ -1,0 +1,31 @@
+# CTest: runs every Google Benchmark kernel once (min time 0) and fails if one is missing from the report or
+# reported an error, so a benchmark that no longer builds its fixture or crashes is caught by the test
+# command, not the next time someone measures. Usage: cmake -DBENCH=<sylva_benchmarks> -DOUT=<json> -P
+# RunOnce.cmake
+execute_process(COMMAND ${BENCH} --benchmark_list_tests OUTPUT_VARIABLE listed RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "${BENCH} --benchmark_list_tests exited with ${status}")
+endif()
+string(STRIP "${listed}" listed)
+string(REPLACE "\n" ";" names "${listed}")
+list(LENGTH names expected)
+execute_process(COMMAND ${BENCH} --benchmark_min_time=0 --benchmark_out=${OUT} --benchmark_out_format=json
+                RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "${BENCH} exited with ${status}")
+endif()
+file(READ ${OUT} report)
+string(JSON count LENGTH "${report}" benchmarks)
+if(NOT count EQUAL expected)
+  message(FATAL_ERROR "${expected} benchmarks listed, ${count} reported")
+endif()
+math(EXPR last "${count} - 1")
+foreach(i RANGE ${last})
+  string(JSON name GET "${report}" benchmarks ${i} name)
+  string(JSON failed ERROR_VARIABLE none GET "${report}" benchmarks ${i} error_occurred)
+  if(failed)
+    string(JSON why ERROR_VARIABLE none GET "${report}" benchmarks ${i} error_message)
+    message(FATAL_ERROR "${name}: ${why}")
+  endif()
+endforeach()
+message(STATUS "${count} benchmarks ran once")
