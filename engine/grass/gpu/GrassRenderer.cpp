@@ -271,8 +271,7 @@ void GrassRenderer::draw(const render::Camera& camera, int width, int height, do
   u.options.y = static_cast<unsigned>(options.view);
   u.wind = wind::toUniforms(options.wind, static_cast<float>(time));
   mUniforms.setSubData(0, sizeof(u), &u);
-  mFrame.update(camera, width, height, time, options.environment);
-  mFrame.bind();
+  mFrame.bind(camera, width, height, time, options.environment);
   bindCommon();
   mDraw.use();
   mVao.bind();

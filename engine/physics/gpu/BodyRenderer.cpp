@@ -45,8 +45,7 @@ void BodyRenderer::draw(const World& world, const render::Camera& camera, int wi
   }
   mInstances.setSubData(0, bytes, models.data());
   mInstances.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  mFrame.update(camera, width, height, time, environment);
-  mFrame.bind();
+  mFrame.bind(camera, width, height, time, environment);
   mProgram.use();
   mProgram.setUniform("uAround", kAround);
   mProgram.setUniform("uRings", kRings);

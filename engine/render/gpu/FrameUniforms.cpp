@@ -1,8 +1,46 @@
 #include <sylva/render/gpu/FrameUniforms.hpp>
 
+#include <atomic>
+
 namespace sylva::render {
 
-FrameUniformBuffer::FrameUniformBuffer() : mBuffer(sizeof(gpu::FrameUniforms)) {}
+namespace {
+std::atomic<std::size_t> gLive{0};
+std::atomic<std::uint64_t> gUploads{0};
+} // namespace
+
+FrameUniformBuffer::FrameUniformBuffer() : mBuffer(sizeof(gpu::FrameUniforms)) {
+  ++gLive;
+}
+
+FrameUniformBuffer::~FrameUniformBuffer() {
+  --gLive;
+}
+
+std::size_t FrameUniformBuffer::liveBuffers() {
+  return gLive.load();
+}
+
+std::uint64_t FrameUniformBuffer::uploads() {
+  return gUploads.load();
+}
+
+bool FrameUniformBuffer::isFor(const Camera& camera) const {
+  return mData.view == camera.view() && glm::vec3(mData.cameraPos) == camera.position;
+}
+
+void FrameBinding::bind(const Camera& camera, int width, int height, double time,
+                        const Environment& environment) {
+  if (environment.frame != nullptr && environment.frame->isFor(camera)) {
+    environment.frame->bind();
+    return;
+  }
+  if (!mOwn) {
+    mOwn = std::make_unique<FrameUniformBuffer>();
+  }
+  mOwn->update(camera, width, height, time, environment);
+  mOwn->bind();
+}
 
 void FrameUniformBuffer::update(const Camera& camera, int width, int height, double time,
                                 const Environment& environment) {
@@ -24,6 +62,7 @@ void FrameUniformBuffer::update(const Camera& camera, int width, int height, dou
     mData.shadowMatrices[i] = shadows.matrices[i];
   }
   mBuffer.setSubData(0, sizeof(mData), &mData);
+  ++gUploads;
 }
 
 void FrameUniformBuffer::bind() const {

@@ -91,9 +91,11 @@ void ScenePasses::renderShadows(const render::Camera& camera, float aspect, doub
       render::fitCascades(camera, aspect, mBase.sunDirection, settings, casters);
   const render::GpuTimerScope timed(timers, passName(Pass::Shadows));
   render::Environment casterEnvironment = mBase; // casters draw unshadowed (their colour is not kept)
+  casterEnvironment.frame = &mFrame;
   for (int i = 0; i < static_cast<int>(cascades.cascades.size()); ++i) {
     const render::ShadowCascade& c = cascades.cascades[static_cast<std::size_t>(i)];
     mShadowMaps->begin(i);
+    mFrame.update(c.camera, mShadowMaps->size(), mShadowMaps->size(), time, casterEnvironment);
     const PassInput input{
         c.camera, mShadowMaps->size(), mShadowMaps->size(), time, casterEnvironment, nullptr, &camera, true};
     for (const Entry& e : mEntries) {
@@ -119,6 +121,10 @@ void ScenePasses::render(const render::Camera& camera, int width, int height, do
   } else {
     render::ShadowMaps::unbind();
   }
+  // One frame block for every pass of the view (the cascades above filled it for their own cameras).
+  mEnvironment.frame = &mFrame;
+  mFrame.update(camera, width, height, time, mEnvironment);
+  mFrame.bind();
   const PassInput input{camera, width, height, time, mEnvironment, timers, &camera, false};
   for (Pass pass : {Pass::Terrain, Pass::Trees, Pass::Grass, Pass::Bodies, Pass::Water}) {
     const Entry& e = mEntries[static_cast<int>(pass)];
@@ -128,13 +134,11 @@ void ScenePasses::render(const render::Camera& camera, int width, int height, do
   }
   if (enabled(Pass::Sky)) {
     const render::GpuTimerScope timed(timers, passName(Pass::Sky));
-    mFrame.update(camera, width, height, time, mEnvironment);
     mFrame.bind();
     mSky->drawSky();
   }
   if (enabled(Pass::Flare) && depth != nullptr) {
     const render::GpuTimerScope timed(timers, passName(Pass::Flare));
-    mFrame.update(camera, width, height, time, mEnvironment);
     mFrame.bind();
     mSky->drawFlare(*depth);
   }

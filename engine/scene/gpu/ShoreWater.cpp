@@ -124,8 +124,7 @@ void ShoreWater::update(double time) {
 
 void ShoreWater::draw(const render::Camera& camera, int width, int height, double time,
                       const render::Environment& environment) {
-  mFrame.update(camera, width, height, time, environment);
-  mFrame.bind();
+  mFrame.bind(camera, width, height, time, environment);
   mHeights.bind(0);
   mSwash.bind(1);
   mProgram.use();

@@ -237,8 +237,7 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
     u.heightRange = glm::vec4(mMinHeight, mMaxHeight, 0.0f, 0.0f);
     mUniforms.setSubData(0, sizeof(u), &u);
     mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
-    mFrame.update(camera, width, height, time, options.environment);
-    mFrame.bind();
+    mFrame.bind(camera, width, height, time, options.environment);
     mHeights.bind(0);
     mValid.bind(1);
     mNormalMap.bind(2);

@@ -214,14 +214,13 @@ void FoliageRenderer::draw(const render::Camera& camera, int width, int height, 
   }
   const render::GpuTimerScope timed(timers, "foliage");
   uploadUniforms(environment, lod);
-  mFrame.update(camera, width, height, time, environment);
   {
     const SavedState saved;
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND); // alpha is the depth code, never coverage
     glDisable(GL_CULL_FACE);
-    mFrame.bind();
+    mFrame.bind(camera, width, height, time, environment);
     mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TREE_FOLIAGE_UNIFORM_BINDING);
     trees.framesBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_JOINT_BINDING);
     trees.centresBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_CENTRE_BINDING);

@@ -154,7 +154,7 @@ void ForestScene::draw(const render::Camera& camera, int width, int height, doub
                        const TreeDrawOptions& options, render::GpuTimers* timers) {
   TreeLod l = lod;
   l.farRange = mImpostors ? mFarRange : glm::vec2(0.0f);
-  mRenderer->cull(camera, width, height, l, timers);
+  mRenderer->cull(camera, width, height, l, timers, options.environment);
   mRenderer->draw(camera, width, height, time, l, timers, options);
   const bool full = options.view == TreeView::Shaded || options.view == TreeView::Depth;
   if (mFoliage && full) {

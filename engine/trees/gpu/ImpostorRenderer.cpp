@@ -263,6 +263,7 @@ void ImpostorRenderer::bakeSpecies(const Forest& forest, int s, const ImpostorBa
   gl::Texture colour = gl::Texture::create2D(GL_RGBA8, cell, cell);
   gl::Texture normal = gl::Texture::create2D(GL_RGBA8, cell, cell);
   const float distance = kBakeDistance * radius;
+  render::FrameUniformBuffer bakeFrame; // the bake's own views, never a frame path's
   for (int j = 0; j < views; ++j) {
     for (int i = 0; i < views; ++i) {
       const glm::vec3 f = impostorViewDirection({i, j}, views);
@@ -270,8 +271,8 @@ void ImpostorRenderer::bakeSpecies(const Forest& forest, int s, const ImpostorBa
       const render::Camera camera = viewCamera(f);
       drawView(target, camera);
       gl::bindDefaultFramebuffer(viewport[2], viewport[3]);
-      mFrame.update(camera, cell, cell, 0.0, impostorBakeEnvironment());
-      mFrame.bind();
+      bakeFrame.update(camera, cell, cell, 0.0, impostorBakeEnvironment());
+      bakeFrame.bind();
       mResolve.use();
       const GLuint program = mResolve.id();
       const glm::mat4 inverse = glm::inverse(camera.projection(1.0f));
@@ -338,8 +339,7 @@ void ImpostorRenderer::draw(const render::Camera& camera, int width, int height,
     }
     mUniforms.setSubData(0, sizeof(u), &u);
     mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TREE_IMPOSTOR_UNIFORM_BINDING);
-    mFrame.update(camera, width, height, time, environment);
-    mFrame.bind();
+    mFrame.bind(camera, width, height, time, environment);
     mInstances.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_BINDING);
     mVisible.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_VISIBLE_BINDING);
     mCommand.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_IMPOSTOR_COMMAND_BINDING);

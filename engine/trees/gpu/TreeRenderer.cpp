@@ -292,22 +292,21 @@ void TreeRenderer::bindAll() const {
 
 void TreeRenderer::cull(const render::Camera& camera, float aspect, const TreeLod& lod,
                         render::GpuTimers* timers) {
-  runCull(camera, aspect, lod, glm::vec2(0.0f), timers);
+  runCull(camera, aspect, lod, glm::vec2(0.0f), timers, {});
 }
 
 void TreeRenderer::cull(const render::Camera& camera, int width, int height, const TreeLod& lod,
-                        render::GpuTimers* timers) {
+                        render::GpuTimers* timers, const render::Environment& environment) {
   runCull(camera, static_cast<float>(std::max(width, 1)) / static_cast<float>(std::max(height, 1)), lod,
-          sizeCullTerms(camera.fovY, camera.orthoHeight, height, lod.minPixels), timers);
+          sizeCullTerms(camera.fovY, camera.orthoHeight, height, lod.minPixels), timers, environment);
 }
 
 void TreeRenderer::runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec2 sizeCull,
-                           render::GpuTimers* timers) {
+                           render::GpuTimers* timers, const render::Environment& environment) {
   const render::GpuTimerScope timed(timers, "trees cull");
   useQuadsPerCommand(quadsPerCommand(lod.fixedLevel > 0.0f ? lod.fixedLevel : lod.maxLevel));
   uploadUniforms(camera, aspect, lod, TreeView::Shaded, false, sizeCull);
-  mFrame.update(camera, 1, 1, 0.0, {});
-  mFrame.bind();
+  mFrame.bind(camera, 1, 1, 0.0, environment); // the cull reads the camera position only
   mCommands.setSubData(std::span<const std::uint32_t>(mCommandsReset));
   bindAll();
   mCull.use();
@@ -374,8 +373,7 @@ void TreeRenderer::prepareDraw(const render::Camera& camera, int width, int heig
   mLast.tess.x = static_cast<float>(height) / (2.0f * std::tan(camera.fovY * 0.5f)) /
                  std::max(lod.pixelsPerSegment, 0.5f);
   mUniforms.setSubData(0, sizeof(mLast), &mLast);
-  mFrame.update(camera, width, height, time, options.environment);
-  mFrame.bind();
+  mFrame.bind(camera, width, height, time, options.environment);
   bindAll();
 }
 

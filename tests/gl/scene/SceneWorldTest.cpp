@@ -5,6 +5,7 @@
 // added, a simulation started, a forest rebuilt) change one subsystem and leave the world as it was on
 // errors.
 #include <sylva/core/Error.hpp>
+#include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
@@ -173,6 +174,32 @@ TEST_F(SceneWorldTest, TheViewersEditsRebuildOneSubsystemAndKeepTheWorldOnErrors
   // Frames still draw after every edit.
   const Image frame = draw(world, forestCamera(world));
   EXPECT_GT(frame.width(), 0);
+}
+
+TEST_F(SceneWorldTest, EveryPassReadsTheFramesOneUniformBlock) {
+  // Terrain, trees with foliage, grass, a simulated layer with a ball: every renderer of the scene frame.
+  SceneDesc desc = forestDesc();
+  desc.forests[0].look->foliage = true;
+  SceneWorld world(shaders(), desc);
+  GrassLayer layer;
+  layer.layer = "none";
+  layer.patchBlades = 1024;
+  layer.bladesPerTile = 64;
+  world.setGrassLayer(0, layer);
+  world.simulateGrass(0);
+  const float ground = world.groundHeight(128.0f, 128.0f);
+  ASSERT_TRUE(world.spawnBall(glm::vec3(128.0f, ground + 2.0f, 128.0f), glm::vec3(0.0f)));
+  const render::Camera camera = forestCamera(world);
+  const std::size_t live = render::FrameUniformBuffer::liveBuffers();
+  (void)draw(world, camera);
+  const std::uint64_t before = render::FrameUniformBuffer::uploads();
+  (void)draw(world, camera);
+  // One upload per camera of the frame: each shadow cascade's sun camera, then the view; no renderer made a
+  // block of its own while drawing.
+  const int cascades = world.passes().environment().shadows.cascades;
+  ASSERT_GT(cascades, 0);
+  EXPECT_EQ(render::FrameUniformBuffer::uploads() - before, static_cast<std::uint64_t>(cascades) + 1);
+  EXPECT_EQ(render::FrameUniformBuffer::liveBuffers(), live);
 }
 
 } // namespace

@@ -7,6 +7,8 @@
 
 namespace sylva::render {
 
+class FrameUniformBuffer;
+
 /**
  * Sun shadows of a frame (gpu::FrameUniforms shadow fields): cascades 0 = none. Filled by the scene module
  * from render::ShadowCascades; the depth array itself is bound at SYLVA_SHADOW_MAP_UNIT by whoever owns it.
@@ -36,6 +38,12 @@ struct Environment {
   float turbidity = 3.0f; ///< sky turbidity (2 clear .. 10 hazy), Atmosphere::Sky only
   float exposure = 1.0f;  ///< scale on sky radiance, Atmosphere::Sky only
   ShadowFrame shadows;    ///< no shadows by default
+  /**
+   * The frame block a frame path (scene::ScenePasses) already uploaded for the camera it is drawing with,
+   * from this environment, the pass's target size and time (GL side, FrameUniforms.hpp). Renderers bind it
+   * instead of filling a buffer of their own (render::FrameBinding); null outside a frame path.
+   */
+  const FrameUniformBuffer* frame = nullptr;
 };
 
 } // namespace sylva::render

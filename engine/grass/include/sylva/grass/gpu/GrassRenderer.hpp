@@ -135,7 +135,7 @@ private:
   gl::Texture mValid;
   gl::Texture mDensity;
   gl::VertexArray mVao;
-  render::FrameUniformBuffer mFrame;
+  render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
   gl::Query mVerticesQuery{gl::NoCreate};
   gl::Query mPrimitivesQuery{gl::NoCreate};
   std::int64_t mLastVertices = -1;

@@ -24,7 +24,7 @@ private:
   gl::Program mProgram{gl::NoCreate};
   gl::Buffer mInstances{gl::NoCreate};
   gl::VertexArray mVao;
-  render::FrameUniformBuffer mFrame;
+  render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
 };
 
 } // namespace sylva::physics

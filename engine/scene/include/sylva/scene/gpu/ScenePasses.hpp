@@ -104,7 +104,7 @@ private:
   std::array<bool, static_cast<int>(Pass::Count)> mEnabled{};
   std::unique_ptr<render::ShadowMaps> mShadowMaps;
   std::unique_ptr<render::SkyRenderer> mSky;
-  render::FrameUniformBuffer mFrame; ///< the frame block of the sky and flare passes
+  render::FrameUniformBuffer mFrame; ///< the frame's one block: every pass binds it (Environment::frame)
 };
 
 } // namespace sylva::scene

@@ -100,7 +100,7 @@ private:
   gl::Texture mSwash{gl::NoCreate};
   gl::Framebuffer mSwashTarget;
   gl::VertexArray mVao;
-  render::FrameUniformBuffer mFrame;
+  render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
 };
 
 } // namespace sylva::scene

@@ -180,7 +180,7 @@ private:
   gl::Query mInvocations{gl::NoCreate};
   gl::Query mCrackSamples{gl::NoCreate};
   std::int64_t mLastCrackSamples = -1;
-  render::FrameUniformBuffer mFrame;
+  render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
   std::int64_t mLastInvocations = -1;
 };
 

@@ -107,7 +107,7 @@ private:
   gl::Framebuffer mTarget{gl::NoCreate};
   gl::VertexArray mCloudVao;
   gl::VertexArray mEmptyVao;
-  render::FrameUniformBuffer mFrame;
+  render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
   FoliageBasis mBasis;
   glm::vec3 mBakedSun{0.0f};
   float mBakedSunIntensity = -1.0f;

@@ -153,7 +153,7 @@ private:
   std::size_t mTreeCount = 0;
   gl::Buffer mUniforms;
   gl::VertexArray mVao;
-  render::FrameUniformBuffer mFrame;
+  render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
 };
 
 /** Packs far trees as the GPU reads them. */

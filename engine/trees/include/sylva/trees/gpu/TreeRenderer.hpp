@@ -121,9 +121,12 @@ public:
    */
   void cull(const render::Camera& camera, float aspect, const TreeLod& lod,
             render::GpuTimers* timers = nullptr);
-  /** As above for a `width` × `height` pixel target, also dropping pieces under lod.minPixels across. */
+  /**
+   * As above for a `width` × `height` pixel target, also dropping pieces under lod.minPixels across.
+   * `environment.frame`, when a frame path set it for `camera`, is the frame block the cull reads.
+   */
   void cull(const render::Camera& camera, int width, int height, const TreeLod& lod,
-            render::GpuTimers* timers = nullptr);
+            render::GpuTimers* timers = nullptr, const render::Environment& environment = {});
   /** Draws the last cull into the bound framebuffer: one glMultiDrawElementsIndirect for all piece types. */
   void draw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
             render::GpuTimers* timers = nullptr, const TreeDrawOptions& options = {});
@@ -152,7 +155,7 @@ private:
   void uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod, TreeView view,
                       bool breakRims, glm::vec2 sizeCull = glm::vec2(0.0f));
   void runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec2 sizeCull,
-               render::GpuTimers* timers);
+               render::GpuTimers* timers, const render::Environment& environment);
   void bindAll() const;
   /** Uniforms, frame block and bindings of a draw (both draw paths). */
   void prepareDraw(const render::Camera& camera, int width, int height, double time, const TreeLod& lod,
@@ -204,7 +207,7 @@ private:
   const gl::Buffer* mExternalFrames = nullptr;
   gl::VertexArray mVao;
   gl::VertexArray mAllVao;
-  render::FrameUniformBuffer mFrame;
+  render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
   gpu::TreeUniforms mLast{};
 };
 
