@@ -12,10 +12,50 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 
 namespace sylva::bench {
+
+namespace {
+
+/** Field-wise median of the frames' counts of one pass. */
+render::PassCounts medianCounts(const std::vector<render::PassCounts>& frames) {
+  render::PassCounts m;
+  const auto median = [&](std::int64_t render::PassCounts::*field) {
+    std::vector<std::int64_t> v;
+    for (const render::PassCounts& c : frames) {
+      v.push_back(c.*field);
+    }
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    m.*field = v.empty() ? -1 : v[v.size() / 2];
+  };
+  for (auto field : {&render::PassCounts::verticesSubmitted, &render::PassCounts::primitivesSubmitted,
+                     &render::PassCounts::vertexInvocations, &render::PassCounts::tessEvaluations,
+                     &render::PassCounts::clippedPrimitives, &render::PassCounts::fragmentInvocations,
+                     &render::PassCounts::computeInvocations}) {
+    median(field);
+  }
+  return m;
+}
+
+/** 1234567 → "1.23M". */
+std::string compact(std::int64_t n) {
+  const double v = static_cast<double>(n);
+  if (v >= 1e9) {
+    return fmt::format("{:.3g}G", v / 1e9);
+  }
+  if (v >= 1e6) {
+    return fmt::format("{:.3g}M", v / 1e6);
+  }
+  if (v >= 1e3) {
+    return fmt::format("{:.3g}k", v / 1e3);
+  }
+  return fmt::format("{}", n);
+}
+
+} // namespace
 
 void benchScene(const std::string& file, int frames, int warmup, int width, int height,
                 nlohmann::json& report) {
@@ -27,10 +67,12 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
   render::RenderTarget target(width, height);
   gl::finish();
   const double buildS = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
-  render::GpuTimers timers(3, true); // synchronous: every pass finished before its end, wall times recorded
+  // Synchronous: every pass finished before its end, wall times recorded; each pass's work counted too.
+  render::GpuTimers timers(3, true, true);
   std::map<std::string, std::vector<double>> cpu;
   std::map<std::string, std::vector<double>> gpu;
   std::map<std::string, std::vector<double>> wall;
+  std::map<std::string, std::vector<render::PassCounts>> counts;
   std::vector<std::string> order;
   std::vector<double> frameMs;
   Progress progress(fmt::format("bench scene {}", desc.name), static_cast<std::size_t>(warmup + frames));
@@ -58,6 +100,7 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
         cpu[t.name].push_back(t.cpuMs);
         gpu[t.name].push_back(t.gpuMs);
         wall[t.name].push_back(t.wallMs);
+        counts[t.name].push_back(t.counts);
       }
     }
     progress.advance(1);
@@ -79,10 +122,29 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
     const render::Stats w = render::Stats::of(wall[name]);
     const render::Stats c = render::Stats::of(cpu[name]);
     const render::Stats g = render::Stats::of(gpu[name]);
+    const render::PassCounts n = medianCounts(counts[name]);
     rows.push_back({"pass " + name + " (wall)", w.median, "ms", std::nan(""), true, 0,
                     fmt::format("cpu {:.2f} ms, gpu timestamps {:.2f} ms", c.median, g.median)});
-    passes.push_back(
-        {{"pass", name}, {"wall_ms", w.toJson()}, {"cpu_ms", c.toJson()}, {"gpu_ms", g.toJson()}});
+    // Work, which carries to any GPU: fragments per target pixel (overdraw; shadow passes rasterise into
+    // their cascades, so theirs is relative to the view), then the other counters.
+    rows.push_back(
+        {"pass " + name + " fragments per pixel",
+         static_cast<double>(n.fragmentInvocations) / (static_cast<double>(width) * height), "", std::nan(""),
+         true, 0,
+         fmt::format("{}vertices {}, primitives {}, VS {}, TES {}, rasterised {}, FS {}, CS {}",
+                     name == "shadows" ? fmt::format("{:.2f} per cascade texel; ",
+                                                     static_cast<double>(n.fragmentInvocations) /
+                                                         (static_cast<double>(desc.shadows.size) *
+                                                          desc.shadows.size * desc.shadows.cascades))
+                                       : std::string(),
+                     compact(n.verticesSubmitted), compact(n.primitivesSubmitted),
+                     compact(n.vertexInvocations), compact(n.tessEvaluations), compact(n.clippedPrimitives),
+                     compact(n.fragmentInvocations), compact(n.computeInvocations))});
+    passes.push_back({{"pass", name},
+                      {"wall_ms", w.toJson()},
+                      {"cpu_ms", c.toJson()},
+                      {"gpu_ms", g.toJson()},
+                      {"counts", n.toJson()}});
   }
   rows.push_back({"GPU memory the subsystems report", static_cast<double>(world.gpuBytes()) / 1e6, "MB",
                   std::nan(""), true, 0, "shadow maps, trees (pieces, bark, foliage, impostors)"});

@@ -5,6 +5,7 @@
 #include "CliRun.hpp"
 #include "TempDir.hpp"
 
+#include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <thread>
 
@@ -154,6 +156,37 @@ fs::path writeScene(const test::TempDir& dir, const std::string& name, const std
   const fs::path path = dir / name;
   std::ofstream(path) << json;
   return path;
+}
+
+TEST(SceneCli, BenchCountsEveryPassesWork) {
+  // `sylva bench scene` writes, beside each pass's times, the work it made the GPU do (pipeline statistics):
+  // the figures that carry from llvmpipe to any GPU.
+  test::TempDir dir;
+  const fs::path report = dir / "bench.json";
+  const test::RunResult r =
+      runSylva(dir, "bench scene --scene " + quote(kMeadow) +
+                        " --frames 1 --warmup 0 --width 160 --height 90 -o " + quote(report.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json json = loadJsonFile(report);
+  std::map<std::string, nlohmann::json> counts;
+  for (const nlohmann::json& pass : json.at("passes")) {
+    counts[pass.at("pass").get<std::string>()] = pass.at("counts");
+  }
+  for (const char* pass : {"shadows", "terrain", "grass", "water", "sky"}) {
+    ASSERT_TRUE(counts.contains(pass)) << pass;
+    EXPECT_GT(counts[pass].at("fragment_invocations").get<long long>(), 0) << pass;
+    EXPECT_GT(counts[pass].at("clipped_primitives").get<long long>(), 0) << pass;
+  }
+  // The sky is one triangle over the view: every pixel shaded once (helper invocations add a few at most).
+  EXPECT_EQ(counts["sky"].at("primitives_submitted"), 1);
+  const long long sky = counts["sky"].at("fragment_invocations").get<long long>();
+  EXPECT_GE(sky, 160 * 90);
+  EXPECT_LE(sky, 160 * 90 * 11 / 10);
+  // The terrain is tessellated; the grass cull is compute only.
+  EXPECT_GT(counts["terrain"].at("tess_evaluations").get<long long>(), 0);
+  ASSERT_TRUE(counts.contains("grass cull"));
+  EXPECT_GT(counts["grass cull"].at("compute_invocations").get<long long>(), 0);
+  EXPECT_EQ(counts["grass cull"].at("fragment_invocations"), 0);
 }
 
 TEST(SceneCli, BadScenesAndRangesFailWithOneLineAndNoOutput) {

@@ -7,8 +7,40 @@
 
 namespace sylva::render {
 
-GpuTimers::GpuTimers(int latency, bool synchronous)
-    : mSlots(static_cast<std::size_t>(std::max(latency, 1))), mSynchronous(synchronous) {}
+namespace {
+
+/** The pipeline statistics PassCounts holds, in its field order. */
+constexpr std::array<GLenum, 7> kCounterTargets = {
+    GL_VERTICES_SUBMITTED_ARB,         GL_PRIMITIVES_SUBMITTED_ARB,
+    GL_VERTEX_SHADER_INVOCATIONS_ARB,  GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB,
+    GL_CLIPPING_OUTPUT_PRIMITIVES_ARB, GL_FRAGMENT_SHADER_INVOCATIONS_ARB,
+    GL_COMPUTE_SHADER_INVOCATIONS_ARB};
+constexpr std::size_t kCounters = kCounterTargets.size();
+
+std::array<std::int64_t*, kCounters> fields(PassCounts& c) {
+  return {&c.verticesSubmitted, &c.primitivesSubmitted, &c.vertexInvocations, &c.tessEvaluations,
+          &c.clippedPrimitives, &c.fragmentInvocations, &c.computeInvocations};
+}
+
+} // namespace
+
+nlohmann::json PassCounts::toJson() const {
+  return {{"vertices_submitted", verticesSubmitted},  {"primitives_submitted", primitivesSubmitted},
+          {"vertex_invocations", vertexInvocations},  {"tess_evaluations", tessEvaluations},
+          {"clipped_primitives", clippedPrimitives},  {"fragment_invocations", fragmentInvocations},
+          {"compute_invocations", computeInvocations}};
+}
+
+GpuTimers::GpuTimers(int latency, bool synchronous, bool countWork)
+    : mSlots(static_cast<std::size_t>(std::max(latency, 1))), mSynchronous(synchronous),
+      mCountWork(countWork) {
+  if (mCountWork && !mSynchronous) {
+    fail("GpuTimers: counting work needs synchronous mode");
+  }
+  if (mCountWork && !epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query") && epoxy_gl_version() < 46) {
+    fail("GpuTimers: counting work needs GL_ARB_pipeline_statistics_query, which this driver lacks");
+  }
+}
 
 void GpuTimers::beginFrame() {
   Slot& slot = mSlots[mCurrent];
@@ -29,6 +61,14 @@ void GpuTimers::begin(const std::string& pass) {
   }
   slot.timings.push_back({pass, 0.0, -1.0});
   slot.queries[2 * index].timestamp();
+  if (mCountWork) {
+    while (slot.counters.size() < kCounters * (index + 1)) {
+      slot.counters.emplace_back(kCounterTargets[slot.counters.size() % kCounters]);
+    }
+    for (std::size_t k = 0; k < kCounters; ++k) {
+      slot.counters[kCounters * index + k].begin();
+    }
+  }
   mPassStart = std::chrono::steady_clock::now();
   mInPass = true;
 }
@@ -39,6 +79,11 @@ void GpuTimers::end() {
     fail("GpuTimers: end() without begin()");
   }
   const std::size_t index = slot.timings.size() - 1;
+  if (mCountWork) {
+    for (std::size_t k = 0; k < kCounters; ++k) {
+      slot.counters[kCounters * index + k].end();
+    }
+  }
   slot.timings[index].cpuMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mPassStart).count();
   if (mSynchronous) {
@@ -75,6 +120,12 @@ void GpuTimers::collect(Slot& slot, bool wait) {
     const auto start = slot.queries[2 * i].result(true);
     const auto stop = slot.queries[2 * i + 1].result(true);
     slot.timings[i].gpuMs = static_cast<double>(*stop - *start) * 1e-6;
+    if (mCountWork) {
+      const auto out = fields(slot.timings[i].counts);
+      for (std::size_t k = 0; k < kCounters; ++k) {
+        *out[k] = static_cast<std::int64_t>(*slot.counters[kCounters * i + k].result(true));
+      }
+    }
   }
   slot.pending = false;
   mLast = slot.timings;

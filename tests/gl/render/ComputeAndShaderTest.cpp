@@ -1,6 +1,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/gl/Debug.hpp>
 #include <sylva/gl/Program.hpp>
+#include <sylva/gl/VertexArray.hpp>
 #include <sylva/render/gpu/DemoScene.hpp>
 #include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
@@ -79,6 +80,55 @@ TEST_F(DemoGl, TimersReportEveryPass) {
     EXPECT_GE(t.gpuMs, 0.0);
     EXPECT_GE(t.cpuMs, 0.0);
   }
+}
+
+TEST_F(DemoGl, CountedPassesReportTheWorkTheyMade) {
+  // A triangle over the lower-left half of a 64×32 target, inside the clip volume, and a 10×3 dispatch of
+  // 8-wide groups: counts known in advance.
+  const gl::Program draw({{GL_VERTEX_SHADER,
+                           "#version 450\nconst vec2 p[3] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(-1, 1));\n"
+                           "void main() { gl_Position = vec4(p[gl_VertexID], 0, 1); }\n",
+                           {"tri.vert"}},
+                          {GL_FRAGMENT_SHADER,
+                           "#version 450\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1); }\n",
+                           {"tri.frag"}}},
+                         "counted triangle");
+  const gl::Program compute(
+      {{GL_COMPUTE_SHADER, "#version 450\nlayout(local_size_x = 8) in;\nvoid main() {}\n", {"empty.comp"}}},
+      "counted dispatch");
+  RenderTarget target(64, 32);
+  const gl::VertexArray empty;
+  GpuTimers timers(1, true, true);
+  timers.beginFrame();
+  target.begin(glm::vec4(0.0f));
+  timers.begin("draw");
+  draw.use();
+  empty.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  timers.end();
+  timers.begin("compute");
+  compute.use();
+  glDispatchCompute(10, 3, 1);
+  timers.end();
+  timers.endFrame();
+  ASSERT_EQ(timers.lastFrame().size(), 2u);
+  const PassCounts& d = timers.lastFrame()[0].counts;
+  ASSERT_TRUE(d.counted());
+  EXPECT_EQ(d.verticesSubmitted, 3);
+  EXPECT_EQ(d.primitivesSubmitted, 1);
+  EXPECT_EQ(d.vertexInvocations, 3);
+  EXPECT_EQ(d.tessEvaluations, 0);
+  EXPECT_EQ(d.clippedPrimitives, 1);
+  // Half of the 2,048 pixel centres, plus at most the helper invocations a driver runs in 2×2 quads along the
+  // diagonal edge.
+  EXPECT_GE(d.fragmentInvocations, 64 * 32 / 2 - 64);
+  EXPECT_LE(d.fragmentInvocations, 64 * 32 / 2 + 4 * 64);
+  EXPECT_EQ(d.computeInvocations, 0);
+  const PassCounts& c = timers.lastFrame()[1].counts;
+  EXPECT_EQ(c.computeInvocations, 10 * 3 * 8);
+  EXPECT_EQ(c.verticesSubmitted, 0);
+  EXPECT_EQ(c.fragmentInvocations, 0);
+  EXPECT_THROW(GpuTimers(1, false, true), Error); // counting waits for results: synchronous only
 }
 
 TEST_F(DemoGl, SameTimeSameImage) {

@@ -3,7 +3,9 @@
 #include <sylva/gl/Query.hpp>
 #include <sylva/render/Timing.hpp>
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -11,6 +13,23 @@
 #include <nlohmann/json.hpp>
 
 namespace sylva::render {
+
+/**
+ * The work a pass made the GPU do (ARB_pipeline_statistics_query): figures that carry from llvmpipe to any
+ * GPU, unlike its times. Every field is -1 when the pass was not counted.
+ */
+struct PassCounts {
+  std::int64_t verticesSubmitted = -1;   ///< vertices read by draws
+  std::int64_t primitivesSubmitted = -1; ///< primitives assembled from them (before tessellation)
+  std::int64_t vertexInvocations = -1;   ///< vertex-shader runs
+  std::int64_t tessEvaluations = -1;     ///< tessellation-evaluation runs (vertices the tessellator made)
+  std::int64_t clippedPrimitives = -1;   ///< primitives that left clipping (what the rasteriser received)
+  std::int64_t fragmentInvocations = -1; ///< fragment-shader runs (pixels shaded, overdraw included)
+  std::int64_t computeInvocations = -1;  ///< compute-shader runs (culling, simulation, LOD)
+  bool counted() const { return verticesSubmitted >= 0; }
+  /** {"vertices_submitted": …, …} for benchmark JSON. */
+  nlohmann::json toJson() const;
+};
 
 /** Timing of one named pass in one frame, milliseconds. GPU time is -1 until its query result is known. */
 struct PassTiming {
@@ -23,6 +42,7 @@ struct PassTiming {
    * otherwise.
    */
   double wallMs = -1.0;
+  PassCounts counts; ///< when the timers count work (synchronous mode with countWork)
 };
 
 /**
@@ -33,7 +53,11 @@ struct PassTiming {
  */
 class GpuTimers {
 public:
-  explicit GpuTimers(int latency = 3, bool synchronous = false);
+  /**
+   * `countWork` (synchronous mode only) also counts each pass's work (PassCounts) with pipeline-statistics
+   * queries; passes must then not run queries of those kinds themselves (e.g. the grass's primitive count).
+   */
+  explicit GpuTimers(int latency = 3, bool synchronous = false, bool countWork = false);
 
   void beginFrame();
   void begin(const std::string& pass);
@@ -44,7 +68,8 @@ public:
 
 private:
   struct Slot {
-    std::vector<gl::Query> queries; // 2 per pass
+    std::vector<gl::Query> queries;  // 2 per pass
+    std::vector<gl::Query> counters; // kCounters per pass when counting work
     std::vector<PassTiming> timings;
     bool pending = false;
   };
@@ -53,6 +78,7 @@ private:
   std::vector<Slot> mSlots;
   std::size_t mCurrent = 0;
   bool mSynchronous;
+  bool mCountWork;
   std::vector<PassTiming> mLast;
   std::chrono::steady_clock::time_point mPassStart;
   bool mInPass = false;
