@@ -33,10 +33,21 @@ ShoreWater::ShoreWater(const shader::Library& library, const terrain::HeightFiel
   mFieldHeight = field.height();
   mSpacingX = field.spacingX();
   mSpacingZ = field.spacingZ();
-  const int longest = std::max(mFieldWidth, mFieldHeight) - 1;
-  mStride = (longest + kMaxCells - 1) / kMaxCells;
-  mCellsX = (mFieldWidth - 1 + mStride - 1) / mStride;
-  mCellsZ = (mFieldHeight - 1 + mStride - 1) / mStride;
+  const WaterGrid grid = waterGrid(mFieldWidth, mFieldHeight, kMaxCells);
+  mStride = grid.stride;
+  mCellsX = grid.cellsX;
+  mCellsZ = grid.cellsZ;
+  // Only cells that can show water are drawn: on a lake scene most of the footprint is dry ground, whose
+  // fragments the shader discards anyway (same pixels, a fraction of the vertices).
+  const float wetTop = mSettings.level + mSettings.wet * verticalScale;
+  const std::vector<std::uint32_t> cells =
+      wetCells(field, grid, wetTop, 1e-4f * std::max(1.0f, std::abs(wetTop)));
+  mWetCells = static_cast<int>(cells.size());
+  mCellList = gl::Buffer(std::max<std::size_t>(cells.size(), 1) * sizeof(std::uint32_t));
+  if (!cells.empty()) {
+    mCellList.setSubData(std::span<const std::uint32_t>(cells));
+  }
+  gl::setLabel(GL_BUFFER, mCellList.id(), "shore water cells");
 
   // Heights: absent samples become "always dry".
   std::vector<float> heights = field.samples();
@@ -145,6 +156,20 @@ void ShoreWater::draw(const render::Camera& camera, int width, int height, doubl
   mProgram.setUniform("uAspect", mAspect);
   mProgram.setUniform("uWaterline", mWaterlineV);
   mProgram.setUniform("uView", static_cast<int>(mView));
+  int cells = mWetCells;
+  if (mDrawEveryCell) {
+    cells = mCellsX * mCellsZ;
+    if (mEveryCell.id() == 0) {
+      std::vector<std::uint32_t> all(static_cast<std::size_t>(cells));
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        all[i] = static_cast<std::uint32_t>(i);
+      }
+      mEveryCell = gl::Buffer(std::span<const std::uint32_t>(all));
+    }
+    mEveryCell.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  } else {
+    mCellList.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  }
   mVao.bind();
   glEnable(GL_DEPTH_TEST);
   const bool blend = mView == ShoreWaterView::Shaded;
@@ -153,7 +178,9 @@ void ShoreWater::draw(const render::Camera& camera, int width, int height, doubl
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   }
   glDepthMask(GL_FALSE);
-  glDrawArrays(GL_TRIANGLES, 0, 6 * mCellsX * mCellsZ);
+  if (cells > 0) {
+    glDrawArrays(GL_TRIANGLES, 0, 6 * cells);
+  }
   glDepthMask(GL_TRUE);
   if (blend) {
     glDisable(GL_BLEND);

@@ -92,6 +92,52 @@ SwashCoords swashCoords(glm::vec2 xz, float depth, glm::vec2 gradient, const Sho
   return out;
 }
 
+WaterGrid waterGrid(int fieldWidth, int fieldHeight, int maxCells) {
+  if (fieldWidth < 2 || fieldHeight < 2 || maxCells < 1) {
+    fail("shore: a water grid needs at least 2x2 samples and 1 cell (got {}x{}, {})", fieldWidth, fieldHeight,
+         maxCells);
+  }
+  WaterGrid g;
+  const int longest = std::max(fieldWidth, fieldHeight) - 1;
+  g.stride = (longest + maxCells - 1) / maxCells;
+  g.cellsX = (fieldWidth - 1 + g.stride - 1) / g.stride;
+  g.cellsZ = (fieldHeight - 1 + g.stride - 1) / g.stride;
+  return g;
+}
+
+std::vector<std::uint32_t> wetCells(const terrain::HeightField& field, const WaterGrid& grid, float wetTop,
+                                    float tolerance) {
+  const int w = field.width();
+  const int h = field.height();
+  const float dryFrom = wetTop + std::max(tolerance, 0.0f);
+  // Rows of the sample grid: whether a sample is wet, then per cell its samples plus a one-sample ring.
+  std::vector<std::uint8_t> wet(static_cast<std::size_t>(w) * h);
+  const std::vector<float>& samples = field.samples();
+  for (std::size_t i = 0; i < wet.size(); ++i) {
+    wet[i] = samples[i] < dryFrom ? 1 : 0; // NaN compares false: dry
+  }
+  std::vector<std::uint32_t> cells;
+  for (int cz = 0; cz < grid.cellsZ; ++cz) {
+    const int z0 = std::max(cz * grid.stride - 1, 0);
+    const int z1 = std::min((cz + 1) * grid.stride + 1, h - 1);
+    for (int cx = 0; cx < grid.cellsX; ++cx) {
+      const int x0 = std::max(cx * grid.stride - 1, 0);
+      const int x1 = std::min((cx + 1) * grid.stride + 1, w - 1);
+      bool any = false;
+      for (int z = z0; z <= z1 && !any; ++z) {
+        const std::uint8_t* row = &wet[static_cast<std::size_t>(z) * w];
+        for (int x = x0; x <= x1 && !any; ++x) {
+          any = row[x] != 0;
+        }
+      }
+      if (any) {
+        cells.push_back(static_cast<std::uint32_t>(cx + cz * grid.cellsX));
+      }
+    }
+  }
+  return cells;
+}
+
 double swashTime(double time, double period, double projectPeriod) {
   if (!(projectPeriod > 0.0) || !std::isfinite(projectPeriod)) {
     fail("shore: the folding project's period {} s must be > 0", projectPeriod);

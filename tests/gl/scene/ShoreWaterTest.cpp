@@ -266,6 +266,40 @@ TEST_F(ShoreWaterTest, OverTheTerrainOnlyWaterAndTheWetStripChange) {
   }
 }
 
+TEST_F(ShoreWaterTest, DrawingOnlyTheWetCellsChangesNoPixel) {
+  // The lake from above and from its shore, looking across: the wet cells (a fraction of the grid) give the
+  // same pixels as the whole grid, whose dry cells the shader discards.
+  const float scale = 1.5f;
+  terrain::TerrainSceneOptions options;
+  options.exaggeration = scale;
+  terrain::TerrainScene scene(shaders(), lake(), lakeQuadtree(), options);
+  ShoreWater water(shaders(), scene.field(), scale, settings());
+  EXPECT_LT(water.drawnCells(), water.gridCells() / 2);
+  EXPECT_GT(water.drawnCells(), 0);
+  render::Camera top;
+  top.position = glm::vec3(128.0f, 200.0f, 128.0f);
+  top.target = glm::vec3(128.0f, 0.0f, 128.0f);
+  top.up = glm::vec3(0.0f, 0.0f, -1.0f);
+  top.orthoHeight = 128.0f;
+  top.nearPlane = 10.0f;
+  top.farPlane = 400.0f;
+  render::Camera shore;
+  shore.position = glm::vec3(122.0f, 3.5f, 212.0f);
+  shore.target = glm::vec3(150.0f, -1.0f, 190.0f);
+  shore.fovY = glm::radians(55.0f);
+  shore.nearPlane = 0.1f;
+  shore.farPlane = 600.0f;
+  for (const render::Camera& camera : {top, shore}) {
+    for (double time : {0.0, 1.3}) {
+      water.setDrawEveryCell(false);
+      const Image culled = lakeFrame(scene, &water, camera, 256, 192, time);
+      water.setDrawEveryCell(true);
+      const Image every = lakeFrame(scene, &water, camera, 256, 192, time);
+      EXPECT_TRUE(culled == every) << "time " << time;
+    }
+  }
+}
+
 TEST_F(ShoreWaterTest, SwashTextureFollowsTheProjectClock) {
   ShoreSettings s = settings();
   s.period = 8.0f; // one 4 s project cycle every 8 s

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <limits>
 #include <numbers>
 
@@ -181,6 +183,66 @@ TEST(Shore, ValidateNamesTheField) {
   s = {};
   s.folding.clear();
   EXPECT_THROW(validate(s), Error);
+}
+
+TEST(Shore, WetCellsHoldEveryFragmentTheWaterShaderKeeps) {
+  // A bowl: a lake in the middle of a 200×150 field (stride 2 with at most 100 cells per axis), dry hills
+  // around it, and absent samples in one corner.
+  const int w = 200;
+  const int h = 150;
+  const float spacing = 1.5f;
+  const float scale = 2.0f; // vertical exaggeration
+  terrain::HeightField field(w, h, spacing, spacing);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const float dx = static_cast<float>(i - 90) * spacing;
+      const float dz = static_cast<float>(j - 70) * spacing;
+      field.at(i, j) = scale * (0.01f * (dx * dx + dz * dz) - 20.0f + std::sin(0.3f * dx) * 0.5f);
+    }
+  }
+  for (int j = 0; j < 10; ++j) {
+    for (int i = 0; i < 10; ++i) {
+      field.at(i, j) = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  const WaterGrid grid = waterGrid(w, h, 100);
+  EXPECT_EQ(grid.stride, 2);
+  EXPECT_EQ(grid.cellsX, 100);
+  EXPECT_EQ(grid.cellsZ, 75);
+  const float level = 0.0f;
+  const float wet = 0.5f; // true metres above the water
+  const float wetTop = level + wet * scale;
+  const std::vector<std::uint32_t> cells = wetCells(field, grid, wetTop, 1e-3f);
+  ASSERT_FALSE(cells.empty());
+  EXPECT_TRUE(std::is_sorted(cells.begin(), cells.end()));
+  // The lake is a small part of the footprint: most cells are left out.
+  EXPECT_LT(cells.size(), static_cast<std::size_t>(grid.cellsX * grid.cellsZ) / 2);
+  std::vector<bool> isWet(static_cast<std::size_t>(grid.cellsX * grid.cellsZ), false);
+  for (std::uint32_t c : cells) {
+    isWet[c] = true;
+  }
+  // Every point the shader keeps (depth > −wet, the water.frag test) lies in a listed cell.
+  int kept = 0;
+  for (int j = 0; j <= 4 * (h - 1); ++j) {
+    for (int i = 0; i <= 4 * (w - 1); ++i) {
+      const float x = static_cast<float>(i) * spacing / 4.0f;
+      const float z = static_cast<float>(j) * spacing / 4.0f;
+      if (!(waterDepth(field, scale, level, x, z) > -wet)) {
+        continue;
+      }
+      ++kept;
+      const int cx = std::min(static_cast<int>(x / spacing) / grid.stride, grid.cellsX - 1);
+      const int cz = std::min(static_cast<int>(z / spacing) / grid.stride, grid.cellsZ - 1);
+      ASSERT_TRUE(isWet[static_cast<std::size_t>(cx + cz * grid.cellsX)])
+          << "kept water at " << x << ", " << z;
+    }
+  }
+  EXPECT_GT(kept, 1000);
+  // Absent samples are dry; a field entirely under water keeps every cell.
+  EXPECT_FALSE(isWet[0]);
+  const terrain::HeightField sea = plane(0.0f, 0.0f, -5.0f, 33, 33);
+  EXPECT_EQ(wetCells(sea, waterGrid(33, 33, 512), 0.0f, 0.0f).size(), 32u * 32u);
+  EXPECT_THROW(waterGrid(1, 5, 10), Error);
 }
 
 } // namespace

@@ -4,7 +4,9 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace sylva::scene {
 
@@ -86,6 +88,29 @@ struct SwashCoords {
 };
 SwashCoords swashCoords(glm::vec2 xz, float depth, glm::vec2 gradient, const ShoreSettings& settings,
                         float aspect);
+
+/**
+ * The water mesh's grid: cells of `stride` height samples per edge over the footprint (the last row and
+ * column may be shorter), cellsX × cellsZ of them, so at most maxCells per axis.
+ */
+struct WaterGrid {
+  int stride = 1;
+  int cellsX = 1;
+  int cellsZ = 1;
+};
+WaterGrid waterGrid(int fieldWidth, int fieldHeight, int maxCells);
+
+/**
+ * The cells of `grid` (index x + z · cellsX, ascending) where the water can show: those with a height sample
+ * below `wetTop` (world metres: the level plus the wet strip) within the cell or the ring of samples around
+ * it. The water shader discards every fragment whose bilinear ground height is at or above wetTop (dry
+ * ground), and a fragment of a cell reads samples of that cell only (the ring covers rounding at its edges),
+ * so leaving out the other cells changes no pixel. NaN (absent) samples count as dry. `tolerance` (world
+ * metres, ≥ 0) keeps cells whose samples all lie less than that above wetTop (float rounding in the shader's
+ * compare).
+ */
+std::vector<std::uint32_t> wetCells(const terrain::HeightField& field, const WaterGrid& grid, float wetTop,
+                                    float tolerance);
 
 /**
  * Time (seconds) of the folding frame shown at scene time `time` seconds: fract(time / period) ·

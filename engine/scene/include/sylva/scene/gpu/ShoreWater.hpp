@@ -2,6 +2,7 @@
 
 #include <sylva/folding/Synthesis.hpp>
 #include <sylva/folding/gpu/FoldRenderer.hpp>
+#include <sylva/gl/Buffer.hpp>
 #include <sylva/gl/Framebuffer.hpp>
 #include <sylva/gl/Program.hpp>
 #include <sylva/gl/Texture.hpp>
@@ -37,6 +38,11 @@ public:
   static constexpr int kMaxSwashSide = 512;
   /** Largest number of mesh cells per axis (the mesh takes every n-th height sample beyond it). */
   static constexpr int kMaxCells = 512;
+  /** Cells of the mesh drawn (the wet ones: scene::wetCells) and in all. */
+  int drawnCells() const { return mWetCells; }
+  int gridCells() const { return mCellsX * mCellsZ; }
+  /** Draw every cell of the grid instead of the wet ones (comparisons: the pixels must not change). */
+  void setDrawEveryCell(bool on) { mDrawEveryCell = on; }
 
   /**
    * `field`: the drawn heights (world metres, already multiplied by `verticalScale`, the same field the
@@ -62,9 +68,9 @@ public:
 
   /**
    * Draws the water into the bound framebuffer (viewport `width`×`height` pixels), after the terrain:
-   * blended, depth-tested against it, no depth writes; fills and binds the frame uniforms
-   * (render::FrameUniformBuffer) for `camera`, `time` and `environment`. Call update() first for the swash to
-   * move.
+   * blended, depth-tested against it, no depth writes; binds the frame block for `camera`, `time` and
+   * `environment` (the frame path's, else its own: render::FrameBinding). Only the cells that can show water
+   * are drawn. Call update() first for the swash to move.
    */
   void draw(const render::Camera& camera, int width, int height, double time,
             const render::Environment& environment);
@@ -89,6 +95,10 @@ private:
   int mStride = 1;
   int mCellsX = 1;
   int mCellsZ = 1;
+  int mWetCells = 0;                   ///< cells drawn (wetCells): those that can show water
+  gl::Buffer mCellList{gl::NoCreate};  ///< their indices, x + z · cellsX
+  gl::Buffer mEveryCell{gl::NoCreate}; ///< 0 … cells − 1, made when setDrawEveryCell(true) is first drawn
+  bool mDrawEveryCell = false;
   double mProjectPeriod = 1.0;
   float mAspect = 1.0f;
   float mWaterlineV = 0.5f; ///< settings.waterline in the frame's v (the crop)
