@@ -88,7 +88,7 @@ MachineInfo machineInfo() {
 }
 
 Samples measure(const BenchOptions& o, const std::function<void(render::GpuTimers&, int, Samples&)>& frame) {
-  render::GpuTimers timers(1, true);
+  render::GpuTimers timers(1, true, true);
   Samples s;
   for (int i = 0; i < o.warmup + o.frames; ++i) {
     const auto start = std::chrono::steady_clock::now();
@@ -109,6 +109,7 @@ Samples measure(const BenchOptions& o, const std::function<void(render::GpuTimer
       s.cpu[t.name].push_back(t.cpuMs);
       s.gpu[t.name].push_back(t.gpuMs);
       s.wall[t.name].push_back(t.wallMs);
+      s.counts[t.name].push_back(t.counts);
     }
     for (auto& [name, values] : scratch.extra) {
       s.extra[name].insert(s.extra[name].end(), values.begin(), values.end());

@@ -3,8 +3,8 @@
 // Sylva's measured benchmarks, `sylva bench <area>` (docs/cli.md, docs/testing.md): one file per area
 // (BenchTerrain.cpp, BenchGrass.cpp, BenchTrees.cpp, BenchScene.cpp, BenchFold.cpp, BenchCapture.cpp; the
 // demo and the shared frame loop in Bench.cpp), and the target tables: each row is a measured value against a
-// target from the specs, printed as a table and returned as JSON. The app (apps/sylva/cmd/CmdBench.cpp) turns its
-// options into BenchOptions; the Google Benchmark kernels of the CPU code sit beside this, in
+// target from the specs, printed as a table and returned as JSON. The app (apps/sylva/cmd/CmdBench.cpp) turns
+// its options into BenchOptions; the Google Benchmark kernels of the CPU code sit beside this, in
 // bench/<module>/.
 
 #include <sylva/platform/GlContext.hpp>
@@ -66,6 +66,14 @@ struct Samples {
   std::map<std::string, std::vector<double>> wall;
   std::vector<double> frame;
   std::map<std::string, std::vector<double>> extra;
+  /** Each pass's work per frame (pipeline statistics; GpuTimers' countWork). */
+  std::map<std::string, std::vector<render::PassCounts>> counts;
+
+  /** The median work of `pass` over the frames (fields -1 when it did not run). */
+  render::PassCounts countsOf(const std::string& pass) const {
+    const auto it = counts.find(pass);
+    return it == counts.end() ? render::PassCounts{} : render::medianCounts(it->second);
+  }
 
   nlohmann::json passesJson() const {
     nlohmann::json passes = nlohmann::json::array();
@@ -73,13 +81,17 @@ struct Samples {
       passes.push_back({{"name", pass},
                         {"cpu_ms", render::Stats::of(cpu.at(pass)).toJson()},
                         {"gpu_ms", render::Stats::of(gpu.at(pass)).toJson()},
-                        {"wall_ms", render::Stats::of(wall.at(pass)).toJson()}});
+                        {"wall_ms", render::Stats::of(wall.at(pass)).toJson()},
+                        {"counts", countsOf(pass).toJson()}});
     }
     return passes;
   }
 };
 
-/** Runs `frame(timers, index)` warmup + frames times with synchronous GPU timers and collects samples. */
+/**
+ * Runs `frame(timers, index)` warmup + frames times with synchronous GPU timers that also count each pass's
+ * work (so a frame must not run pipeline-statistics queries of its own), and collects samples.
+ */
 Samples measure(const BenchOptions& o, const std::function<void(render::GpuTimers&, int, Samples&)>& frame);
 
 /** The report's common head: area name, renderer, size, frames. */

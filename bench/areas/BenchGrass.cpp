@@ -86,9 +86,6 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   paperDesc.sky.flare = false;
   scene::SceneWorld paperWorld(library, paperDesc);
   paperWorld.passes().setEnabled(scene::Pass::Sky, false);
-  scene::SceneDrawOptions countAll;
-  countAll.countPrimitives = true;
-  paperWorld.setDrawOptions(countAll);
   grass::GrassRenderer& paperGrass = paperWorld.grass(0);
   const grass::GrassField& paperField = paperGrass.field();
   const std::size_t fieldBlades = paperField.countBlades();
@@ -112,7 +109,8 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
   const double cullMs = wallOf(paper, "grass cull");
   const double drawMs = wallOf(paper, "grass");
   const double frameMs = render::Stats::of(paper.frame).median;
-  const std::int64_t triangles = paperGrass.lastPrimitivesSubmitted();
+  const std::int64_t triangles =
+      paper.countsOf("grass").primitivesSubmitted; // the pass's pipeline statistics
   std::printf("grass: the paper's field, %zu tiles, %zu blades, %dx%d, %s\n", tiles, fieldBlades, o.width,
               o.height, rendererName.c_str());
   const std::string paperNote = "paper: 20 ms on a Radeon R9 270";

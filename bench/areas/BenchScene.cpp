@@ -20,26 +20,6 @@ namespace sylva::bench {
 
 namespace {
 
-/** Field-wise median of the frames' counts of one pass. */
-render::PassCounts medianCounts(const std::vector<render::PassCounts>& frames) {
-  render::PassCounts m;
-  const auto median = [&](std::int64_t render::PassCounts::*field) {
-    std::vector<std::int64_t> v;
-    for (const render::PassCounts& c : frames) {
-      v.push_back(c.*field);
-    }
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    m.*field = v.empty() ? -1 : v[v.size() / 2];
-  };
-  for (auto field : {&render::PassCounts::verticesSubmitted, &render::PassCounts::primitivesSubmitted,
-                     &render::PassCounts::vertexInvocations, &render::PassCounts::tessEvaluations,
-                     &render::PassCounts::clippedPrimitives, &render::PassCounts::fragmentInvocations,
-                     &render::PassCounts::computeInvocations}) {
-    median(field);
-  }
-  return m;
-}
-
 /** 1234567 → "1.23M". */
 std::string compact(std::int64_t n) {
   const double v = static_cast<double>(n);
@@ -122,7 +102,7 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
     const render::Stats w = render::Stats::of(wall[name]);
     const render::Stats c = render::Stats::of(cpu[name]);
     const render::Stats g = render::Stats::of(gpu[name]);
-    const render::PassCounts n = medianCounts(counts[name]);
+    const render::PassCounts n = render::medianCounts(counts[name]);
     rows.push_back({"pass " + name + " (wall)", w.median, "ms", std::nan(""), true, 0,
                     fmt::format("cpu {:.2f} ms, gpu timestamps {:.2f} ms", c.median, g.median)});
     // Work, which carries to any GPU: fragments per target pixel (overdraw; shadow passes rasterise into

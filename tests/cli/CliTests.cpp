@@ -688,5 +688,26 @@ TEST(CliDocs, ReferenceMatchesHelp) {
   EXPECT_EQ(current, reference) << "docs/cli.md is out of date with --help: run scripts/update-cli-docs.sh";
 }
 
+TEST(CliBench, EveryPassOfEveryAreaReportsItsWork) {
+  // The areas share one measuring loop, which counts each pass's work (pipeline statistics) beside its times:
+  // the demo's compute pass runs one invocation per height sample and draws nothing; its surface pass draws.
+  test::TempDir dir;
+  const fs::path report = dir / "demo.json";
+  const RunResult r =
+      runSylva(dir, "bench demo --frames 1 --warmup 0 --width 64 --height 64 -o " + quote(report.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json json = loadJsonFile(report);
+  ASSERT_EQ(json.at("passes").size(), 2u);
+  const nlohmann::json& heights = json.at("passes")[0];
+  const nlohmann::json& surface = json.at("passes")[1];
+  EXPECT_EQ(heights.at("name"), "heights");
+  EXPECT_GT(heights.at("counts").at("compute_invocations").get<long long>(), 0);
+  EXPECT_EQ(heights.at("counts").at("fragment_invocations"), 0);
+  EXPECT_EQ(surface.at("name"), "surface");
+  EXPECT_GT(surface.at("counts").at("clipped_primitives").get<long long>(), 0);
+  EXPECT_GT(surface.at("counts").at("fragment_invocations").get<long long>(), 0);
+  EXPECT_EQ(surface.at("counts").at("compute_invocations"), 0);
+}
+
 } // namespace
 } // namespace sylva

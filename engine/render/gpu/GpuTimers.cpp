@@ -31,6 +31,27 @@ nlohmann::json PassCounts::toJson() const {
           {"compute_invocations", computeInvocations}};
 }
 
+PassCounts medianCounts(const std::vector<PassCounts>& frames) {
+  PassCounts m;
+  if (frames.empty()) {
+    return m;
+  }
+  std::vector<PassCounts> copy = frames;
+  for (auto field :
+       {&PassCounts::verticesSubmitted, &PassCounts::primitivesSubmitted, &PassCounts::vertexInvocations,
+        &PassCounts::tessEvaluations, &PassCounts::clippedPrimitives, &PassCounts::fragmentInvocations,
+        &PassCounts::computeInvocations}) {
+    std::vector<std::int64_t> v;
+    v.reserve(copy.size());
+    for (const PassCounts& c : copy) {
+      v.push_back(c.*field);
+    }
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    m.*field = v[v.size() / 2];
+  }
+  return m;
+}
+
 GpuTimers::GpuTimers(int latency, bool synchronous, bool countWork)
     : mSlots(static_cast<std::size_t>(std::max(latency, 1))), mSynchronous(synchronous),
       mCountWork(countWork) {

@@ -31,6 +31,9 @@ struct PassCounts {
   nlohmann::json toJson() const;
 };
 
+/** Field-wise median of a pass's counts over frames (-1 fields when `frames` is empty). */
+PassCounts medianCounts(const std::vector<PassCounts>& frames);
+
 /** Timing of one named pass in one frame, milliseconds. GPU time is -1 until its query result is known. */
 struct PassTiming {
   std::string name;
