@@ -207,6 +207,29 @@ Image lakeFrame(terrain::TerrainScene& scene, ShoreWater* water, const render::C
   return target.readColor();
 }
 
+/** Straight down on the lake's 256 m square, north up, one pixel per metre at 256 pixels. */
+render::Camera lakeTopCamera() {
+  render::Camera camera;
+  camera.position = glm::vec3(128.0f, 200.0f, 128.0f);
+  camera.target = glm::vec3(128.0f, 0.0f, 128.0f);
+  camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
+  camera.orthoHeight = 128.0f;
+  camera.nearPlane = 10.0f;
+  camera.farPlane = 400.0f;
+  return camera;
+}
+
+/** Standing on the lake's south shore, looking along it (the documentation's pictures). */
+render::Camera lakeShoreCamera() {
+  render::Camera view;
+  view.position = glm::vec3(122.0f, 3.5f, 212.0f);
+  view.target = glm::vec3(150.0f, -1.0f, 190.0f);
+  view.fovY = glm::radians(55.0f);
+  view.nearPlane = 0.1f;
+  view.farPlane = 600.0f;
+  return view;
+}
+
 TEST_F(ShoreWaterTest, OverTheTerrainOnlyWaterAndTheWetStripChange) {
   const float scale = 1.5f;
   terrain::HeightField truth = lake();
@@ -217,13 +240,7 @@ TEST_F(ShoreWaterTest, OverTheTerrainOnlyWaterAndTheWetStripChange) {
   ShoreSettings s = settings();
   s.level = 0.0f;
   ShoreWater water(shaders(), scene.field(), scale, s);
-  render::Camera camera;
-  camera.position = glm::vec3(128.0f, 200.0f, 128.0f);
-  camera.target = glm::vec3(128.0f, 0.0f, 128.0f);
-  camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
-  camera.orthoHeight = 128.0f;
-  camera.nearPlane = 10.0f;
-  camera.farPlane = 400.0f;
+  const render::Camera camera = lakeTopCamera();
   constexpr int kLakeSize = 256; // one pixel per metre
   const Image dry = lakeFrame(scene, nullptr, camera, kLakeSize, kLakeSize, 1.0);
   const Image wet = lakeFrame(scene, &water, camera, kLakeSize, kLakeSize, 1.0);
@@ -249,12 +266,7 @@ TEST_F(ShoreWaterTest, OverTheTerrainOnlyWaterAndTheWetStripChange) {
   EXPECT_GT(waterDrawn, 12000); // the lake is ~15,000 m²
   if (const char* dir = std::getenv("SYLVA_SHORE_OUT")) {
     // The documentation's pictures: standing on the south shore, looking along it, through one swash cycle.
-    render::Camera view;
-    view.position = glm::vec3(122.0f, 3.5f, 212.0f);
-    view.target = glm::vec3(150.0f, -1.0f, 190.0f);
-    view.fovY = glm::radians(55.0f);
-    view.nearPlane = 0.1f;
-    view.farPlane = 600.0f;
+    const render::Camera view = lakeShoreCamera();
     const int frames = std::getenv("SYLVA_SHORE_FRAMES") ? std::atoi(std::getenv("SYLVA_SHORE_FRAMES")) : 5;
     for (int i = 0; i < frames; ++i) {
       const double t = 4.0 * i / frames;
@@ -276,20 +288,7 @@ TEST_F(ShoreWaterTest, DrawingOnlyTheWetCellsChangesNoPixel) {
   ShoreWater water(shaders(), scene.field(), scale, settings());
   EXPECT_LT(water.drawnCells(), water.gridCells() / 2);
   EXPECT_GT(water.drawnCells(), 0);
-  render::Camera top;
-  top.position = glm::vec3(128.0f, 200.0f, 128.0f);
-  top.target = glm::vec3(128.0f, 0.0f, 128.0f);
-  top.up = glm::vec3(0.0f, 0.0f, -1.0f);
-  top.orthoHeight = 128.0f;
-  top.nearPlane = 10.0f;
-  top.farPlane = 400.0f;
-  render::Camera shore;
-  shore.position = glm::vec3(122.0f, 3.5f, 212.0f);
-  shore.target = glm::vec3(150.0f, -1.0f, 190.0f);
-  shore.fovY = glm::radians(55.0f);
-  shore.nearPlane = 0.1f;
-  shore.farPlane = 600.0f;
-  for (const render::Camera& camera : {top, shore}) {
+  for (const render::Camera& camera : {lakeTopCamera(), lakeShoreCamera()}) {
     for (double time : {0.0, 1.3}) {
       water.setDrawEveryCell(false);
       const Image culled = lakeFrame(scene, &water, camera, 256, 192, time);
