@@ -150,7 +150,8 @@ TEST(BladeModelFile, EnvelopeErrors) {
   expectRejected(edited([](json& d) { d["generator"] = 3; }), "/generator: expected a string, got number");
   expectRejected(edited([](json& d) { d["blades"] = json::array(); }),
                  "/blades: expected at least 1 entries, got 0");
-  expectRejected(edited([](json& d) { d["blades"] = json::object(); }), "/blades: expected an array, got object");
+  expectRejected(edited([](json& d) { d["blades"] = json::object(); }),
+                 "/blades: expected an array, got object");
 }
 
 TEST(BladeModelFile, TooManyBladesAreRejected) {

@@ -41,7 +41,8 @@ TEST(JsonNode, ReadsValuesAndNamesTheJsonPointerInErrors) {
   EXPECT_EQ(messageOf([&] { a["b"][1].integer(0, 9); }), "f.json: /a/b/1: expected a whole number, got 2.5");
   EXPECT_EQ(messageOf([&] { a["n"].integer(0, 9); }), "f.json: /a/n: -3 is less than 0");
   EXPECT_EQ(messageOf([&] { a["b"][1].number(0, 2); }), "f.json: /a/b/1: 2.5 is more than 2");
-  EXPECT_EQ(messageOf([&] { a["b"][std::size_t{0}].numberAbove(1, 2); }), "f.json: /a/b/0: 1 must be more than 1");
+  EXPECT_EQ(messageOf([&] { a["b"][std::size_t{0}].numberAbove(1, 2); }),
+            "f.json: /a/b/0: 1 must be more than 1");
   EXPECT_EQ(messageOf([&] { a["n"].nonNegative(); }), "f.json: /a/n: -3 is less than 0");
   EXPECT_EQ(messageOf([&] { a["n"].unsignedInteger(); }), "f.json: /a/n: -3 is less than 0");
   EXPECT_EQ(messageOf([&] { a["b"].array(4, 9); }), "f.json: /a/b: expected at least 4 entries, got 3");

@@ -520,7 +520,8 @@ TEST(TileSetFiles, StrictJsonErrorsNameFileAndField) {
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["extra"] = 1; }), HasSubstr("/extra: unknown field"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["tileSize"] = "big"; }), HasSubstr("tileSize"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["version"] = 2; }), HasSubstr("version"));
-  EXPECT_THAT(errorWith([](nlohmann::json& j) { j["classes"][0]["tiles"] = 30; }), HasSubstr("/atlas/rows: a 3x3 atlas grid"));
+  EXPECT_THAT(errorWith([](nlohmann::json& j) { j["classes"][0]["tiles"] = 30; }),
+              HasSubstr("/atlas/rows: a 3x3 atlas grid"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["classes"][1]["edges"][2] = 1; }),
               HasSubstr("/classes/1/edges/2: 1 is more than 0"));
   EXPECT_THAT(errorWith([](nlohmann::json& j) { j["atlas"]["color"] = "../x.png"; }),
