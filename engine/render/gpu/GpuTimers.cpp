@@ -17,10 +17,11 @@ constexpr std::array<GLenum, 7> kCounterTargets = {
     GL_COMPUTE_SHADER_INVOCATIONS_ARB};
 constexpr std::size_t kCounters = kCounterTargets.size();
 
-std::array<std::int64_t*, kCounters> fields(PassCounts& c) {
-  return {&c.verticesSubmitted, &c.primitivesSubmitted, &c.vertexInvocations, &c.tessEvaluations,
-          &c.clippedPrimitives, &c.fragmentInvocations, &c.computeInvocations};
-}
+/** PassCounts' fields in kCounterTargets' order. */
+constexpr std::array<std::int64_t PassCounts::*, kCounters> kFields = {
+    &PassCounts::verticesSubmitted, &PassCounts::primitivesSubmitted, &PassCounts::vertexInvocations,
+    &PassCounts::tessEvaluations,   &PassCounts::clippedPrimitives,   &PassCounts::fragmentInvocations,
+    &PassCounts::computeInvocations};
 
 } // namespace
 
@@ -36,15 +37,10 @@ PassCounts medianCounts(const std::vector<PassCounts>& frames) {
   if (frames.empty()) {
     return m;
   }
-  std::vector<PassCounts> copy = frames;
-  for (auto field :
-       {&PassCounts::verticesSubmitted, &PassCounts::primitivesSubmitted, &PassCounts::vertexInvocations,
-        &PassCounts::tessEvaluations, &PassCounts::clippedPrimitives, &PassCounts::fragmentInvocations,
-        &PassCounts::computeInvocations}) {
-    std::vector<std::int64_t> v;
-    v.reserve(copy.size());
-    for (const PassCounts& c : copy) {
-      v.push_back(c.*field);
+  std::vector<std::int64_t> v(frames.size());
+  for (auto field : kFields) {
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      v[i] = frames[i].*field;
     }
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
     m.*field = v[v.size() / 2];
@@ -142,9 +138,9 @@ void GpuTimers::collect(Slot& slot, bool wait) {
     const auto stop = slot.queries[2 * i + 1].result(true);
     slot.timings[i].gpuMs = static_cast<double>(*stop - *start) * 1e-6;
     if (mCountWork) {
-      const auto out = fields(slot.timings[i].counts);
       for (std::size_t k = 0; k < kCounters; ++k) {
-        *out[k] = static_cast<std::int64_t>(*slot.counters[kCounters * i + k].result(true));
+        slot.timings[i].counts.*kFields[k] =
+            static_cast<std::int64_t>(*slot.counters[kCounters * i + k].result(true));
       }
     }
   }
