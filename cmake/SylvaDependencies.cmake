@@ -8,6 +8,8 @@ find_package(nlohmann_json REQUIRED)
 find_package(PNG REQUIRED)
 find_package(OpenEXR REQUIRED)
 find_package(glfw3 REQUIRED)
+# SIMD with the best instruction set chosen at run time (Highway): the grass constraint solver's lanes.
+find_package(hwy REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 if(SYLVA_BUILD_APPS)

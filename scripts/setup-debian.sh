@@ -13,8 +13,8 @@ packages=(
   libopencv-video-dev libopencv-videoio-dev libopencv-imgproc-dev
   # grass capture: Kinect v1 through libfreenect, and its fakenect replay library and tools
   libfreenect-dev libfreenect-bin
-  # grass simulation: rigid bodies and the terrain collider (Bullet)
-  libbullet-dev
+  # grass simulation: rigid bodies and the terrain collider (Bullet); the constraint solver's SIMD lanes (Highway)
+  libbullet-dev libhwy-dev
   # trees: artist-made pieces (glTF, OBJ, Collada) through Assimp; exported trees read back by tinygltf and
   # checked by the Khronos gltf-validator (Node; scripts/fetch-node-tools.sh)
   libassimp-dev libtinygltf-dev

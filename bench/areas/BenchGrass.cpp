@@ -11,6 +11,7 @@
 #include <sylva/grass/gpu/GrassSimulator.hpp>
 #include <sylva/scene/gpu/GrassSimulation.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
+#include <grass/SolverCase.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/gpu/TerrainPopping.hpp>
 
@@ -31,16 +32,7 @@ namespace sylva::bench {
 
 namespace {
 
-/** The paper's field: 16,384-blade patch, 64 blades per 2 m tile, full density everywhere. */
-grass::FieldSettings paperFieldSettings() {
-  grass::FieldSettings fs;
-  fs.patch.blades = 16384;
-  fs.bladesPerTile = 64;
-  fs.density.noiseFrequency = 0.0f;
-  fs.density.coverage = 1.0f;
-  fs.density.maxSlopeDegrees = 90.0f;
-  return fs;
-}
+using grass::bench::paperFieldSettings;
 
 } // namespace
 
@@ -226,65 +218,23 @@ void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nl
   shader::Library library;
   const std::string rendererName = gl::queryContextInfo().renderer;
   report = header(o, "grass-sim", context);
-  terrain::ProceduralSpec spec = terrain::TerrainSource::defaultProcedural();
-  spec.heightScale = 4.0f;
-  spec.frequency = 1.0f / 120.0f;
-  const grass::FieldSettings fs = paperFieldSettings();
-  // 96 x 96 tiles of 2 m: room for the 7,813 tiles of the GPU workload.
-  auto field = std::make_shared<grass::GrassField>(terrain::generate(spec, 0.0, 0.0, 193, 193, 1.0f),
-                                                   grass::proceduralBladeTypes(), fs);
+  const std::shared_ptr<grass::GrassField> field = grass::bench::solverField();
   grass::GrassRenderer renderer(library, field);
-  wind::WindSettings wind;
-  wind.speed = 4.0f;
-  const float top = field->bladeTop();
+  const wind::WindSettings wind = grass::bench::solverWind();
   struct Workload {
     int tiles;
     int bodies;
     double paperMs;
   };
   const Workload table1[] = {{6, 1, 0.176}, {14, 2, 0.183}, {150, 20, 0.952}, {709, 128, 4.67}};
-  // Tiles in a square block around the field's centre; bodies spread over them, each a 0.4 m ball resting on
-  // the grass at the centre of its share of the tiles. Each tile gets the bodies whose inflated box touches
-  // it.
-  const auto setUp = [&](grass::TileSimulation& sim, int tiles, int bodies,
-                         std::vector<std::vector<grass::BladeCollider>>& colliders) {
-    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(tiles))));
-    const glm::ivec2 first(48 - side / 2, 48 - side / 2);
-    std::vector<glm::ivec2> chosen;
-    for (int i = 0; i < tiles; ++i) {
-      chosen.push_back(first + glm::ivec2(i % side, i / side));
-      sim.activateTile(chosen.back(), wind);
-    }
-    std::vector<grass::BladeCollider> balls;
-    for (int b = 0; b < bodies; ++b) {
-      const glm::ivec2 t = chosen[static_cast<std::size_t>((static_cast<double>(b) + 0.5) * tiles / bodies)];
-      const glm::vec2 xz = (glm::vec2(t) + 0.5f) * field->layout().tileSize;
-      const float y = terrain::heightAt(field->terrain(), xz.x, xz.y) + 0.3f;
-      balls.push_back({glm::vec3(xz.x, y, xz.y), glm::vec3(xz.x, y, xz.y), 0.4f, 30.0f});
-    }
-    colliders.assign(sim.slots().size(), {});
-    for (std::size_t s = 0; s < sim.slots().size(); ++s) {
-      if (!sim.slots()[s].used) {
-        continue;
-      }
-      const glm::vec2 lo = glm::vec2(sim.slots()[s].tile) * field->layout().tileSize - top;
-      const glm::vec2 hi = lo + field->layout().tileSize + 2.0f * top;
-      for (const grass::BladeCollider& c : balls) {
-        if (c.a.x + c.radius >= lo.x && c.a.x - c.radius <= hi.x && c.a.z + c.radius >= lo.y &&
-            c.a.z - c.radius <= hi.y) {
-          colliders[s].push_back(c);
-        }
-      }
-    }
-  };
   constexpr int kRuns = 15;
   constexpr int kWarmup = 3;
   const auto cpuMs = [&](int tiles, int bodies, std::size_t& blades) {
     grass::PoolSettings pool;
     pool.tiles = tiles;
     grass::TileSimulation sim(field, pool, grass::SolverSettings{});
-    std::vector<std::vector<grass::BladeCollider>> colliders;
-    setUp(sim, tiles, bodies, colliders);
+    const std::vector<std::vector<grass::BladeCollider>> colliders =
+        grass::bench::setUpSolverCase(sim, *field, tiles, bodies, wind);
     blades = 0;
     for (std::size_t i = 0; i < sim.blades().count(); ++i) {
       blades += sim.bladeInUse(i) ? 1 : 0;
@@ -297,8 +247,8 @@ void benchGrassSim(const BenchOptions& o, const platform::GlContext& context, nl
     grass::TileSimulation sim(field, pool, grass::SolverSettings{});
     grass::GrassSimulator gpu(library, renderer, sim);
     sim.setBackend(&gpu);
-    std::vector<std::vector<grass::BladeCollider>> colliders;
-    setUp(sim, tiles, bodies, colliders);
+    const std::vector<std::vector<grass::BladeCollider>> colliders =
+        grass::bench::setUpSolverCase(sim, *field, tiles, bodies, wind);
     gl::finish();
     return render::Stats::of(timeRuns(kWarmup, kRuns,
                                       [&] {

@@ -1,5 +1,7 @@
 #include <sylva/grass/Simulation.hpp>
 
+#include "SimulationSimd.hpp"
+
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Parallel.hpp>
 
@@ -8,12 +10,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sylva::grass {
 namespace {
-
-/** Penetration (metres) from which a contact is fully inelastic. */
-constexpr float kContactDepth = 0.01f;
 
 // Quaternions as vec4 (xyz, w), with the operations of shaders/grass/simulate.glsl, in the same order.
 using Quat = glm::vec4;
@@ -197,6 +197,7 @@ SolverConstants solverConstants(const SolverSettings& s) {
   c.recoveryStep = c.dt / s.trampleRecovery;
   c.localPasses = s.localIterations;
   c.lengthPasses = s.lengthIterations;
+  c.kernel = s.kernel;
   return c;
 }
 
@@ -249,21 +250,40 @@ void simulateBlade(SimBlades& blades, std::size_t blade, const std::vector<Blade
             ground, constants);
 }
 
+void simulateBlades(SimBlades& blades, std::span<const std::uint32_t> indices,
+                    std::span<const glm::vec2> wind, const std::vector<BladeCollider>& colliders,
+                    const GroundFunction& ground, const SolverConstants& constants,
+                    const GroundShortcuts& shortcuts) {
+  if (wind.size() != indices.size()) {
+    fail("grass simulation: {} wind velocities for {} blades", wind.size(), indices.size());
+  }
+  if (constants.kernel == SolverKernel::Simd) {
+    stepBladesSimd(blades, indices.data(), wind.data(), indices.size(), colliders, ground, constants,
+                   shortcuts);
+    return;
+  }
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    simulateBlade(blades, indices[i], colliders, wind[i], ground, constants);
+  }
+}
+
 void simulateStep(SimBlades& blades, std::size_t first, std::size_t count,
                   const std::vector<BladeCollider>& colliders, const std::vector<glm::vec2>& wind,
                   const GroundFunction& ground, const SolverSettings& settings) {
-  if (first + count > blades.count()) {
+  if (first + count > blades.count() || first + count > std::numeric_limits<std::uint32_t>::max()) {
     fail("grass simulation: blades {}..{} outside the {} blades", first, first + count, blades.count());
   }
   const SolverConstants constants = solverConstants(settings);
   parallelFor(
       count,
       [&](std::size_t begin, std::size_t end) {
+        std::vector<std::uint32_t> indices(end - begin);
+        std::vector<glm::vec2> velocities(end - begin);
         for (std::size_t b = first + begin; b < first + end; ++b) {
-          const std::size_t k = b * kSimKnots;
-          stepBlade(&blades.position[k], &blades.previous[k], &blades.rest[k], blades.trample[b], colliders,
-                    b < wind.size() ? wind[b] : glm::vec2(0.0f), ground, constants);
+          indices[b - first - begin] = static_cast<std::uint32_t>(b);
+          velocities[b - first - begin] = b < wind.size() ? wind[b] : glm::vec2(0.0f);
         }
+        simulateBlades(blades, indices, velocities, colliders, ground, constants);
       },
       16);
 }

@@ -4,10 +4,13 @@
 #include <sylva/core/Parallel.hpp>
 #include <sylva/grass/Expand.hpp>
 
+#include "SimulationSimd.hpp"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace sylva::grass {
@@ -182,19 +185,91 @@ void TileSimulation::stepOnCpu(const std::vector<int>& used,
   const terrain::HeightField& terrain = mField->terrain();
   const GroundFunction ground = [&terrain](float x, float z) { return rootHeight(terrain, x, z); };
   const SolverConstants constants = solverConstants(mSolver);
+  const bool simd = constants.kernel == SolverKernel::Simd;
+  std::vector<RestShape> shapes;
+  if (simd) {
+    for (const BladeType& type : mField->types()) {
+      shapes.push_back(restShape(type));
+    }
+  }
+  // The highest ground a tile's knots can reach: every knot is within a blade length of its root (the edge
+  // lengths hold it there), and the ground between samples is bilinear, so no higher than the samples around
+  // it. Knots outside the bound are looked up as before.
+  const float reach = 2.0f * mField->bladeTop() + 1.0f;
+  const auto groundBound = [&](const std::vector<std::uint32_t>& blades) {
+    GroundShortcuts bound;
+    if (blades.empty() || terrain.width() < 2 || terrain.height() < 2) {
+      return bound;
+    }
+    bound.grid = &terrain;
+    glm::vec2 lo(std::numeric_limits<float>::max());
+    glm::vec2 hi(std::numeric_limits<float>::lowest());
+    for (const std::uint32_t i : blades) {
+      lo = glm::min(lo, glm::vec2(mRoot[i].x, mRoot[i].z));
+      hi = glm::max(hi, glm::vec2(mRoot[i].x, mRoot[i].z));
+    }
+    bound.lo = lo - reach;
+    bound.hi = hi + reach;
+    const auto sample = [](float at, float spacing, int count, bool up) {
+      const float g = std::clamp(at / spacing, 0.0f, static_cast<float>(count - 1));
+      return std::clamp(static_cast<int>(up ? std::ceil(g) : std::floor(g)), 0, count - 1);
+    };
+    const int i0 = sample(bound.lo.x, terrain.spacingX(), terrain.width(), false);
+    const int i1 = sample(bound.hi.x, terrain.spacingX(), terrain.width(), true);
+    const int j0 = sample(bound.lo.y, terrain.spacingZ(), terrain.height(), false);
+    const int j1 = sample(bound.hi.y, terrain.spacingZ(), terrain.height(), true);
+    bound.ceiling = std::numeric_limits<float>::lowest();
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        if (terrain.valid(i, j)) {
+          bound.ceiling = std::max(bound.ceiling, terrain.at(i, j));
+        }
+      }
+    }
+    // The bilinear blend may round a few ulps above its highest sample.
+    bound.ceiling += std::abs(bound.ceiling) * 1e-6f + 1e-6f;
+    return bound;
+  };
   parallelFor(
       used.size(),
       [&](std::size_t begin, std::size_t end) {
+        std::vector<std::uint32_t> blades;
+        std::vector<glm::vec2> velocities;
+        std::vector<glm::vec2> roots;
+        std::vector<RestInput> rest;
         for (std::size_t k = begin; k < end; ++k) {
           const auto s = static_cast<std::size_t>(used[k]);
           const std::size_t base = s * static_cast<std::size_t>(mPerTile);
+          blades.clear();
+          velocities.clear();
+          roots.clear();
+          rest.clear();
           for (std::size_t i = base; i < base + static_cast<std::size_t>(mPerTile); ++i) {
             if (mPatchIndex[i] == kUnused) {
               continue;
             }
-            const glm::vec2 velocity = restPose(i, u);
-            simulateBlade(mBlades, i, colliders[s], velocity, ground, constants);
+            blades.push_back(static_cast<std::uint32_t>(i));
+            if (!simd) {
+              velocities.push_back(restPose(i, u));
+              continue;
+            }
+            // The reference's restPose on lanes: the wind at every root of the tile at once (bit for bit
+            // windVelocity), then the bent knot lines.
+            const gpu::GrassBlade& b = mField->patch()[mPatchIndex[i]];
+            roots.emplace_back(mRoot[i].x, mRoot[i].z);
+            rest.push_back({static_cast<std::uint32_t>(i),
+                            std::min<std::uint32_t>(b.info.x, static_cast<std::uint32_t>(shapes.size() - 1)),
+                            b.placement.z, b.placement.w, mRoot[i], glm::vec2(0.0f)});
           }
+          if (simd) {
+            velocities.resize(roots.size());
+            wind::windVelocities(u, roots, {}, velocities);
+            for (std::size_t r = 0; r < rest.size(); ++r) {
+              rest[r].wind = velocities[r];
+            }
+            restPosesSimd(shapes, rest.data(), rest.size(), mBlades);
+          }
+          simulateBlades(mBlades, blades, velocities, colliders[s], ground, constants, groundBound(blades));
         }
       },
       1);

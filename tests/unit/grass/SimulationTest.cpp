@@ -2,6 +2,7 @@
 // independent of the iteration count, hard collisions, trampling and recovery, activation without a pop, pool
 // exhaustion, release, bad settings.
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Random.hpp>
 #include <sylva/grass/Expand.hpp>
 #include <sylva/grass/TileSimulation.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
@@ -11,7 +12,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace sylva::grass {
 namespace {
@@ -240,6 +244,141 @@ TEST(TileSimulation, BadSettingsAreErrors) {
   SimBody bad = ballAt(*field, {5.0f, 5.0f}, 0.3f, 1.0f);
   bad.shape.radius = std::nanf("");
   EXPECT_THROW(sim.advance(0.1, {bad}, {}), Error);
+}
+
+// ---- The SIMD kernel against the scalar reference
+
+/** Ground for the kernel comparison: a slope 2 cm above the roots' plane, with a hole (NaN) for x > 1.5. */
+float slopeGround(float x, float z) {
+  return x > 1.5f ? std::nanf("") : 0.1f * x + 0.05f * z + 0.02f;
+}
+
+/**
+ * `count` blades of every procedural type at random turns and scales, rooted on a 0.4 m grid on a slope, each
+ * bent by its own random wind (`winds`).
+ */
+SimBlades randomBlades(std::size_t count, std::vector<glm::vec2>& winds) {
+  Rng random(17);
+  const std::vector<BladeType> types = proceduralBladeTypes();
+  SimBlades blades;
+  winds.clear();
+  for (std::size_t i = 0; i < count; ++i) {
+    gpu::GrassBlade blade{};
+    blade.placement = {0.0f, 0.0f, random.uniform(0.0f, 6.2831853f), random.uniform(0.8f, 1.4f)};
+    const float x = 0.4f * static_cast<float>(i % 6);
+    const float z = 0.4f * static_cast<float>(i / 6);
+    const glm::vec2 wind(random.uniform(-8.0f, 8.0f), random.uniform(-8.0f, 8.0f));
+    winds.push_back(wind);
+    blades.add(
+        bladeCentreLine(types[i % types.size()], 0, blade, glm::vec3(x, 0.1f * x + 0.05f * z, z), wind));
+  }
+  return blades;
+}
+
+TEST(BladeSolver, SimdLanesMatchTheScalarReferenceBitForBit) {
+  SolverSettings settings;
+  settings.gravity = 9.81f; // sags blades onto the ground
+  settings.windDrag = 0.5f;
+  settings.kernel = SolverKernel::Scalar;
+  const SolverConstants scalar = solverConstants(settings);
+  settings.kernel = SolverKernel::Simd;
+  const SolverConstants simd = solverConstants(settings);
+  // A heavy ball pressing into the first blades (tramples) and a light capsule lying across the others.
+  const std::vector<BladeCollider> colliders = {
+      {glm::vec3(0.3f, 0.2f, 0.2f), glm::vec3(0.3f, 0.2f, 0.2f), 0.25f, 40.0f},
+      {glm::vec3(-0.5f, 0.3f, 1.0f), glm::vec3(2.5f, 0.35f, 1.3f), 0.12f, 0.5f}};
+  // The bound covers the hole-free part of the ground (its highest point 0.1·1.5 + 0.05·2.4 + 0.02, and a
+  // margin), so the kernel skips lookups there and looks up the rest.
+  GroundShortcuts bound;
+  bound.lo = glm::vec2(-1.0f, -1.0f);
+  bound.hi = glm::vec2(1.5f, 3.0f);
+  bound.ceiling = 0.1f * 1.5f + 0.05f * 3.0f + 0.02f + 1e-3f;
+  for (const std::size_t count :
+       {std::size_t{1}, std::size_t{7}, std::size_t{8}, std::size_t{9}, std::size_t{37}}) {
+    std::vector<glm::vec2> winds;
+    SimBlades reference = randomBlades(count, winds);
+    SimBlades lanes = reference;
+    std::vector<std::uint32_t> indices(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      indices[i] = static_cast<std::uint32_t>(count - 1 - i); // any order
+    }
+    std::vector<glm::vec2> laneWinds(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      laneWinds[i] = winds[indices[i]];
+    }
+    for (int step = 0; step < 90; ++step) {
+      simulateBlades(reference, indices, laneWinds, colliders, slopeGround, scalar);
+      simulateBlades(lanes, indices, laneWinds, colliders, slopeGround, simd, bound);
+    }
+    for (std::size_t k = 0; k < reference.position.size(); ++k) {
+      ASSERT_EQ(reference.position[k], lanes.position[k]) << count << " blades, knot " << k;
+      ASSERT_EQ(reference.previous[k], lanes.previous[k]) << count << " blades, knot " << k;
+    }
+    EXPECT_EQ(reference.trample, lanes.trample) << count << " blades";
+    // The comparison went through every branch: trampled blades, knots resting on the ground, knots over the
+    // hole.
+    if (count == 37) {
+      EXPECT_GT(*std::max_element(lanes.trample.begin(), lanes.trample.end()), 0.0f);
+      int onGround = 0;
+      int overHole = 0;
+      for (const glm::vec3& p : lanes.position) {
+        onGround += p.y == slopeGround(p.x, p.z) ? 1 : 0;
+        overHole += std::isnan(slopeGround(p.x, p.z)) ? 1 : 0;
+      }
+      EXPECT_GT(onGround, 20);
+      EXPECT_GT(overHole, 20);
+    }
+  }
+}
+
+TEST(TileSimulation, TheSimdKernelStepsLikeTheScalarReference) {
+  auto field = std::make_shared<const GrassField>(smallField());
+  PoolSettings pool;
+  pool.tiles = 16;
+  wind::WindSettings wind;
+  wind.speed = 6.0f;
+  wind.gustStrength = 1.0f;
+  const SimBody ball = ballAt(*field, {19.0f, 19.5f}, 0.5f, 30.0f);
+  SolverSettings solver;
+  solver.kernel = SolverKernel::Scalar;
+  TileSimulation reference(field, pool, solver);
+  solver.kernel = SolverKernel::Simd;
+  TileSimulation lanes(field, pool, solver);
+  SimBody moving = ball;
+  for (int frame = 0; frame < 60; ++frame) {
+    const float dx = 0.03f * static_cast<float>(frame);
+    moving = ball;
+    moving.shape.a.x += dx;
+    moving.shape.b.x += dx;
+    moving.box.min.x += dx;
+    moving.box.max.x += dx;
+    reference.advance((frame + 1) / 60.0, {moving}, wind); // advance takes the time to reach, seconds
+    lanes.advance((frame + 1) / 60.0, {moving}, wind);
+  }
+  // Rest poses, wind and ground all on lanes: every knot is the reference's, bit for bit.
+  ASSERT_EQ(reference.blades().count(), lanes.blades().count());
+  std::size_t compared = 0;
+  float nearest = 1e9f;
+  for (std::size_t i = 0; i < lanes.blades().count(); ++i) {
+    ASSERT_EQ(reference.bladeInUse(i), lanes.bladeInUse(i));
+    if (!lanes.bladeInUse(i)) {
+      continue;
+    }
+    for (int k = 0; k < kSimKnots; ++k) {
+      const std::size_t at = i * kSimKnots + static_cast<std::size_t>(k);
+      ASSERT_EQ(reference.blades().rest[at], lanes.blades().rest[at]) << "blade " << i << ", knot " << k;
+      ASSERT_EQ(reference.blades().position[at], lanes.blades().position[at])
+          << "blade " << i << ", knot " << k;
+      ASSERT_EQ(reference.blades().previous[at], lanes.blades().previous[at])
+          << "blade " << i << ", knot " << k;
+      nearest = std::min(nearest, glm::length(lanes.blades().position[at] - moving.shape.a));
+    }
+    ++compared;
+  }
+  EXPECT_EQ(reference.blades().trample, lanes.blades().trample);
+  EXPECT_GE(compared, 256u);
+  EXPECT_LT(nearest, moving.shape.radius + 0.005f) << "blades touch the ball";
+  EXPECT_GT(*std::max_element(lanes.blades().trample.begin(), lanes.blades().trample.end()), 0.0f);
 }
 
 } // namespace

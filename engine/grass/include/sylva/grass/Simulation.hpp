@@ -5,21 +5,30 @@
 // (hard, last), a velocity clamp. The rest pose each blade returns to is its procedural pose at that moment
 // (bladeCentreLine: the field's blade bent by the same wind the vertex shader uses), so a blade that starts
 // simulating, or stops, does not pop. This CPU reference is multithreaded and deterministic; the compute
-// shader shaders/grass/simulate.comp performs the same operations in the same order.
+// shader shaders/grass/simulate.comp performs the same operations in the same order. The CPU solver runs on
+// SIMD lanes (several blades at once, bit-identical to the scalar reference, which stays for comparisons).
 
 #include <sylva/grass/BladeType.hpp>
+#include <sylva/terrain/HeightField.hpp>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace sylva::grass {
 
 /** Knots of a simulated blade (the finest level). */
 inline constexpr int kSimKnots = 16;
+
+/**
+ * How the CPU steps the blades: one blade at a time (the scalar reference the compute shader mirrors) or one
+ * blade per SIMD lane (Highway, the best instruction set of the machine), with bit-identical results.
+ */
+enum class SolverKernel { Simd, Scalar };
 
 /** Solver parameters; defaults from the TressFX sample where it has them. */
 struct SolverSettings {
@@ -61,6 +70,8 @@ struct SolverSettings {
    * seconds. */
   float trampleSoftening = 0.97f;
   float trampleRecovery = 6.0f;
+  /** The CPU kernel (results do not depend on it; the scalar one is for comparisons and benchmarks). */
+  SolverKernel kernel = SolverKernel::Simd;
   /** Throws sylva::Error naming the field for non-finite, negative or out-of-range values. */
   void validate() const;
   /** Δt of one step, seconds. */
@@ -91,6 +102,7 @@ struct SolverConstants {
   float recoveryStep = 0.0f;
   int localPasses = 1;
   int lengthPasses = 1;
+  SolverKernel kernel = SolverKernel::Simd;
 };
 SolverConstants solverConstants(const SolverSettings& settings);
 
@@ -127,6 +139,33 @@ using GroundFunction = std::function<float(float x, float z)>;
  */
 void simulateBlade(SimBlades& blades, std::size_t blade, const std::vector<BladeCollider>& colliders,
                    glm::vec2 wind, const GroundFunction& ground, const SolverConstants& constants);
+
+/**
+ * What the caller knows of the ground, so the SIMD kernel can skip calling `ground` knot by knot; results
+ * are the same either way. The default knows nothing.
+ */
+struct GroundShortcuts {
+  /**
+   * The ground is rootHeight over this grid (at least 2 × 2 samples): the kernel samples it on its lanes,
+   * with the same operations.
+   */
+  const terrain::HeightField* grid = nullptr;
+  /** Inside [lo, hi] (world x, z, metres) the ground is nowhere higher than `ceiling` (metres), so knots
+   * there above the ceiling need no lookup. */
+  glm::vec2 lo{1.0f};
+  glm::vec2 hi{0.0f};
+  float ceiling = 0.0f;
+};
+
+/**
+ * One solver step of the blades `indices` of `blades` (rest poses already set), blade indices[i] in the wind
+ * wind[i] (world x, z, m/s), on the kernel of `constants`, on the calling thread. Same results as
+ * simulateBlade on each; `shortcuts` only save ground lookups (the SIMD kernel uses them).
+ */
+void simulateBlades(SimBlades& blades, std::span<const std::uint32_t> indices,
+                    std::span<const glm::vec2> wind, const std::vector<BladeCollider>& colliders,
+                    const GroundFunction& ground, const SolverConstants& constants,
+                    const GroundShortcuts& shortcuts = {});
 
 /**
  * One solver step of every blade in `blades` (rest poses already set for this step), with `colliders`, the
