@@ -177,15 +177,15 @@ void stepGroup(SimBlades& blades, const std::uint32_t* indices, const glm::vec2*
                const SolverConstants& c, const GroundShortcuts& shortcuts) {
   const D d;
   const std::size_t width = hn::Lanes(d);
-  HWY_ALIGN GroupKnots x;
-  HWY_ALIGN GroupKnots xp;
-  HWY_ALIGN GroupKnots rest;
+  GroupKnots x;
+  GroupKnots xp;
+  GroupKnots rest;
   gather(blades.position, indices, lanes, x);
   gather(blades.previous, indices, lanes, xp);
   gather(blades.rest, indices, lanes, rest);
-  HWY_ALIGN float laneTrample[kLanes];
-  HWY_ALIGN float windX[kLanes];
-  HWY_ALIGN float windZ[kLanes];
+  alignas(64) float laneTrample[kLanes];
+  alignas(64) float windX[kLanes];
+  alignas(64) float windZ[kLanes];
   for (std::size_t l = 0; l < kLanes; ++l) {
     const std::size_t from = l < lanes ? l : 0;
     laneTrample[l] = blades.trample[indices[from]];
@@ -334,10 +334,10 @@ void stepGroup(SimBlades& blades, const std::uint32_t* indices, const glm::vec2*
       const V loz = hn::Set(d, shortcuts.lo.y);
       const V hix = hn::Set(d, shortcuts.hi.x);
       const V hiz = hn::Set(d, shortcuts.hi.y);
-      HWY_ALIGN float gx[kLanes];
-      HWY_ALIGN float gz[kLanes];
-      HWY_ALIGN float gy[kLanes];
-      HWY_ALIGN float look[kLanes];
+      alignas(64) float gx[kLanes];
+      alignas(64) float gz[kLanes];
+      alignas(64) float gy[kLanes];
+      alignas(64) float look[kLanes];
       for (int i = 2; i < n; ++i) {
         const M inside = hn::And(hn::And(hn::Ge(X[i].x, lox), hn::Le(X[i].x, hix)),
                                  hn::And(hn::Ge(X[i].z, loz), hn::Le(X[i].z, hiz)));
@@ -394,14 +394,14 @@ void restGroup(std::span<const RestShape> shapes, const RestInput* inputs, std::
                SimBlades& blades) {
   const D d;
   const std::size_t width = hn::Lanes(d);
-  HWY_ALIGN GroupKnots centres;
-  HWY_ALIGN GroupKnots segments;
-  HWY_ALIGN float u[n][kLanes];
-  HWY_ALIGN float rotation[kLanes];
-  HWY_ALIGN float scaleOf[kLanes];
-  HWY_ALIGN float stiffness[kLanes];
-  HWY_ALIGN float root[3][kLanes];
-  HWY_ALIGN float wind[2][kLanes];
+  GroupKnots centres;
+  GroupKnots segments;
+  alignas(64) float u[n][kLanes];
+  alignas(64) float rotation[kLanes];
+  alignas(64) float scaleOf[kLanes];
+  alignas(64) float stiffness[kLanes];
+  alignas(64) float root[3][kLanes];
+  alignas(64) float wind[2][kLanes];
   for (std::size_t l = 0; l < kLanes; ++l) {
     const RestInput& in = inputs[l < lanes ? l : 0];
     const RestShape& shape = shapes[in.type];
@@ -424,8 +424,8 @@ void restGroup(std::span<const RestShape> shapes, const RestInput* inputs, std::
     // Sines and cosines from the C library, lane by lane, exactly as the scalar walk takes them: the rest
     // pose is then bit for bit bladeCentreLine's (Highway's own Sin and Cos are 3 ulp off, which contacts
     // amplify to 0.1 mm within a second).
-    HWY_ALIGN float laneCos[kLanes];
-    HWY_ALIGN float laneSin[kLanes];
+    alignas(64) float laneCos[kLanes];
+    alignas(64) float laneSin[kLanes];
     for (std::size_t l = 0; l < width; ++l) {
       laneCos[l] = std::cos(rotation[lane0 + l]);
       laneSin[l] = std::sin(rotation[lane0 + l]);
@@ -461,7 +461,7 @@ void restGroup(std::span<const RestShape> shapes, const RestInput* inputs, std::
                       hn::Mul(hn::Add(hn::Mul(hn::Neg(s), seg.x), hn::Mul(c, seg.z)), bladeScale)};
       const V uk = hn::Load(d, u[k] + lane0);
       const V bend = hn::Mul(hn::Mul(theta, uk), uk);
-      HWY_ALIGN float bendAngle[kLanes];
+      alignas(64) float bendAngle[kLanes];
       hn::Store(bend, d, bendAngle);
       for (std::size_t l = 0; l < width; ++l) {
         ::sincosf(bendAngle[l], &laneSin[l], &laneCos[l]);

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <hwy/targets.h>
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -293,42 +295,51 @@ TEST(BladeSolver, SimdLanesMatchTheScalarReferenceBitForBit) {
   bound.lo = glm::vec2(-1.0f, -1.0f);
   bound.hi = glm::vec2(1.5f, 3.0f);
   bound.ceiling = 0.1f * 1.5f + 0.05f * 3.0f + 0.02f + 1e-3f;
-  for (const std::size_t count :
-       {std::size_t{1}, std::size_t{7}, std::size_t{8}, std::size_t{9}, std::size_t{37}}) {
-    std::vector<glm::vec2> winds;
-    SimBlades reference = randomBlades(count, winds);
-    SimBlades lanes = reference;
-    std::vector<std::uint32_t> indices(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      indices[i] = static_cast<std::uint32_t>(count - 1 - i); // any order
-    }
-    std::vector<glm::vec2> laneWinds(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      laneWinds[i] = winds[indices[i]];
-    }
-    for (int step = 0; step < 90; ++step) {
-      simulateBlades(reference, indices, laneWinds, colliders, slopeGround, scalar);
-      simulateBlades(lanes, indices, laneWinds, colliders, slopeGround, simd, bound);
-    }
-    for (std::size_t k = 0; k < reference.position.size(); ++k) {
-      ASSERT_EQ(reference.position[k], lanes.position[k]) << count << " blades, knot " << k;
-      ASSERT_EQ(reference.previous[k], lanes.previous[k]) << count << " blades, knot " << k;
-    }
-    EXPECT_EQ(reference.trample, lanes.trample) << count << " blades";
-    // The comparison went through every branch: trampled blades, knots resting on the ground, knots over the
-    // hole.
-    if (count == 37) {
-      EXPECT_GT(*std::max_element(lanes.trample.begin(), lanes.trample.end()), 0.0f);
-      int onGround = 0;
-      int overHole = 0;
-      for (const glm::vec3& p : lanes.position) {
-        onGround += p.y == slopeGround(p.x, p.z) ? 1 : 0;
-        overHole += std::isnan(slopeGround(p.x, p.z)) ? 1 : 0;
+  // On every instruction set this machine runs (SSSE3, SSE4, AVX2, AVX-512, ...), not only the one Highway
+  // would pick.
+  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  ASSERT_FALSE(targets.empty());
+  for (const std::int64_t target : targets) {
+    hwy::SetSupportedTargetsForTest(target);
+    SCOPED_TRACE(hwy::TargetName(target));
+    for (const std::size_t count :
+         {std::size_t{1}, std::size_t{7}, std::size_t{8}, std::size_t{9}, std::size_t{37}}) {
+      std::vector<glm::vec2> winds;
+      SimBlades reference = randomBlades(count, winds);
+      SimBlades lanes = reference;
+      std::vector<std::uint32_t> indices(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        indices[i] = static_cast<std::uint32_t>(count - 1 - i); // any order
       }
-      EXPECT_GT(onGround, 20);
-      EXPECT_GT(overHole, 20);
+      std::vector<glm::vec2> laneWinds(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        laneWinds[i] = winds[indices[i]];
+      }
+      for (int step = 0; step < 90; ++step) {
+        simulateBlades(reference, indices, laneWinds, colliders, slopeGround, scalar);
+        simulateBlades(lanes, indices, laneWinds, colliders, slopeGround, simd, bound);
+      }
+      for (std::size_t k = 0; k < reference.position.size(); ++k) {
+        ASSERT_EQ(reference.position[k], lanes.position[k]) << count << " blades, knot " << k;
+        ASSERT_EQ(reference.previous[k], lanes.previous[k]) << count << " blades, knot " << k;
+      }
+      EXPECT_EQ(reference.trample, lanes.trample) << count << " blades";
+      // The comparison went through every branch: trampled blades, knots resting on the ground, knots over
+      // the hole.
+      if (count == 37) {
+        EXPECT_GT(*std::max_element(lanes.trample.begin(), lanes.trample.end()), 0.0f);
+        int onGround = 0;
+        int overHole = 0;
+        for (const glm::vec3& p : lanes.position) {
+          onGround += p.y == slopeGround(p.x, p.z) ? 1 : 0;
+          overHole += std::isnan(slopeGround(p.x, p.z)) ? 1 : 0;
+        }
+        EXPECT_GT(onGround, 20);
+        EXPECT_GT(overHole, 20);
+      }
     }
   }
+  hwy::SetSupportedTargetsForTest(0);
 }
 
 TEST(TileSimulation, TheSimdKernelStepsLikeTheScalarReference) {
