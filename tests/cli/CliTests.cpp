@@ -709,5 +709,41 @@ TEST(CliBench, EveryPassOfEveryAreaReportsItsWork) {
   EXPECT_EQ(surface.at("counts").at("compute_invocations"), 0);
 }
 
+TEST(CliBench, GpuBenchScriptRefusesSoftwareAndStoresEveryReport) {
+  // scripts/gpu-bench.sh is for NVIDIA machines, which CI never has: here it must refuse llvmpipe in one line
+  // before any work, and with --allow-software run what it is given and store each report.
+  test::TempDir dir;
+  const fs::path script = fs::path(SYLVA_SOURCE_DIR) / "scripts" / "gpu-bench.sh";
+  const fs::path build = fs::path(SYLVA_EXE).parent_path().parent_path();
+  const fs::path results = dir / "results";
+  const std::string common =
+      quote(script.string()) + " --build " + quote(build.string()) + " --results " + quote(results.string());
+  const RunResult refused = test::runProgram("bash", dir.path(), common + " --areas demo --no-tests");
+  if (refused.status == 0) {
+    GTEST_SKIP() << "a GPU renders here; the software-renderer refusal is not testable";
+  }
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_EQ(lineCount(refused.err), 1u) << refused.err;
+  EXPECT_NE(refused.err.find("--allow-software"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(results)) << "nothing written before the renderer was checked";
+  const RunResult bad = test::runProgram("bash", dir.path(), common + " --areas nonsense --allow-software");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("unknown area 'nonsense'"), std::string::npos) << bad.err;
+
+  const RunResult r =
+      test::runProgram("bash", dir.path(), common + " --areas demo --quick --no-tests --allow-software");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const nlohmann::json info = loadJsonFile(results / "info.json");
+  EXPECT_FALSE(info.at("renderer").get<std::string>().empty());
+  const nlohmann::json demo = loadJsonFile(results / "demo.json");
+  EXPECT_EQ(demo.at("passes").size(), 2u);
+  const nlohmann::json summary = loadJsonFile(results / "summary.json");
+  ASSERT_EQ(summary.at("runs").size(), 1u);
+  EXPECT_EQ(summary.at("runs")[0].at("name"), "demo");
+  EXPECT_EQ(summary.at("runs")[0].at("status"), 0);
+  EXPECT_TRUE(summary.at("quick").get<bool>());
+  EXPECT_TRUE(summary.at("gl_tests_status").is_null());
+}
+
 } // namespace
 } // namespace sylva
