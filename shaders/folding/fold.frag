@@ -42,15 +42,25 @@ void main() {
   FoldTexel x;
   x.base = init.xy;
   x.dt = init.z;
+#ifdef FOLD_LAYERS
+  // The renderer builds one program per layer count and fold mask: constant loop bounds below and in
+  // foldReadPoint, so every array index is a constant.
+  x.layers = FOLD_LAYERS;
+  x.foldMask = FOLD_FOLD_MASK;
+#else
   x.layers = fold.info.y;
   x.foldMask = fold.info.z;
+#endif
   // Fetch only the layers in use: the bounds are uniform, so no lane fetches what it will not read (a ?: here
   // would fetch all FOLD_MAX_LAYERS of both arrays on llvmpipe, where both operands are evaluated).
   for (int l = 0; l < FOLD_MAX_LAYERS; ++l) {
     x.jump[l] = vec4(0.0, 0.0, 1.0, 1.0);
     x.fold[l] = vec4(1.0);
   }
-  for (int l = 0; l < x.layers; ++l) {
+  for (int l = 0; l < FOLD_MAX_LAYERS; ++l) {
+    if (l >= x.layers) {
+      break;
+    }
     x.jump[l] = texelFetch(jumpMaps, ivec3(texel, l), 0);
     if ((x.foldMask & (1 << l)) != 0) {
       x.fold[l] = texelFetch(foldMaps, ivec3(texel, l), 0);

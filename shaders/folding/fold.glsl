@@ -88,19 +88,24 @@ float foldPosition(FoldFunction f, float phi) {
       return first.y;
     }
     vec2 previous = first;
-    // Constant bounds so compilers unroll (llvmpipe keeps dynamic loops scalar per lane).
+    vec2 next = first;
+    // Constant bounds so compilers unroll (llvmpipe keeps dynamic loops scalar per lane); the segment is found
+    // with one break, not a return from inside the loop (which llvmpipe masks lane by lane to the end).
     for (int i = 1; i < FOLD_MAX_KNOTS; ++i) {
       if (i >= f.knotCount) {
         break;
       }
-      vec2 knot = foldKnot(f.profile, i);
-      if (phi <= knot.x) {
-        float t = (phi - previous.x) / (knot.x - previous.x);
-        return previous.y + t * (knot.y - previous.y);
+      next = foldKnot(f.profile, i);
+      if (phi <= next.x) {
+        break;
       }
-      previous = knot;
+      previous = next;
     }
-    return previous.y;
+    if (phi > next.x) {
+      return previous.y;
+    }
+    float t = (phi - previous.x) / (next.x - previous.x);
+    return previous.y + t * (next.y - previous.y);
   }
   if (f.type == FOLD_EXPONENTIAL) {
     if (abs(f.params.x) < 1e-6) {

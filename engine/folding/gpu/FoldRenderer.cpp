@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 
 namespace sylva::folding::gpu {
 
@@ -149,7 +150,21 @@ FoldRenderer::FoldRenderer(const shader::Library& library) : mUniformBuffer(size
 }
 
 void FoldRenderer::reloadShaders(const shader::Library& library) {
-  mProgram = shader::compileProgram(library, {"fold", {"folding/fold.vert", "folding/fold.frag"}, {}});
+  gl::Program program = shader::compileProgram(
+      library, {"fold",
+                {"folding/fold.vert", "folding/fold.frag"},
+                {{"FOLD_LAYERS", std::to_string(mLayers)}, {"FOLD_FOLD_MASK", std::to_string(mFoldMask)}}});
+  mLibrary = library;
+  mProgram = std::move(program);
+  mProgramLayers = mLayers;
+  mProgramFoldMask = mFoldMask;
+}
+
+const gl::Program& FoldRenderer::program() {
+  if (mProgramLayers != mLayers || mProgramFoldMask != mFoldMask) {
+    reloadShaders(mLibrary);
+  }
+  return mProgram;
 }
 
 void FoldRenderer::upload(const Textures& textures, const std::vector<Profile>& profiles,
@@ -292,7 +307,7 @@ void FoldRenderer::draw(double t, Rect atlasRegion) {
   const CapabilityScope depth(GL_DEPTH_TEST, false);
   const CapabilityScope blend(GL_BLEND, false);
   const CapabilityScope cull(GL_CULL_FACE, false);
-  mProgram.use();
+  program().use();
   mVao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }

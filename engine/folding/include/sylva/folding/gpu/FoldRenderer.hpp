@@ -39,7 +39,12 @@ public:
   /** Compiles the fold program from `library`; upload() must come before draw() or render(). */
   explicit FoldRenderer(const shader::Library& library);
 
-  /** Recompiles the program (viewer hot reload); keeps the old one and throws on error. */
+  /**
+   * Recompiles the program (viewer hot reload); keeps the old one and throws on error. The program is built
+   * for the uploaded textures' jump-layer count and fold layers (FOLD_LAYERS, FOLD_FOLD_MASK: constant loop
+   * bounds, every array index constant; a loop to a uniform bound kept the layer arrays in per-lane memory on
+   * llvmpipe, a fifth of the frame), and rebuilt when they change.
+   */
   void reloadShaders(const shader::Library& library);
 
   /**
@@ -81,8 +86,14 @@ public:
 private:
   void uploadAll(const Textures& textures);
   void uploadRect(const Textures& textures, Rect region);
+  /** The program for the current layer count and fold mask (compiled when they change). */
+  const gl::Program& program();
 
+  shader::Library mLibrary;
   gl::Program mProgram{gl::NoCreate};
+  /** (layers, fold mask) mProgram was built for; −1: none yet. */
+  int mProgramLayers = -1;
+  int mProgramFoldMask = -1;
   gl::VertexArray mVao;
   gl::Buffer mUniformBuffer;
   gl::Texture mColor{gl::NoCreate};
