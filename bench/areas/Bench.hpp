@@ -120,7 +120,7 @@ std::uint64_t residentBytes();
  * at 1280×720), GPU memory the subsystems report and the process's resident memory; needs a current GL
  * context.
  */
-void benchScene(const std::string& file, int frames, int warmup, int width, int height,
+void benchScene(const std::string& file, int frames, int warmup, int width, int height, bool fullQuality,
                 nlohmann::json& report);
 
 /** Seconds of each of `runs` calls of `fn` after `warmup` unmeasured calls. */

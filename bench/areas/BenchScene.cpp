@@ -37,12 +37,15 @@ std::string compact(std::int64_t n) {
 
 } // namespace
 
-void benchScene(const std::string& file, int frames, int warmup, int width, int height,
+void benchScene(const std::string& file, int frames, int warmup, int width, int height, bool fullQuality,
                 nlohmann::json& report) {
   const auto buildStart = std::chrono::steady_clock::now();
   const std::uint64_t rssBefore = residentBytes();
   shader::Library library;
   scene::SceneWorld world(library, scene::loadScene(file));
+  scene::SceneDrawOptions draw = world.drawOptions();
+  draw.fullQuality = fullQuality;
+  world.setDrawOptions(draw);
   const scene::SceneDesc& desc = world.desc();
   render::RenderTarget target(width, height);
   gl::finish();

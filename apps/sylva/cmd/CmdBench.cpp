@@ -28,6 +28,7 @@ struct BenchFlags {
   std::string out;
   double maxGrowthPercent = 1.0;
   std::string sceneFile = "data/scenes/meadow.json";
+  std::string quality = "default";
 
   /** What the area measures; throws naming the option when the terrain options do not go together. */
   bench::BenchOptions options() const {
@@ -94,6 +95,12 @@ void registerBench(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->capture_default_str();
   command
+      ->add_option(
+          "--quality", o->quality,
+          "scene: default, or full (every shadow cascade every frame, for comparisons; docs/performance.md)")
+      ->check(CLI::IsMember({"default", "full"}))
+      ->capture_default_str();
+  command
       ->add_option("--max-growth", o->maxGrowthPercent,
                    "soak: largest allowed growth of resident memory after warm-up, in percent")
       ->check(CLI::Range(0.0, 1000.0))
@@ -137,7 +144,8 @@ void registerBench(CLI::App& app) {
     } else if (o->area == "scene") {
 #ifdef SYLVA_HAVE_SCENE
       report = bench::header(options, "scene", *context);
-      bench::benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, report);
+      bench::benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, o->quality == "full",
+                        report);
 #else
       fail("bench scene: this sylva was built without the scene module");
 #endif

@@ -133,6 +133,11 @@ void renderSceneFile(const SceneRenderOptions& o) {
     auto context = platform::createHeadlessContext(o.context);
     shader::Library library(o.shaderDir);
     scene::SceneWorld world(library, desc);
+    // Offline frames take the full path: each is then a pure function of (scene, frame), whatever was drawn
+    // before (shards and resumed runs rely on it); the real-time paths keep far shadow cascades.
+    scene::SceneDrawOptions draw = world.drawOptions();
+    draw.fullQuality = true;
+    world.setDrawOptions(draw);
     render::RenderTarget target(width, height);
     Progress progress(fmt::format("render {}", desc.name), todo.size());
     for (int f : todo) {

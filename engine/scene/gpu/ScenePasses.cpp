@@ -8,6 +8,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sylva::scene {
@@ -51,6 +52,20 @@ render::Environment sceneEnvironment(const SceneDesc& scene) {
   return e;
 }
 
+double farCascadeTime(double time, int cascade, int cascades, double fps) {
+  if (cascade <= 0 || cascades <= 1 || !(fps > 0.0)) {
+    return time;
+  }
+  // Steps of (cascades − 1) frames, cascade k's shifted by k − 1 frames: one far cascade's step begins each
+  // frame. In frames, so a frame's own time maps to the same step whatever the rounding of f / fps (the
+  // 1e-6 frame keeps f exact).
+  const double frame = time * fps;
+  const double shift = static_cast<double>(cascade - 1);
+  const double step = static_cast<double>(cascades - 1);
+  const double stepped = (std::floor((frame - shift) / step + 1e-6) * step + shift) / fps;
+  return time >= 0.0 ? std::max(stepped, 0.0) : stepped; // a clock that starts at 0 does not go before it
+}
+
 ScenePasses::ScenePasses(const shader::Library& library, const SceneDesc& scene)
     : mScene(scene), mBase(sceneEnvironment(scene)), mEnvironment(mBase) {
   mEnabled.fill(true);
@@ -68,6 +83,14 @@ void ScenePasses::set(Pass pass, PassDraw draw, PassDraw shadow) {
     fail("scene: the {} pass belongs to the scene module", passName(pass));
   }
   mEntries[static_cast<int>(pass)] = {std::move(draw), std::move(shadow)};
+  invalidateShadows(); // what casts may have changed
+}
+
+void ScenePasses::setShadowReuse(bool on) {
+  if (on != mShadowReuse) {
+    mShadowReuse = on;
+    invalidateShadows();
+  }
 }
 
 bool ScenePasses::present(Pass pass) const {
@@ -92,12 +115,35 @@ void ScenePasses::renderShadows(const render::Camera& camera, float aspect, doub
   const render::GpuTimerScope timed(timers, passName(Pass::Shadows));
   render::Environment casterEnvironment = mBase; // casters draw unshadowed (their colour is not kept)
   casterEnvironment.frame = &mFrame;
-  for (int i = 0; i < static_cast<int>(cascades.cascades.size()); ++i) {
+  const int count = static_cast<int>(cascades.cascades.size());
+  if (static_cast<int>(mShadowCache.size()) != count) {
+    mShadowCache.assign(static_cast<std::size_t>(count), std::nullopt);
+  }
+  mLastCascadesDrawn = 0;
+  for (int i = 0; i < count; ++i) {
     const render::ShadowCascade& c = cascades.cascades[static_cast<std::size_t>(i)];
+    double casterTime = time;
+    if (mShadowReuse && i > 0) {
+      casterTime = farCascadeTime(time, i, count, mScene.output.fps);
+      const CascadeKey key{
+          c.viewProj,      casterTime,
+          camera.position, camera.target,
+          camera.up,       glm::vec4(camera.fovY, camera.nearPlane, camera.farPlane, camera.orthoHeight),
+          casters.min,     casters.max};
+      std::optional<CascadeKey>& cached = mShadowCache[static_cast<std::size_t>(i)];
+      if (cached == key) {
+        continue; // the map holds exactly what drawing it again would
+      }
+      cached = key;
+    } else {
+      mShadowCache[static_cast<std::size_t>(i)].reset();
+    }
+    ++mLastCascadesDrawn;
     mShadowMaps->begin(i);
-    mFrame.update(c.camera, mShadowMaps->size(), mShadowMaps->size(), time, casterEnvironment);
+    mFrame.update(c.camera, mShadowMaps->size(), mShadowMaps->size(), casterTime, casterEnvironment);
     const PassInput input{
-        c.camera, mShadowMaps->size(), mShadowMaps->size(), time, casterEnvironment, nullptr, &camera, true};
+        c.camera, mShadowMaps->size(), mShadowMaps->size(), casterTime, casterEnvironment, nullptr, &camera,
+        true};
     for (const Entry& e : mEntries) {
       if (e.shadow) {
         e.shadow(input);
@@ -120,6 +166,7 @@ void ScenePasses::render(const render::Camera& camera, int width, int height, do
     renderShadows(camera, aspect, time, casters, timers);
   } else {
     render::ShadowMaps::unbind();
+    mLastCascadesDrawn = 0;
   }
   // One frame block for every pass of the view (the cascades above filled it for their own cameras).
   mEnvironment.frame = &mFrame;

@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 
 namespace sylva::scene {
@@ -351,6 +352,15 @@ render::Camera SceneWorld::camera(const std::string& name, double time, float as
   (void)aspect;
   render::fitClipPlanes(camera, mTerrain->bounds());
   return camera;
+}
+
+void SceneWorld::setDrawOptions(const SceneDrawOptions& options) {
+  // The trees' rule decides which pieces cast (shadow draws keep it): cached far cascades go with it.
+  if (std::memcmp(&options.treeLod, &mDrawOptions.treeLod, sizeof(options.treeLod)) != 0) {
+    mPasses->invalidateShadows();
+  }
+  mDrawOptions = options;
+  mPasses->setShadowReuse(!options.fullQuality);
 }
 
 void SceneWorld::draw(const render::Camera& camera, int width, int height, double time,

@@ -5,13 +5,16 @@
 // added, a simulation started, a forest rebuilt) change one subsystem and leave the world as it was on
 // errors.
 #include <sylva/core/Error.hpp>
+#include <sylva/render/ImageCompare.hpp>
 #include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
+#include <sylva/render/gpu/ShadowMaps.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 
 #include "GlTest.hpp"
 
+#include <epoxy/gl.h>
 #include <glm/geometric.hpp>
 
 #include <cstddef>
@@ -19,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 namespace sylva::scene {
 namespace {
@@ -181,6 +185,9 @@ TEST_F(SceneWorldTest, EveryPassReadsTheFramesOneUniformBlock) {
   SceneDesc desc = forestDesc();
   desc.forests[0].look->foliage = true;
   SceneWorld world(shaders(), desc);
+  SceneDrawOptions full = world.drawOptions();
+  full.fullQuality = true; // every cascade each frame (the default keeps far cascades that did not change)
+  world.setDrawOptions(full);
   GrassLayer layer;
   layer.layer = "none";
   layer.patchBlades = 1024;
@@ -200,6 +207,81 @@ TEST_F(SceneWorldTest, EveryPassReadsTheFramesOneUniformBlock) {
   ASSERT_GT(cascades, 0);
   EXPECT_EQ(render::FrameUniformBuffer::uploads() - before, static_cast<std::uint64_t>(cascades) + 1);
   EXPECT_EQ(render::FrameUniformBuffer::liveBuffers(), live);
+}
+
+Image drawAt(SceneWorld& world, const render::Camera& camera, double time) {
+  render::RenderTarget target(kWidth, kHeight);
+  target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  world.draw(camera, kWidth, kHeight, time, &target.depth(), nullptr);
+  return target.readColor();
+}
+
+/** Every texel of every cascade of the world's shadow maps, cascade after cascade. */
+std::vector<float> shadowDepths(const SceneWorld& world) {
+  const render::ShadowMaps* maps = const_cast<SceneWorld&>(world).passes().shadowMaps();
+  if (maps == nullptr) {
+    return {};
+  }
+  std::vector<float> depths(static_cast<std::size_t>(maps->size()) * maps->size() * maps->cascades());
+  glGetTextureImage(maps->texture().id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                    static_cast<GLsizei>(depths.size() * sizeof(float)), depths.data());
+  return depths;
+}
+
+TEST(FarCascadeTime, StepsOfCascadesMinusOneFramesOneFarCascadeBeginningEachFrame) {
+  const double fps = 24.0;
+  for (int f = 0; f < 48; ++f) {
+    const double t = f / fps;
+    EXPECT_EQ(farCascadeTime(t, 0, 3, fps), t);
+    // Cascade 1 steps at even frames, cascade 2 at odd ones; each holds its step's first frame's time.
+    EXPECT_DOUBLE_EQ(farCascadeTime(t, 1, 3, fps), (f / 2 * 2) / fps) << f;
+    EXPECT_DOUBLE_EQ(farCascadeTime(t, 2, 3, fps), f == 0 ? 0.0 : ((f - 1) / 2 * 2 + 1) / fps) << f;
+    // Four cascades: steps of 3 frames.
+    EXPECT_DOUBLE_EQ(farCascadeTime(t, 1, 4, fps), (f / 3 * 3) / fps) << f;
+  }
+  EXPECT_EQ(farCascadeTime(0.37, 1, 1, fps), 0.37);
+}
+
+TEST_F(SceneWorldTest, RealTimeShadowsRedrawOneFarCascadeAFrameAndLookTheSame) {
+  // Swaying trees (their springs stepped every frame), three cascades, a still camera: after the first frame
+  // each frame draws the near cascade and the one far cascade whose step begins; the other is kept.
+  SceneDesc desc = forestDesc();
+  desc.forests[0].wind = true;
+  desc.shadows.cascades = 3;
+  desc.shadows.distance = 40.0f; // the far cascades cover swaying trees too
+  desc.output.fps = 24.0;
+  SceneWorld realTime(shaders(), desc);
+  SceneWorld full(shaders(), desc);
+  SceneDrawOptions fullOptions = full.drawOptions();
+  fullOptions.fullQuality = true;
+  full.setDrawOptions(fullOptions);
+  const render::Camera camera = forestCamera(realTime);
+  Image cheap;
+  Image reference;
+  std::vector<float> previousMaps;
+  bool swayMoved = false;
+  for (int f = 0; f <= 6; ++f) {
+    realTime.advanceToFrame(f);
+    full.advanceToFrame(f);
+    cheap = drawAt(realTime, camera, realTime.frameTime(f));
+    EXPECT_EQ(realTime.passes().lastCascadesDrawn(), f == 0 ? 3 : 2) << "frame " << f;
+    reference = drawAt(full, camera, full.frameTime(f));
+    EXPECT_EQ(full.passes().lastCascadesDrawn(), 3) << "frame " << f;
+    const std::vector<float> maps = shadowDepths(full);
+    swayMoved = swayMoved || (!previousMaps.empty() && maps != previousMaps);
+    previousMaps = maps;
+  }
+  ASSERT_TRUE(swayMoved) << "the casters did not move: the comparison below would show nothing";
+  // Issue 28's quality guard: mean difference ≤ 2/255, ≤ 1 % of pixels off by more than 16/255.
+  const render::CompareResult guard = render::compareImages(cheap, reference, {16, 0.01});
+  EXPECT_TRUE(guard.passed) << guard.failingFraction();
+  EXPECT_LE(guard.meanChannelDiff, 2.0);
+  // A camera that moves changes every cascade's window: all are drawn again.
+  render::Camera moved = camera;
+  moved.position += glm::vec3(6.0f, 0.0f, -6.0f);
+  realTime.advanceToFrame(7);
+  (void)drawAt(realTime, moved, realTime.frameTime(7));
+  EXPECT_EQ(realTime.passes().lastCascadesDrawn(), 3);
 }
 
 } // namespace

@@ -15,6 +15,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace sylva::render {
@@ -58,6 +59,13 @@ render::Environment sceneEnvironment(const SceneDesc& scene);
  * and the sun's flare, each pass timed under its name. Owns the shared resources (the shadow-map array, the
  * sky). Needs a current GL context.
  */
+/**
+ * The time (seconds) far shadow cascade `cascade` (≥ 1) of `cascades` draws its casters at for a frame at
+ * `time` on a clock of `fps` frames per second (ScenePasses::setShadowReuse): `time` rounded down to steps of
+ * (cascades − 1) frames, shifted by cascade − 1 frames. Cascade 0, one cascade or fps ≤ 0: `time`.
+ */
+double farCascadeTime(double time, int cascade, int cascades, double fps);
+
 class ScenePasses {
 public:
   ScenePasses(const shader::Library& library, const SceneDesc& scene);
@@ -80,6 +88,24 @@ public:
    */
   void render(const render::Camera& camera, int width, int height, double time, const Aabb& casters,
               const gl::Texture* depth, render::GpuTimers* timers = nullptr);
+
+  /**
+   * Real-time shadows (the default; false: every cascade every frame, the full path). Cascade 0 is drawn
+   * every frame. Far cascade k ≥ 1 is drawn when its step of (cascades − 1) frames of the scene's clock
+   * begins (farCascadeTime: one far cascade each frame), or when its camera, the viewer or the casters'
+   * bounds changed; otherwise its map is kept. What the kept maps miss is how casters moved since: wind sway,
+   * about a texel there, lags up to cascades − 2 frames. A frame then depends on the frames drawn before, so
+   * offline renders (`sylva render`, whose frames are a pure function of the scene and the frame) take the
+   * full path.
+   */
+  void setShadowReuse(bool on);
+  bool shadowReuse() const { return mShadowReuse; }
+  /** Forgets the cached far cascades (casters changed in a way the cache key does not see). */
+  void invalidateShadows() { mShadowCache.clear(); }
+  /** Cascades drawn by the last frame (0 when shadows are off). */
+  int lastCascadesDrawn() const { return mLastCascadesDrawn; }
+  /** The cascades' depth maps (null: the scene has no shadows). */
+  const render::ShadowMaps* shadowMaps() const { return mShadowMaps.get(); }
 
   /** Fog (extinction per metre, ≥ 0) of the next frames, instead of the scene's. */
   void setFogDensity(float density) { mBase.fogDensity = density; }
@@ -105,6 +131,21 @@ private:
   std::unique_ptr<render::ShadowMaps> mShadowMaps;
   std::unique_ptr<render::SkyRenderer> mSky;
   render::FrameUniformBuffer mFrame; ///< the frame's one block: every pass binds it (Environment::frame)
+  /** What a far cascade's map was last drawn with (setShadowReuse). */
+  struct CascadeKey {
+    glm::mat4 viewProj{1.0f};
+    double casterTime = 0.0;
+    glm::vec3 viewerPosition{0.0f};
+    glm::vec3 viewerTarget{0.0f};
+    glm::vec3 viewerUp{0.0f};
+    glm::vec4 viewerLens{0.0f}; ///< fovY, near, far, orthoHeight
+    glm::vec3 castersMin{0.0f};
+    glm::vec3 castersMax{0.0f};
+    bool operator==(const CascadeKey&) const = default;
+  };
+  bool mShadowReuse = true;
+  std::vector<std::optional<CascadeKey>> mShadowCache;
+  int mLastCascadesDrawn = 0;
 };
 
 } // namespace sylva::scene

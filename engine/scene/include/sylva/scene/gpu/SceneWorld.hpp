@@ -50,6 +50,12 @@ struct SceneDrawOptions {
   bool countPrimitives = false;
   /** The terrain's LOD chosen for this frustum instead of the camera's (inspecting the selection). */
   std::optional<Frustum> frozenFrustum;
+  /**
+   * The full path: every shadow cascade every frame, so a frame is a pure function of its time and the
+   * simulations' state (offline renders; `sylva bench scene --quality full`). Off (the default, real time):
+   * far cascades are redrawn one per frame and kept otherwise (ScenePasses::setShadowReuse).
+   */
+  bool fullQuality = false;
 };
 
 /** A scene's wind as the wind module takes it (direction clockwise from north becomes a unit xz vector). */
@@ -90,7 +96,7 @@ public:
   void addDrop(const BodyDrop& drop);
 
   /** Views and tree LOD of the next frames (default: shaded, the default TreeLod). */
-  void setDrawOptions(const SceneDrawOptions& options) { mDrawOptions = options; }
+  void setDrawOptions(const SceneDrawOptions& options);
   const SceneDrawOptions& drawOptions() const { return mDrawOptions; }
 
   /**
