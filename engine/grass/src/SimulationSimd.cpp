@@ -1,10 +1,10 @@
 // The grass constraint solver on SIMD lanes: stepBlade of Simulation.cpp (the scalar reference, which the
-// compute shader mirrors) for up to eight blades at once, one blade per lane, with the same operations in the
-// same order, so every lane's result is bit-identical to the reference (tests/unit/grass/SimulationTest.cpp,
-// "SimdLanesMatchTheScalarReference"). Both files compile without floating-point contraction (no fused
-// multiply-add), and IEEE add, multiply, divide and square root round the same on lanes as on scalars.
-// Highway compiles the kernel once per instruction set (SSE4, AVX2, AVX-512, NEON, ...) and picks the best
-// the machine has at run time.
+// compute shader mirrors) for up to sixteen blades at once, one blade per lane, with the same operations in
+// the same order, so every lane's result is bit-identical to the reference
+// (tests/unit/grass/SimulationTest.cpp, "SimdLanesMatchTheScalarReference"). Both files compile without
+// floating-point contraction (no fused multiply-add), and IEEE add, multiply, divide and square root round
+// the same on lanes as on scalars. Highway compiles the kernel once per instruction set (SSE4, AVX2, AVX-512,
+// NEON, ...) and picks the best the machine has at run time.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "SimulationSimd.cpp"
 #include <hwy/foreach_target.h> // IWYU pragma: keep
@@ -192,8 +192,8 @@ void stepGroup(SimBlades& blades, const std::uint32_t* indices, const glm::vec2*
     windX[l] = wind[from].x;
     windZ[l] = wind[from].y;
   }
-  // The kernel runs over the group in chunks of the vector width (8 lanes on AVX2 and AVX-512, 4 on SSE4 and
-  // NEON).
+  // The kernel runs over the group in chunks of the vector width (16 lanes on AVX-512, 8 on AVX2, 4 on SSE4
+  // and NEON).
   for (std::size_t lane0 = 0; lane0 < kLanes && lane0 < lanes; lane0 += width) {
     const auto at = [&](const GroupKnots& g, int i) {
       return V3{hn::Load(d, g.v[i][0] + lane0), hn::Load(d, g.v[i][1] + lane0),
@@ -314,10 +314,8 @@ void stepGroup(SimBlades& blades, const std::uint32_t* indices, const glm::vec2*
         const V contact = hn::Min(hn::Div(hn::Sub(radius, dist), contactDepth), one);
         const V3 dir = select(hn::Gt(dist, hn::Set(d, 1e-9f)), divide(out, dist),
                               V3{hn::Zero(d), hn::Set(d, 1.0f), hn::Zero(d)});
-        const V3 moved = add(p, V3{hn::Mul(dir.x, radius), hn::Mul(dir.y, radius), hn::Mul(dir.z, radius)});
-        const V3 along = aaS > 1e-12f ? V3{hn::Mul(axis.x, hn::Div(dot(sub(moved, XP[i]), axis), aa)),
-                                           hn::Mul(axis.y, hn::Div(dot(sub(moved, XP[i]), axis), aa)),
-                                           hn::Mul(axis.z, hn::Div(dot(sub(moved, XP[i]), axis), aa))}
+        const V3 moved = add(p, scale(radius, dir));
+        const V3 along = aaS > 1e-12f ? scale(hn::Div(dot(sub(moved, XP[i]), axis), aa), axis)
                                       : V3{hn::Zero(d), hn::Zero(d), hn::Zero(d)};
         const V3 follow = add(XP[i], scale(contact, sub(sub(moved, scale(hn::Set(d, 0.4f), along)), XP[i])));
         X[i] = select(hit, moved, X[i]);
@@ -477,13 +475,11 @@ void restGroup(std::span<const RestShape> shapes, const RestInput* inputs, std::
       hn::Store(centre.z, d, centres.v[k][2] + lane0);
     }
   }
+  std::uint32_t indices[kLanes];
   for (std::size_t l = 0; l < lanes; ++l) {
-    const std::size_t base = static_cast<std::size_t>(inputs[l].blade) * n;
-    for (int k = 0; k < n; ++k) {
-      blades.rest[base + static_cast<std::size_t>(k)] = {centres.v[k][0][l], centres.v[k][1][l],
-                                                         centres.v[k][2][l]};
-    }
+    indices[l] = inputs[l].blade;
   }
+  scatter(centres, indices, lanes, blades.rest);
 }
 
 } // namespace

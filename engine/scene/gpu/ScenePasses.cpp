@@ -132,7 +132,7 @@ void ScenePasses::renderShadows(const render::Camera& camera, float aspect, doub
           casters.min,     casters.max};
       std::optional<CascadeKey>& cached = mShadowCache[static_cast<std::size_t>(i)];
       if (cached == key) {
-        continue; // the map holds exactly what drawing it again would
+        continue; // its step has not begun and nothing its map was fitted to changed: kept
       }
       cached = key;
     } else {

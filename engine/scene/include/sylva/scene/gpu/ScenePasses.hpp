@@ -55,17 +55,17 @@ using PassDraw = std::function<void(const PassInput&)>;
 render::Environment sceneEnvironment(const SceneDesc& scene);
 
 /**
- * Runs a scene's frame: shadow cascades (terrain and trees cast), terrain, trees, grass, bodies, water, sky
- * and the sun's flare, each pass timed under its name. Owns the shared resources (the shadow-map array, the
- * sky). Needs a current GL context.
- */
-/**
  * The time (seconds) far shadow cascade `cascade` (≥ 1) of `cascades` draws its casters at for a frame at
  * `time` on a clock of `fps` frames per second (ScenePasses::setShadowReuse): `time` rounded down to steps of
  * (cascades − 1) frames, shifted by cascade − 1 frames. Cascade 0, one cascade or fps ≤ 0: `time`.
  */
 double farCascadeTime(double time, int cascade, int cascades, double fps);
 
+/**
+ * Runs a scene's frame: shadow cascades (terrain and trees cast), terrain, trees, grass, bodies, water, sky
+ * and the sun's flare, each pass timed under its name. Owns the shared resources (the shadow-map array, the
+ * sky). Needs a current GL context.
+ */
 class ScenePasses {
 public:
   ScenePasses(const shader::Library& library, const SceneDesc& scene);
@@ -99,7 +99,6 @@ public:
    * full path.
    */
   void setShadowReuse(bool on);
-  bool shadowReuse() const { return mShadowReuse; }
   /** Forgets the cached far cascades (casters changed in a way the cache key does not see). */
   void invalidateShadows() { mShadowCache.clear(); }
   /** Cascades drawn by the last frame (0 when shadows are off). */
