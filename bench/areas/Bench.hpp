@@ -118,10 +118,12 @@ std::uint64_t residentBytes();
  * `bench scene`: the scene file's output camera over `frames` frames after `warmup` (simulations stepping at
  * the file's fps), per-pass CPU, GPU and wall times, frames per second against the llvmpipe target (≥ 5 fps
  * at 1280×720), GPU memory the subsystems report and the process's resident memory; needs a current GL
- * context.
+ * context. `quality`: "default" (real-time shadows), "full" (SceneDrawOptions::fullQuality) or "auto" (the
+ * viewer's quality governor keeping frames at `targetFps`, settling over at least 20 warm-up frames; the
+ * steps drawn are reported).
  */
-void benchScene(const std::string& file, int frames, int warmup, int width, int height, bool fullQuality,
-                nlohmann::json& report);
+void benchScene(const std::string& file, int frames, int warmup, int width, int height,
+                const std::string& quality, double targetFps, nlohmann::json& report);
 
 /** Seconds of each of `runs` calls of `fn` after `warmup` unmeasured calls. */
 std::vector<double> timeRuns(int warmup, int runs, const std::function<void()>& fn);

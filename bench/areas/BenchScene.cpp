@@ -8,6 +8,7 @@
 #include <sylva/core/Progress.hpp>
 #include <sylva/gl/ContextInfo.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
+#include <sylva/scene/Quality.hpp>
 #include <sylva/scene/SceneFile.hpp>
 
 #include <fmt/format.h>
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 
 namespace sylva::bench {
 
@@ -37,17 +39,26 @@ std::string compact(std::int64_t n) {
 
 } // namespace
 
-void benchScene(const std::string& file, int frames, int warmup, int width, int height, bool fullQuality,
-                nlohmann::json& report) {
+void benchScene(const std::string& file, int frames, int warmup, int width, int height,
+                const std::string& quality, double targetFps, nlohmann::json& report) {
+  const bool automatic = quality == "auto";
+  if (automatic) {
+    warmup = std::max(warmup, 20); // the governor settles
+  }
   const auto buildStart = std::chrono::steady_clock::now();
   const std::uint64_t rssBefore = residentBytes();
   shader::Library library;
   scene::SceneWorld world(library, scene::loadScene(file));
   scene::SceneDrawOptions draw = world.drawOptions();
-  draw.fullQuality = fullQuality;
+  draw.fullQuality = quality == "full";
   world.setDrawOptions(draw);
   const scene::SceneDesc& desc = world.desc();
-  render::RenderTarget target(width, height);
+  scene::GovernorSettings governorSettings;
+  governorSettings.targetMs = 1000.0 / targetFps;
+  scene::QualityGovernor governor(governorSettings);
+  std::vector<int> stepFrames(scene::qualityLadder().size(), 0);
+  std::optional<render::RenderTarget> target;
+  target.emplace(width, height);
   gl::finish();
   const double buildS = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
   // Synchronous: every pass finished before its end, wall times recorded; each pass's work counted too.
@@ -67,14 +78,28 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
     world.advanceToFrame(frame);
     timers.end();
     const double time = world.frameTime(frame);
-    const render::Camera camera = world.camera(desc.output.camera, time, target.aspect());
-    target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    world.draw(camera, width, height, time, &target.depth(), &timers);
+    const int stepIndex = governor.step(); // 0 (as described) unless automatic
+    const scene::QualityStep& step = scene::qualityLadder()[static_cast<std::size_t>(stepIndex)];
+    const glm::ivec2 drawn = scene::renderSize({width, height}, step.renderScale);
+    if (automatic) {
+      world.setQuality(step);
+      if (target->width() != drawn.x || target->height() != drawn.y) {
+        target.emplace(drawn.x, drawn.y);
+      }
+    }
+    const render::Camera camera =
+        world.camera(desc.output.camera, time, static_cast<float>(width) / static_cast<float>(height));
+    target->begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    world.draw(camera, target->width(), target->height(), time, &target->depth(), &timers);
     timers.endFrame();
     gl::finish();
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (automatic) {
+      governor.update(ms);
+    }
     if (i >= warmup) {
+      ++stepFrames[static_cast<std::size_t>(stepIndex)];
       frameMs.push_back(ms);
       for (const render::PassTiming& t : timers.lastFrame()) {
         if (!cpu.contains(t.name)) {
@@ -94,12 +119,33 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
   const gl::ContextInfo info = gl::queryContextInfo();
   const bool llvmpipe = info.renderer.find("llvmpipe") != std::string::npos;
   std::vector<BenchRow> rows;
-  rows.push_back({fmt::format("{} {}×{}: frames per second (median frame)", desc.name, width, height), fps,
-                  "fps", llvmpipe ? 5.0 : 120.0, false, 0,
-                  llvmpipe ? "llvmpipe target (scene spec)" : "NVIDIA target is 120 fps at 1920×1080"});
-  rows.push_back({"frame time (median; wall, every pass finished)", frame.median, "ms",
-                  llvmpipe ? 200.0 : 8.33, true, 0,
-                  fmt::format("p10 {:.1f}, p90 {:.1f}", frame.p10, frame.p90)});
+  if (automatic) {
+    // The viewer's case: the frames per second auto quality keeps to, and the steps it drew them at.
+    rows.push_back({fmt::format("{} {}×{} with auto quality: frames per second (median frame)", desc.name,
+                                width, height),
+                    fps, "fps", targetFps, false, 0, "the viewer's target (--target-fps)"});
+    rows.push_back({"frame time (median; wall, every pass finished)", frame.median, "ms", 1000.0 / targetFps,
+                    true, 0, fmt::format("p10 {:.1f}, p90 {:.1f}", frame.p10, frame.p90)});
+  } else {
+    rows.push_back({fmt::format("{} {}×{}: frames per second (median frame)", desc.name, width, height), fps,
+                    "fps", llvmpipe ? 5.0 : 120.0, false, 0,
+                    llvmpipe ? "llvmpipe target (scene spec)" : "NVIDIA target is 120 fps at 1920×1080"});
+    rows.push_back({"frame time (median; wall, every pass finished)", frame.median, "ms",
+                    llvmpipe ? 200.0 : 8.33, true, 0,
+                    fmt::format("p10 {:.1f}, p90 {:.1f}", frame.p10, frame.p90)});
+  }
+  nlohmann::json steps = nlohmann::json::array();
+  for (std::size_t s = 0; s < stepFrames.size(); ++s) {
+    if (stepFrames[s] == 0) {
+      continue;
+    }
+    const scene::QualityStep& q = scene::qualityLadder()[s];
+    const glm::ivec2 drawn = scene::renderSize({width, height}, q.renderScale);
+    rows.push_back({fmt::format("quality step {} ({}, {}×{})", s, scene::describe(q), drawn.x, drawn.y),
+                    100.0 * stepFrames[s] / std::max(frames, 1), "% of frames", std::nan(""), true, 0,
+                    automatic ? "chosen by the governor" : "as described"});
+    steps.push_back({{"step", s}, {"frames", stepFrames[s]}, {"describe", scene::describe(q)}});
+  }
   nlohmann::json passes = nlohmann::json::array();
   for (const std::string& name : order) {
     const render::Stats w = render::Stats::of(wall[name]);
@@ -141,6 +187,8 @@ void benchScene(const std::string& file, int frames, int warmup, int width, int 
   report["passes"] = passes;
   report["frame_ms"] = frame.toJson();
   report["fps"] = fps;
+  report["quality"] = quality;
+  report["quality_steps"] = steps;
   report["gpu_bytes"] = world.gpuBytes();
   report["resident_bytes"] = rss;
   report["rows"] = printBenchRows(rows);

@@ -29,6 +29,7 @@ struct BenchFlags {
   double maxGrowthPercent = 1.0;
   std::string sceneFile = "data/scenes/meadow.json";
   std::string quality = "default";
+  double targetFps = 10.0;
 
   /** What the area measures; throws naming the option when the terrain options do not go together. */
   bench::BenchOptions options() const {
@@ -97,8 +98,12 @@ void registerBench(CLI::App& app) {
   command
       ->add_option(
           "--quality", o->quality,
-          "scene: default, or full (every shadow cascade every frame, for comparisons; docs/performance.md)")
-      ->check(CLI::IsMember({"default", "full"}))
+          "scene: default, full (every shadow cascade every frame, for comparisons; docs/performance.md) or "
+          "auto (the viewer's quality steps, chosen to keep --target-fps)")
+      ->check(CLI::IsMember({"default", "full", "auto"}))
+      ->capture_default_str();
+  command->add_option("--target-fps", o->targetFps, "scene --quality auto: frames per second to keep to")
+      ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
   command
       ->add_option("--max-growth", o->maxGrowthPercent,
@@ -144,7 +149,7 @@ void registerBench(CLI::App& app) {
     } else if (o->area == "scene") {
 #ifdef SYLVA_HAVE_SCENE
       report = bench::header(options, "scene", *context);
-      bench::benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, o->quality == "full",
+      bench::benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, o->quality, o->targetFps,
                         report);
 #else
       fail("bench scene: this sylva was built without the scene module");

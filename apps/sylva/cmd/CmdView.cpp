@@ -2,16 +2,27 @@
 #include "Commands.hpp"
 
 #include <sylva/core/Error.hpp>
+#include <sylva/scene/Quality.hpp>
 
 #include "view/Viewer.hpp"
 #include "flags/WorldFlags.hpp"
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace sylva::app {
 
 namespace {
+
+/** auto, full and the ladder's steps by number. */
+std::vector<std::string> qualityNames() {
+  std::vector<std::string> names{"auto", "full"};
+  for (std::size_t i = 0; i < scene::qualityLadder().size(); ++i) {
+    names.push_back(std::to_string(i));
+  }
+  return names;
+}
 
 struct ViewOptions {
   std::string file; ///< a scene file; empty: --scene
@@ -50,6 +61,17 @@ void registerView(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   addScriptedWindowOptions(*command, o->window.frames, o->window.screenshot, o->window.fixedStep);
   command->add_flag("--no-ui", o->window.noUi, "Start with the ImGui panel hidden");
+  command
+      ->add_option(
+          "--quality", o->window.quality,
+          "Frame quality of a scene: auto (steps resolution, grass distance and shadows down until "
+          "frames reach --target-fps, and back up; shown in the panel, Q toggles), full (the scene as "
+          "described) or a step of the ladder by number, 0 being full (docs/scenes.md). Default: "
+          "auto; full for runs with --fixed-step or --screenshot, so their frames repeat")
+      ->check(CLI::IsMember(qualityNames()));
+  command->add_option("--target-fps", o->window.targetFps, "Frames per second auto quality keeps to")
+      ->check(CLI::Range(1.0, 240.0))
+      ->capture_default_str();
   command->callback([o] {
     if (!o->file.empty()) {
       if (o->world.grass.enabled || o->world.trees.enabled || o->world.simulation.enabled()) {

@@ -10,6 +10,7 @@
 #include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/scene/CameraPath.hpp>
+#include <sylva/scene/Quality.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 #include <sylva/ui/CameraRig.hpp>
@@ -70,9 +71,48 @@ void passToggles(scene::SceneWorld& world) {
   }
 }
 
+/** The viewer's quality: the governor's step (auto) or one chosen in the panel or on the command line. */
+struct ViewerQuality {
+  bool automatic = true;
+  int manual = 0;
+  int shown = 0; ///< the step the last frame was drawn at (logged when it changes)
+  scene::QualityGovernor governor;
+
+  explicit ViewerQuality(const ViewerOptions& o) : governor(settings(o)) {
+    const bool repeatable = o.fixedStep > 0.0 || !o.screenshot.empty();
+    const std::string& q = o.quality.empty() ? std::string(repeatable ? "full" : "auto") : o.quality;
+    automatic = q == "auto";
+    manual = q == "auto" || q == "full" ? 0 : std::stoi(q);
+  }
+  static scene::GovernorSettings settings(const ViewerOptions& o) {
+    scene::GovernorSettings s;
+    s.targetMs = 1000.0 / o.targetFps;
+    return s;
+  }
+  int step() const { return automatic ? governor.step() : manual; }
+  /** The panel's lines: the auto checkbox, the step and what it gives up. */
+  void show(glm::ivec2 output) {
+    const int last = static_cast<int>(scene::qualityLadder().size()) - 1;
+    if (ImGui::Checkbox("auto quality (Q)", &automatic) && automatic) {
+      governor.reset(manual);
+    }
+    ImGui::SameLine();
+    int s = step();
+    ImGui::BeginDisabled(automatic);
+    ImGui::SetNextItemWidth(120.0f);
+    if (ImGui::SliderInt("step", &s, 0, last, "%d", ImGuiSliderFlags_AlwaysClamp)) {
+      manual = s;
+    }
+    ImGui::EndDisabled();
+    const scene::QualityStep& q = scene::qualityLadder()[static_cast<std::size_t>(step())];
+    const glm::ivec2 drawn = scene::renderSize(output, q.renderScale);
+    ImGui::Text("quality: %s (%d×%d)", scene::describe(q).c_str(), drawn.x, drawn.y);
+  }
+};
+
 /**
  * The window loop: `build` makes the content once the window (and its GL context) exists. Keys: F5 reload
- * shaders, F fly, G walk, B throw a ball, Space pause, 1-8 passes, Tab panel, Esc quit.
+ * shaders, F fly, G walk, B throw a ball, Space pause, 1-8 passes, Q auto quality, Tab panel, Esc quit.
  */
 void runViewer(const ViewerOptions& o, const std::string& title,
                const std::function<ViewerContent(const shader::Library&, float aspect)>& build) {
@@ -135,11 +175,12 @@ void runViewer(const ViewerOptions& o, const std::string& title,
   bool paused = false;
   bool throwRequested = false;
   bool reloadRequested = false;
-  std::string status =
-      world != nullptr ? "F: fly  G: walk  B: throw a ball  Space: pause  1-8: passes  F5: reload shaders  "
-                         "Tab: panel"
-                       : "F5: reload shaders  Space: pause  Tab: panel";
+  std::string status = world != nullptr
+                           ? "F: fly  G: walk  B: throw a ball  Space: pause  1-8: passes  Q: auto quality  "
+                             "F5: reload shaders  Tab: panel"
+                           : "F5: reload shaders  Space: pause  Tab: panel";
   bool wireframe = false; // the demo's
+  ViewerQuality quality(o);
 
   shell.setKeyHandler([&](int key, int) {
     if (key == GLFW_KEY_F5) {
@@ -152,6 +193,14 @@ void runViewer(const ViewerOptions& o, const std::string& title,
       throwRequested = world != nullptr; // thrown once the frame's camera is known
     } else if (key == GLFW_KEY_SPACE) {
       paused = !paused;
+    } else if (key == GLFW_KEY_Q && world != nullptr) {
+      quality.automatic = !quality.automatic;
+      if (quality.automatic) {
+        quality.governor.reset(quality.manual);
+      } else {
+        quality.manual = quality.governor.step(); // stays where auto had it
+      }
+      log::info("auto quality {}", quality.automatic ? "on" : "off");
     } else if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + kPassCount && world != nullptr) {
       scene::ScenePasses& passes = world->passes();
       const auto pass = static_cast<scene::Pass>(key - GLFW_KEY_1);
@@ -206,8 +255,23 @@ void runViewer(const ViewerOptions& o, const std::string& title,
                    ? fmt::format("ball thrown: {} bodies", world->bodies())
                    : "B: no physics here (bodies need a grass layer: turn grass on)";
     }
-    if (!target || target->width() != size.x || target->height() != size.y) {
-      target.emplace(size.x, size.y);
+    // The quality of this frame: the governor hears how long the last one took (real time, whatever the
+    // clock).
+    glm::ivec2 drawn = size;
+    if (world != nullptr) {
+      if (quality.automatic && f.index > 0) {
+        quality.governor.update(1000.0 * f.wallDt);
+      }
+      const scene::QualityStep& step = scene::qualityLadder()[static_cast<std::size_t>(quality.step())];
+      if (quality.step() != quality.shown) {
+        log::info("quality step {}: {}", quality.step(), scene::describe(step));
+        quality.shown = quality.step();
+      }
+      world->setQuality(step);
+      drawn = scene::renderSize(size, step.renderScale);
+    }
+    if (!target || target->width() != drawn.x || target->height() != drawn.y) {
+      target.emplace(drawn.x, drawn.y);
     }
     if (world != nullptr) {
       {
@@ -215,14 +279,14 @@ void runViewer(const ViewerOptions& o, const std::string& title,
         world->advanceTo(time);
       }
       target->begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-      world->draw(camera, size.x, size.y, time, &target->depth(), &timers);
+      world->draw(camera, drawn.x, drawn.y, time, &target->depth(), &timers);
     } else {
       target->begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
       demo->render(camera, size.x, size.y, time, &timers, wireframe);
     }
     {
       const render::GpuTimerScope timed(&timers, "blit");
-      gl::blitToWindow(target->framebuffer(), size);
+      gl::blitToWindow(target->framebuffer(), drawn, size);
     }
     gl::bindDefaultFramebuffer(size.x, size.y);
 
@@ -242,6 +306,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
       }
       ImGui::Text("frame %.2f ms (%.0f fps)", avg, avg > 0.0f ? 1000.0f / avg : 0.0f);
       if (world != nullptr) {
+        quality.show(size);
         passToggles(*world);
         ImGui::Separator();
         rig.selector();

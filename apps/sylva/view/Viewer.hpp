@@ -19,6 +19,10 @@ struct ViewerOptions {
   std::string screenshot; ///< with frames: save the last frame here
   double fixedStep = 0.0; ///< > 0: scene seconds per frame (scripted runs repeat)
   bool noUi = false;      ///< start with the panel hidden
+  /** "auto" (the quality governor), "full", or a step of scene::qualityLadder() ("0".."7"); empty: auto,
+   * but full for runs with a fixed step or a screenshot (their frames repeat). */
+  std::string quality;
+  double targetFps = 10.0; ///< what auto quality keeps frames at or above
 };
 
 /**

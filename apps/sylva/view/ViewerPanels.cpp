@@ -181,7 +181,7 @@ GrassPanel::GrassPanel(scene::SceneWorld& world, const WorldFlags& flags)
     : fresh(flags.grass.layerDesc()), wind(world.desc().wind), dropSeed(flags.simulation.seed) {
   fresh.simulate = false;
   pending = world.grassCount() > 0 ? world.desc().grass[0] : fresh;
-  cull = world.grassCount() > 0 ? world.grass(0).cullSettings() : flags.grass.cullSettings();
+  cull = world.grassCount() > 0 ? world.grassCull(0) : flags.grass.cullSettings();
   pending.cull = cull;
   view = static_cast<int>(world.drawOptions().grassView);
   open = world.grassCount() > 0;
@@ -221,7 +221,8 @@ void GrassPanel::show(scene::SceneWorld& world) {
   if (cullChanged) {
     attempt(cullError, [&] {
       if (world.grassCount() > 0) {
-        world.grass(0).setCullSettings(cull);
+        world.setGrassCull(0, cull);
+        cull = world.grassCull(0); // as the scene file would have it (the far fade at most a quarter)
       } else {
         grass::validate(cull);
       }

@@ -31,8 +31,12 @@ void setDepthTest(bool on) {
 }
 
 void blitToWindow(const Framebuffer& source, glm::ivec2 size) {
-  glBlitNamedFramebuffer(source.id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
-                         GL_NEAREST);
+  blitToWindow(source, size, size);
+}
+
+void blitToWindow(const Framebuffer& source, glm::ivec2 sourceSize, glm::ivec2 size) {
+  glBlitNamedFramebuffer(source.id(), 0, 0, 0, sourceSize.x, sourceSize.y, 0, 0, size.x, size.y,
+                         GL_COLOR_BUFFER_BIT, sourceSize == size ? GL_NEAREST : GL_LINEAR);
 }
 
 } // namespace sylva::gl

@@ -38,6 +38,20 @@ void validate(const CullSettings& s) {
   }
 }
 
+CullSettings scaled(const CullSettings& s, float factor) {
+  if (!(factor > 0.0f) || !std::isfinite(factor)) {
+    fail("grass culling: distance factor {} must be > 0", factor);
+  }
+  CullSettings c = s;
+  c.maxDistance *= factor;
+  c.lodDistances[0] *= factor;
+  c.lodDistances[1] *= factor;
+  c.lodFade *= factor;
+  c.farFade *= factor;
+  c.orientationDistance *= factor;
+  return c;
+}
+
 int lodForDistance(const CullSettings& s, float distance) {
   return distance < s.lodDistances[0] ? 0 : distance < s.lodDistances[1] ? 1 : 2;
 }

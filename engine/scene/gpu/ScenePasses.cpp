@@ -155,13 +155,20 @@ void ScenePasses::renderShadows(const render::Camera& camera, float aspect, doub
   mShadowMaps->bind();
 }
 
+void ScenePasses::setShadowsAllowed(bool on) {
+  if (on && !mShadowsAllowed) {
+    invalidateShadows(); // the kept far cascades are from before the pause
+  }
+  mShadowsAllowed = on;
+}
+
 void ScenePasses::render(const render::Camera& camera, int width, int height, double time,
                          const Aabb& casters, const gl::Texture* depth, render::GpuTimers* timers) {
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   mEnvironment = mBase;
   // A camera whose near plane lies beyond the shadow distance (a whole large terrain in view) sees nothing
   // the cascades cover: everything is drawn fully sunlit.
-  if (mShadowMaps && enabled(Pass::Shadows) && casters.max.x > casters.min.x &&
+  if (mShadowMaps && enabled(Pass::Shadows) && mShadowsAllowed && casters.max.x > casters.min.x &&
       camera.nearPlane < mScene.shadows.distance) {
     renderShadows(camera, aspect, time, casters, timers);
   } else {

@@ -89,9 +89,14 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
 
 SceneWorld::~SceneWorld() = default;
 
+grass::CullSettings SceneWorld::scaledGrassCull(std::size_t i, const GrassLayer& layer) const {
+  const GrassFieldName name = sceneFieldName(mDesc, "/grass/" + std::to_string(i));
+  return grass::scaled(grassCullSettings(layer, name), mQuality.grassDistance);
+}
+
 std::unique_ptr<grass::GrassRenderer> SceneWorld::makeGrass(std::size_t i, const GrassLayer& layer) const {
   const GrassFieldName name = sceneFieldName(mDesc, "/grass/" + std::to_string(i));
-  const grass::CullSettings cull = grassCullSettings(layer, name);
+  const grass::CullSettings cull = scaledGrassCull(i, layer);
   auto field = buildGrassField(layer, grassGround(*mTerrain), name);
   return std::make_unique<grass::GrassRenderer>(mLibrary, field, cull);
 }
@@ -361,6 +366,31 @@ void SceneWorld::setDrawOptions(const SceneDrawOptions& options) {
   }
   mDrawOptions = options;
   mPasses->setShadowReuse(!options.fullQuality);
+}
+
+grass::CullSettings SceneWorld::grassCull(std::size_t i) const {
+  return grassCullSettings(mDesc.grass.at(i), sceneFieldName(mDesc, "/grass/" + std::to_string(i)));
+}
+
+void SceneWorld::setGrassCull(std::size_t i, const grass::CullSettings& cull) {
+  grass::validate(cull);
+  GrassLayer& layer = mDesc.grass.at(i);
+  layer.cull = cull;
+  mGrass.at(i)->setCullSettings(scaledGrassCull(i, layer));
+}
+
+void SceneWorld::setQuality(const QualityStep& step) {
+  if (!(step.grassDistance > 0.0f) || !(step.renderScale > 0.0f)) {
+    fail("quality: grass distance {} and render scale {} must be > 0", step.grassDistance, step.renderScale);
+  }
+  const bool grassChanged = step.grassDistance != mQuality.grassDistance;
+  mQuality = step;
+  if (grassChanged) {
+    for (std::size_t i = 0; i < mGrass.size(); ++i) {
+      mGrass[i]->setCullSettings(scaledGrassCull(i, mDesc.grass[i]));
+    }
+  }
+  mPasses->setShadowsAllowed(step.shadows);
 }
 
 void SceneWorld::draw(const render::Camera& camera, int width, int height, double time,

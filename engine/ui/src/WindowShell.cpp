@@ -9,7 +9,9 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <chrono>
 #include <cstdio>
+#include <optional>
 #include <thread>
 
 namespace sylva::ui {
@@ -83,6 +85,7 @@ void WindowShell::run(const std::function<void(const ShellFrame&)>& frame) {
   int scriptedFrame = 0;
   long long shown = 0;
   auto frameStart = std::chrono::steady_clock::now();
+  std::optional<std::chrono::steady_clock::time_point> lastBegin;
   while (mWindow.pollEvents()) {
     if (!scripted && mOptions.maxFps > 0.0) {
       std::this_thread::sleep_until(frameStart + std::chrono::duration<double>(1.0 / mOptions.maxFps));
@@ -98,6 +101,9 @@ void WindowShell::run(const std::function<void(const ShellFrame&)>& frame) {
     f.aspect = static_cast<float>(f.size.x) / static_cast<float>(f.size.y);
     f.index = shown;
     f.fixedClock = mClock.fixed();
+    const auto begin = std::chrono::steady_clock::now();
+    f.wallDt = lastBegin ? std::chrono::duration<double>(begin - *lastBegin).count() : 0.0;
+    lastBegin = begin;
     mFrameNote.clear();
     frame(f);
     const bool last = endWindowFrame(mWindow, f.size, mOptions.screenshot, mOptions.frames, scriptedFrame,

@@ -284,5 +284,57 @@ TEST_F(SceneWorldTest, RealTimeShadowsRedrawOneFarCascadeAFrameAndLookTheSame) {
   EXPECT_EQ(realTime.passes().lastCascadesDrawn(), 3);
 }
 
+TEST_F(SceneWorldTest, QualityStepsShortenTheGrassDropShadowsAndComeBackToTheSameFrame) {
+  SceneDesc desc = forestDesc();
+  GrassLayer layer;
+  layer.layer = "none";
+  layer.patchBlades = 1024;
+  layer.bladesPerTile = 64;
+  layer.distance = 40.0f;
+  desc.grass.push_back(layer);
+  SceneWorld world(shaders(), desc);
+  SceneDrawOptions full = world.drawOptions();
+  full.fullQuality = true;
+  world.setDrawOptions(full);
+  const render::Camera camera = forestCamera(world);
+  const Image before = draw(world, camera);
+  ASSERT_GT(world.passes().lastCascadesDrawn(), 0);
+  const std::size_t bladesBefore = world.grass(0).readCounters().blades.x;
+  ASSERT_GT(bladesBefore, 0u);
+  EXPECT_FLOAT_EQ(world.grass(0).cullSettings().maxDistance, 40.0f);
+
+  // Step 4 of the ladder: grass out to half its distance, no shadows (the pass toggle untouched).
+  const QualityStep& cheap = qualityLadder()[4];
+  ASSERT_FALSE(cheap.shadows);
+  world.setQuality(cheap);
+  const Image cheaper = draw(world, camera);
+  EXPECT_EQ(world.passes().lastCascadesDrawn(), 0);
+  EXPECT_TRUE(world.passes().enabled(Pass::Shadows));
+  EXPECT_FLOAT_EQ(world.grass(0).cullSettings().maxDistance, 40.0f * cheap.grassDistance);
+  EXPECT_FLOAT_EQ(world.grassCull(0).maxDistance, 40.0f); // the description keeps its distance
+  EXPECT_LT(world.grass(0).readCounters().blades.x, bladesBefore);
+  EXPECT_FALSE(render::compareImages(cheaper, before, {16, 0.01}).passed);
+
+  // The panel's culling edits go through the world and keep the step's scale.
+  grass::CullSettings edited = world.grassCull(0);
+  edited.maxDistance = 50.0f;
+  world.setGrassCull(0, edited);
+  EXPECT_FLOAT_EQ(world.grass(0).cullSettings().maxDistance, 50.0f * cheap.grassDistance);
+  edited.maxDistance = 10.0f; // the LOD bands no longer fit: refused, nothing changes
+  EXPECT_THROW(world.setGrassCull(0, edited), Error);
+  EXPECT_FLOAT_EQ(world.grassCull(0).maxDistance, 50.0f);
+  edited.maxDistance = 40.0f;
+  world.setGrassCull(0, edited);
+  EXPECT_THROW(world.setQuality({1.0f, 0.0f, true}), Error);
+
+  // Back to full: the same frame as before, pixel for pixel.
+  world.setQuality(qualityLadder()[0]);
+  const Image again = draw(world, camera);
+  EXPECT_GT(world.passes().lastCascadesDrawn(), 0);
+  EXPECT_EQ(world.grass(0).readCounters().blades.x, bladesBefore);
+  const render::CompareResult same = render::compareImages(again, before, {0, 0.0});
+  EXPECT_TRUE(same.passed) << same.failingFraction();
+}
+
 } // namespace
 } // namespace sylva::scene

@@ -101,6 +101,35 @@ TEST(GrassCull, LevelsFollowDistance) {
   EXPECT_EQ(all.tilesVisible, all.tiles);
 }
 
+TEST(GrassCull, ScaledSettingsDrawTheSameRulesOverAShorterRange) {
+  const GrassField s = scene();
+  const glm::vec3 eye(2.0f, 6.0f, 2.0f);
+  const glm::mat4 vp = viewProj(eye, {60.0f, 0.0f, 60.0f}, 75.0f);
+  CullSettings settings;
+  settings.maxDistance = 60.0f;
+  settings.lodDistances = {10.0f, 30.0f};
+  const CullSettings half = scaled(settings, 0.5f);
+  EXPECT_NO_THROW(validate(half));
+  EXPECT_FLOAT_EQ(half.maxDistance, 30.0f);
+  EXPECT_FLOAT_EQ(half.lodDistances[1], 15.0f);
+  EXPECT_FLOAT_EQ(half.lodFade, 0.5f * settings.lodFade);
+  EXPECT_FLOAT_EQ(half.farFade, 0.5f * settings.farFade);
+  EXPECT_FLOAT_EQ(half.orientationDistance, 0.5f * settings.orientationDistance);
+  EXPECT_EQ(half.orientationCos, settings.orientationCos);
+  // Fewer blades, all within the shorter range.
+  std::vector<VisibleBlade> all;
+  std::vector<VisibleBlade> near;
+  const CullStats full = cullField(s, vp, eye, settings, &all);
+  const CullStats shorter = cullField(s, vp, eye, half, &near);
+  EXPECT_GT(shorter.drawn(), 0u);
+  EXPECT_LT(shorter.drawn(), full.drawn());
+  for (const VisibleBlade& v : near) {
+    EXPECT_LE(glm::length(v.blade.root - eye), half.maxDistance + 1e-3f);
+  }
+  EXPECT_THROW(scaled(settings, 0.0f), Error);
+  EXPECT_THROW(scaled(settings, std::nanf("")), Error);
+}
+
 TEST(GrassCull, EdgeOnFarBladesAreSkipped) {
   const GrassField s = scene();
   const glm::vec3 eye(-30.0f, 10.0f, 40.0f);

@@ -26,5 +26,8 @@ void setDepthTest(bool on);
 
 /** Copies the colour of `source` (`size` pixels from its origin) into the window's framebuffer, 1:1. */
 void blitToWindow(const Framebuffer& source, glm::ivec2 size);
+/** Copies `source`'s colour (`sourceSize` pixels) over the whole window framebuffer (`size` pixels), scaled
+ * with linear filtering when the sizes differ (frames drawn at a lower resolution). */
+void blitToWindow(const Framebuffer& source, glm::ivec2 sourceSize, glm::ivec2 size);
 
 } // namespace sylva::gl

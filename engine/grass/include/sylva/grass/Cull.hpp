@@ -40,6 +40,12 @@ struct CullSettings {
  */
 void validate(const CullSettings& settings);
 
+/**
+ * `settings` with every distance (draw, LOD, fade bands, orientation) multiplied by `factor` > 0: the same
+ * rules over a shorter or longer range (valid settings stay valid). The interactive quality steps' grass.
+ */
+CullSettings scaled(const CullSettings& settings, float factor);
+
 /** How a drawn instance is dithered: Full is drawn everywhere; FadeOut where the pixel's dither threshold is
  * ≥ fade; FadeIn where it is < fade (so a FadeOut and a FadeIn of the same fade cover each pixel once). */
 enum class Fade : int { Full = 0, FadeOut = 1, FadeIn = 2 };

@@ -50,6 +50,7 @@ struct ShellFrame {
   float aspect = 1.0f;     ///< size.x / size.y
   long long index = 0;     ///< frames shown before this one
   bool fixedClock = false; ///< dt is the fixed step
+  double wallDt = 0.0;     ///< real seconds since the last frame began, fixed clock or not (0 for frame 0)
 };
 
 /**

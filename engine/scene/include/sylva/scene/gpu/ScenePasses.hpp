@@ -99,6 +99,12 @@ public:
    * full path.
    */
   void setShadowReuse(bool on);
+  /**
+   * The quality step's say on shadows (on by default; Quality.hpp): off, no cascade is drawn and everything
+   * is fully sunlit, as with the pass toggled off, without touching the toggle.
+   */
+  void setShadowsAllowed(bool on);
+  bool shadowsAllowed() const { return mShadowsAllowed; }
   /** Forgets the cached far cascades (casters changed in a way the cache key does not see). */
   void invalidateShadows() { mShadowCache.clear(); }
   /** Cascades drawn by the last frame (0 when shadows are off). */
@@ -127,6 +133,7 @@ private:
   render::Environment mEnvironment;
   std::array<Entry, static_cast<int>(Pass::Count)> mEntries{};
   std::array<bool, static_cast<int>(Pass::Count)> mEnabled{};
+  bool mShadowsAllowed = true;
   std::unique_ptr<render::ShadowMaps> mShadowMaps;
   std::unique_ptr<render::SkyRenderer> mSky;
   render::FrameUniformBuffer mFrame; ///< the frame's one block: every pass binds it (Environment::frame)

@@ -9,6 +9,7 @@
 #include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/scene/CameraPath.hpp>
+#include <sylva/scene/Quality.hpp>
 #include <sylva/scene/SceneFile.hpp>
 #include <sylva/scene/gpu/ScenePasses.hpp>
 #include <sylva/shader/Library.hpp>
@@ -106,6 +107,15 @@ public:
   void draw(const render::Camera& camera, int width, int height, double time, const gl::Texture* depth,
             render::GpuTimers* timers);
 
+  /**
+   * The interactive quality step of the next frames (Quality.hpp; default: full, the scene as described):
+   * every grass layer draws out to its distance × step.grassDistance, shadows are drawn only with
+   * step.shadows. The render scale is the caller's: it draws at renderSize(output, step.renderScale) and
+   * scales the frame up (the viewer; `sylva bench scene --quality auto`).
+   */
+  void setQuality(const QualityStep& step);
+  const QualityStep& quality() const { return mQuality; }
+
   /** The frame environment (sun, sky, fog) the passes share; shadows are filled per frame. */
   const render::Environment& environment() const { return mPasses->environment(); }
   ScenePasses& passes() { return *mPasses; }
@@ -138,6 +148,11 @@ public:
    * simulation with the description's bodies.
    */
   void setGrassLayer(std::size_t i, GrassLayer layer);
+  /** Layer `i`'s culling rules as described (before the quality step scales its distances). */
+  grass::CullSettings grassCull(std::size_t i) const;
+  /** New culling rules for layer `i` (validated, kept in the description; drawn at the quality step's scale).
+   */
+  void setGrassCull(std::size_t i, const grass::CullSettings& cull);
   /** Makes grass layer `i` the simulated one (no layer may be yet): the physics world starts, with the
    * description's bodies (none for a description that had no simulated layer). */
   void simulateGrass(std::size_t i);
@@ -160,6 +175,8 @@ public:
 
 private:
   std::unique_ptr<grass::GrassRenderer> makeGrass(std::size_t i, const GrassLayer& layer) const;
+  /** `layer`'s (layer `i`'s) culling rules at the quality step's distance. */
+  grass::CullSettings scaledGrassCull(std::size_t i, const GrassLayer& layer) const;
   std::unique_ptr<trees::ForestScene> makeForest(std::size_t i, const ForestDesc& forest,
                                                  trees::ForestSettings& placement) const;
   /** (Re)registers every subsystem's draws with the passes. */
@@ -180,6 +197,7 @@ private:
   std::unique_ptr<ScenePasses> mPasses;
   std::map<std::string, std::vector<WorldCameraKey>> mCameras;
   SceneDrawOptions mDrawOptions;
+  QualityStep mQuality;
   int mFrame = -1;
   double mTime = 0.0;
 };
