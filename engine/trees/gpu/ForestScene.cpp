@@ -108,7 +108,7 @@ void ForestScene::setFarField(glm::vec2 range, std::span<const FarTree> extra) {
 
 void ForestScene::setWind(bool on) {
   if (on && !mWind) {
-    mWind = std::make_unique<JointWindGpu>(mShaders, forestWindRest(*mForest));
+    mWind = std::make_unique<JointWindGpu>(mShaders, forestWindRest(*mForest), JointWindSolve::Auto);
   }
   mWindOn = on;
   mRenderer->useFrames(on ? &mWind->frames() : nullptr);
@@ -117,7 +117,7 @@ void ForestScene::setWind(bool on) {
 void ForestScene::resetWind() {
   mClock.reset();
   if (mWind) {
-    mWind = std::make_unique<JointWindGpu>(mShaders, forestWindRest(*mForest));
+    mWind = std::make_unique<JointWindGpu>(mShaders, forestWindRest(*mForest), JointWindSolve::Auto);
     mRenderer->useFrames(mWindOn ? &mWind->frames() : nullptr);
   }
 }

@@ -1,6 +1,7 @@
 #include <sylva/trees/gpu/JointWindGpu.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/gl/ContextInfo.hpp>
 #include <sylva/shader/Compiler.hpp>
 
 #include <algorithm>
@@ -23,13 +24,18 @@ GLuint groups(std::size_t joints) {
 
 } // namespace
 
-JointWindGpu::JointWindGpu(const shader::Library& library, const JointWindRest& rest)
+JointWindGpu::JointWindGpu(const shader::Library& library, const JointWindRest& rest, JointWindSolve solve)
     : mJoints(rest.jointCount()), mMaxBend(rest.maxBend), mUniforms(sizeof(StepBlock)),
       mRest(std::max<std::size_t>(rest.jointCount(), 1) * sizeof(gpu::TreeJointRest)),
       mMotion(std::max<std::size_t>(rest.jointCount(), 1) * sizeof(glm::vec4)),
       mFrames(std::max<std::size_t>(rest.jointCount(), 1) * sizeof(gpu::JointFrame)) {
   if (mJoints >= 0xffffffffu) {
     fail("joint wind: {} joints do not fit the GPU's indices", mJoints);
+  }
+  if (solve == JointWindSolve::Cpu ||
+      (solve == JointWindSolve::Auto && gl::queryContextInfo().deviceClass() == "llvmpipe")) {
+    mCpuRest = std::make_unique<JointWindRest>(rest);
+    mCpuState = JointWindState(mJoints);
   }
   if (mJoints > 0) {
     mRest.setSubData(std::span<const gpu::TreeJointRest>(rest.joints));
@@ -58,6 +64,9 @@ void JointWindGpu::setState(const JointWindState& state) {
   if (mJoints > 0) {
     mMotion.setSubData(std::span<const glm::vec4>(state.motion));
   }
+  if (mCpuRest) {
+    mCpuState = state;
+  }
 }
 
 void JointWindGpu::uploadStep(const gpu::WindUniforms& wind, float dt) {
@@ -82,6 +91,10 @@ void JointWindGpu::step(const gpu::WindUniforms& wind, float dt) {
   if (mJoints == 0) {
     return;
   }
+  if (mCpuRest) {
+    stepJointWind(*mCpuRest, mCpuState, wind, dt);
+    return;
+  }
   uploadStep(wind, dt);
   bindBuffers();
   mWind.use();
@@ -93,6 +106,12 @@ void JointWindGpu::updateFrames() {
   if (mJoints == 0) {
     return;
   }
+  if (mCpuRest) {
+    forestJointFrames(*mCpuRest, mCpuState, mCpuFrames);
+    mFrames.setSubData(std::span<const gpu::JointFrame>(mCpuFrames));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    return;
+  }
   bindBuffers();
   mFramesProgram.use();
   glDispatchCompute(groups(mJoints), 1, 1);
@@ -100,6 +119,9 @@ void JointWindGpu::updateFrames() {
 }
 
 JointWindState JointWindGpu::readState() const {
+  if (mCpuRest) {
+    return mCpuState;
+  }
   JointWindState state(mJoints);
   if (mJoints > 0) {
     mMotion.getSubData(0, mJoints * sizeof(glm::vec4), state.motion.data());

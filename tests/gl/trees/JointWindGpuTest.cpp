@@ -185,6 +185,40 @@ TEST_F(JointWindGpuTest, FramesOfAStateSetFromTheCpu) {
   EXPECT_THROW(gpu.setState(wrong), Error);
 }
 
+TEST_F(JointWindGpuTest, SolvingOnTheCpuGivesTheComputeShadersFrames) {
+  // The CPU solve (what a forest uses on llvmpipe) steps the reference and uploads its frames: the renderer's
+  // buffer then holds forestJointFrames of the reference state, within float rounding of the shaders'.
+  const WindForest forest(900);
+  const JointWindRest& rest = forest.rest;
+  JointWindGpu onGpu(shaders(), rest, JointWindSolve::Gpu);
+  JointWindGpu onCpu(shaders(), rest, JointWindSolve::Cpu);
+  const JointWindGpu automatic(shaders(), rest, JointWindSolve::Auto);
+  EXPECT_FALSE(onGpu.solvesOnCpu());
+  EXPECT_TRUE(onCpu.solvesOnCpu());
+  EXPECT_EQ(automatic.solvesOnCpu(), onLlvmpipe());
+  JointWindState reference(rest.jointCount());
+  const wind::WindSettings w = gusts();
+  for (int i = 1; i <= 60; ++i) {
+    const gpu::WindUniforms u = wind::toUniforms(w, static_cast<float>(i) * kDt);
+    stepJointWind(rest, reference, u, kDt);
+    onGpu.step(u, kDt);
+    onCpu.step(u, kDt);
+  }
+  onGpu.updateFrames();
+  onCpu.updateFrames();
+  EXPECT_EQ(onCpu.readState().motion, reference.motion) << "the CPU solve is the reference, bit for bit";
+  std::vector<gpu::JointFrame> frames;
+  forestJointFrames(rest, reference, frames);
+  const std::vector<gpu::JointFrame> uploaded = onCpu.readFrames();
+  ASSERT_EQ(uploaded.size(), frames.size());
+  EXPECT_EQ(std::memcmp(uploaded.data(), frames.data(), frames.size() * sizeof(gpu::JointFrame)), 0);
+  EXPECT_LT(worstFrameDifference(uploaded, onGpu.readFrames()), 1e-4);
+  // A state set from outside is what the next step starts from.
+  JointWindState rest0(rest.jointCount());
+  onCpu.setState(rest0);
+  EXPECT_EQ(onCpu.readState().motion, rest0.motion);
+}
+
 TEST_F(JointWindGpuTest, TimesBothPassesForAForest) {
   // The target is 100,000 joints in 0.25 ms on a desktop GPU; llvmpipe runs a fifth of that to keep the test
   // short. Timings are printed (not asserted); the result is checked against the CPU after one step.
