@@ -26,8 +26,11 @@ void SimulationFlags::add(CLI::App& command) {
   command.add_option("--physics-seed", seed, "Seed of the balls' sizes, masses and places")
       ->check(unsignedInteger())
       ->capture_default_str();
-  command.add_option("--grass-sim", solver, "Grass solver: gpu (compute shader) or cpu (the reference)")
-      ->check(CLI::IsMember({"gpu", "cpu"}))
+  command
+      .add_option("--grass-sim", solver,
+                  "Grass solver: gpu (compute shader), cpu (SIMD, bit for bit the reference) or auto (cpu on "
+                  "a software rasteriser such as llvmpipe, else gpu)")
+      ->check(CLI::IsMember({"auto", "gpu", "cpu"}))
       ->capture_default_str();
   command.add_option("--grass-pool", pool, "Tiles that can be simulated at once")
       ->check(CLI::Range(1, 65536))

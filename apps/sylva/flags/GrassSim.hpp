@@ -20,8 +20,8 @@ struct SimulationFlags {
   std::string physics = "none";
   int balls = 10;
   std::uint64_t seed = 7;
-  /** "gpu" (compute shader) or "cpu" (the reference solver). */
-  std::string solver = "gpu";
+  /** "auto", "gpu" (compute shader) or "cpu" (the SIMD solver, bit for bit the reference). */
+  std::string solver = "auto";
   int pool = 512;
   float trampleRecovery = 6.0f;
 
@@ -31,7 +31,12 @@ struct SimulationFlags {
   grass::SolverSettings solverSettings() const;
   grass::PoolSettings poolSettings() const;
   /** The engine's description (checked: throws for bad settings). */
-  scene::GrassSimSettings settings() const { return {poolSettings(), solverSettings(), solver == "gpu"}; }
+  scene::GrassSimSettings settings() const {
+    return {poolSettings(), solverSettings(),
+            solver == "gpu"   ? scene::GrassSolve::Gpu
+            : solver == "cpu" ? scene::GrassSolve::Cpu
+                              : scene::GrassSolve::Auto};
+  }
 };
 
 } // namespace sylva::app

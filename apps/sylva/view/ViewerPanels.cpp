@@ -358,12 +358,14 @@ void GrassPanel::showSimulation(scene::SceneWorld& world, const render::Camera& 
           "tiles near a body found the pool full (--grass-pool): their blades ignore the bodies");
     }
     ImGui::Text("steps this frame  %d", s.steps);
-    ImGui::Text("solver            %s", simulation->onGpu() ? "GPU (compute shader)" : "CPU (reference)");
+    ImGui::Text("solver            %s", simulation->onGpu() ? "GPU (compute shader)" : "CPU (SIMD)");
     ImGui::Text("time              %.2f s", simulation->time());
   } else {
     ImGui::TextUnformatted("no bodies yet (B or the buttons below start the simulation)");
-    ImGui::Text("solver            %s",
-                world.desc().grassSim.gpu ? "GPU (compute shader)" : "CPU (reference)");
+    const scene::GrassSolve solve = world.desc().grassSim.solve;
+    ImGui::Text("solver            %s", solve == scene::GrassSolve::Gpu   ? "GPU (compute shader)"
+                                        : solve == scene::GrassSolve::Cpu ? "CPU (SIMD)"
+                                                                          : "auto (CPU on llvmpipe)");
   }
   ImGui::BeginDisabled(!grassOn);
   if (ImGui::Button("Throw ball (B)")) {

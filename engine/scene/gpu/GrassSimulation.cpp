@@ -1,5 +1,7 @@
 #include <sylva/scene/gpu/GrassSimulation.hpp>
 
+#include <sylva/gl/ContextInfo.hpp>
+
 #include <utility>
 #include <vector>
 
@@ -19,7 +21,9 @@ GrassSimulation::GrassSimulation(const shader::Library& library, const terrain::
     : mGrass(grass), mWorld(std::make_unique<physics::World>(ground)),
       mTiles(std::make_unique<grass::TileSimulation>(std::move(field), checked(settings.pool),
                                                      checked(settings.solver))),
-      mBodies(library), mGpu(settings.gpu) {
+      mBodies(library),
+      mGpu(settings.solve == GrassSolve::Gpu ||
+           (settings.solve == GrassSolve::Auto && gl::queryContextInfo().deviceClass() != "llvmpipe")) {
   mSimulator = std::make_unique<grass::GrassSimulator>(library, grass, *mTiles);
   if (mGpu) {
     mTiles->setBackend(mSimulator.get());

@@ -186,12 +186,22 @@ struct ShadowDesc {
   float lambda = 0.7f;     ///< practical split: 0 uniform, 1 logarithmic
 };
 
+/** Which grass solver steps the simulated tiles. */
+enum class GrassSolve {
+  /** The compute shader. */
+  Gpu,
+  /** The CPU solver (SIMD lanes, bit for bit the scalar reference). */
+  Cpu,
+  /** Cpu on a software rasteriser (llvmpipe runs compute shaders on the same cores, several times slower than
+   * the CPU solver), Gpu otherwise. */
+  Auto,
+};
+
 /** How simulated grass runs (code only: `--grass-sim`, `--grass-pool`, `--trample-recovery`). */
 struct GrassSimSettings {
   grass::PoolSettings pool;
   grass::SolverSettings solver;
-  /** True: the compute-shader solver; false: the CPU reference. */
-  bool gpu = true;
+  GrassSolve solve = GrassSolve::Auto;
 };
 
 /** A camera key. */
