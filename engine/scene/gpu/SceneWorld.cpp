@@ -391,6 +391,11 @@ void SceneWorld::setQuality(const QualityStep& step) {
     }
   }
   mPasses->setShadowsAllowed(step.shadows);
+  // The water's folding frame at the resolution the smaller frame samples anyway (ShoreWater::setSwashLevel).
+  const int swashLevel = static_cast<int>(std::floor(std::log2(1.0f / step.renderScale) + 1e-4f));
+  for (auto& w : mWater) {
+    w->setSwashLevel(swashLevel);
+  }
 }
 
 void SceneWorld::draw(const render::Camera& camera, int width, int height, double time,

@@ -43,9 +43,13 @@ ShoreWater::ShoreWater(const shader::Library& library, const terrain::HeightFiel
   const std::vector<std::uint32_t> cells =
       wetCells(field, grid, wetTop, 1e-4f * std::max(1.0f, std::abs(wetTop)));
   mWetCells = static_cast<int>(cells.size());
-  mCellList = gl::Buffer(std::max<std::size_t>(cells.size(), 1) * sizeof(std::uint32_t));
-  if (!cells.empty()) {
-    mCellList.setSubData(std::span<const std::uint32_t>(cells));
+  const std::vector<glm::uvec4> rects =
+      waterRects(field, grid, cells, mSettings.level, 0.02f * verticalScale); // uLift, as draw() sets it
+  const std::vector<glm::ivec2> points = waterTriangles(rects);
+  mVertexCount = static_cast<int>(points.size());
+  mCellList = gl::Buffer(std::max<std::size_t>(points.size(), 1) * sizeof(glm::ivec2));
+  if (!points.empty()) {
+    mCellList.setSubData(std::span<const glm::ivec2>(points));
   }
   gl::setLabel(GL_BUFFER, mCellList.id(), "shore water cells");
 
@@ -111,6 +115,21 @@ void ShoreWater::reloadShaders(const shader::Library& library) {
   mFold->reloadShaders(library);
 }
 
+void ShoreWater::setSwashLevel(int level) {
+  const int levels =
+      1 +
+      static_cast<int>(std::floor(std::log2(static_cast<float>(std::max(mSwash.width(), mSwash.height())))));
+  level = std::clamp(level, 0, levels - 1);
+  if (level == mSwashLevel) {
+    return;
+  }
+  mSwashLevel = level;
+  mSwashTarget.attachColor(0, mSwash, level);
+  mSwashTarget.checkComplete();
+  // Sampling starts at that level; glGenerateTextureMipmap builds the coarser ones from it.
+  glTextureParameteri(mSwash.id(), GL_TEXTURE_BASE_LEVEL, level);
+}
+
 void ShoreWater::update(double time) {
   GLint previous = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
@@ -120,7 +139,8 @@ void ShoreWater::update(double time) {
   GLboolean depth = glIsEnabled(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
-  mSwashTarget.bindForDraw(mSwash.width(), mSwash.height());
+  mSwashTarget.bindForDraw(std::max(1, mSwash.width() >> mSwashLevel),
+                           std::max(1, mSwash.height() >> mSwashLevel));
   mFold->draw(swashTime(time, mSettings.period, mProjectPeriod), mRegion);
   mSwash.generateMipmaps();
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous));
@@ -144,10 +164,9 @@ void ShoreWater::draw(const render::Camera& camera, int width, int height, doubl
   };
   setInt2("uField", mFieldWidth, mFieldHeight);
   mProgram.setUniform("uSpacing", glm::vec2(mSpacingX, mSpacingZ));
-  setInt2("uCells", mCellsX, mCellsZ);
   mProgram.setUniform("uStride", mStride);
   mProgram.setUniform("uLevel", mSettings.level);
-  mProgram.setUniform("uLift", 0.02f * mVerticalScale);
+  mProgram.setUniform("uLift", 0.02f * mVerticalScale); // waterRects' lift: keep them equal
   mProgram.setUniform("uWetTop", mSettings.level + mSettings.wet * mVerticalScale);
   mProgram.setUniform("uVerticalScale", mVerticalScale);
   mProgram.setUniform("uBand", mSettings.band);
@@ -156,15 +175,18 @@ void ShoreWater::draw(const render::Camera& camera, int width, int height, doubl
   mProgram.setUniform("uAspect", mAspect);
   mProgram.setUniform("uWaterline", mWaterlineV);
   mProgram.setUniform("uView", static_cast<int>(mView));
-  int cells = mWetCells;
+  int vertices = mVertexCount;
   if (mDrawEveryCell) {
-    cells = mCellsX * mCellsZ;
+    vertices = 6 * mCellsX * mCellsZ;
     if (mEveryCell.id() == 0) {
-      std::vector<std::uint32_t> all(static_cast<std::size_t>(cells));
-      for (std::size_t i = 0; i < all.size(); ++i) {
-        all[i] = static_cast<std::uint32_t>(i);
+      std::vector<glm::uvec4> all;
+      all.reserve(static_cast<std::size_t>(mCellsX) * static_cast<std::size_t>(mCellsZ));
+      for (int z = 0; z < mCellsZ; ++z) {
+        for (int x = 0; x < mCellsX; ++x) {
+          all.emplace_back(x, z, 1, 1);
+        }
       }
-      mEveryCell = gl::Buffer(std::span<const std::uint32_t>(all));
+      mEveryCell = gl::Buffer(std::span<const glm::ivec2>(waterTriangles(all)));
     }
     mEveryCell.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
   } else {
@@ -178,8 +200,8 @@ void ShoreWater::draw(const render::Camera& camera, int width, int height, doubl
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   }
   glDepthMask(GL_FALSE);
-  if (cells > 0) {
-    glDrawArrays(GL_TRIANGLES, 0, 6 * cells);
+  if (vertices > 0) {
+    glDrawArrays(GL_TRIANGLES, 0, vertices);
   }
   glDepthMask(GL_TRUE);
   if (blend) {

@@ -138,6 +138,123 @@ std::vector<std::uint32_t> wetCells(const terrain::HeightField& field, const Wat
   return cells;
 }
 
+std::vector<glm::uvec4> waterRects(const terrain::HeightField& field, const WaterGrid& grid,
+                                   std::span<const std::uint32_t> cells, float level, float lift) {
+  const std::size_t total = static_cast<std::size_t>(grid.cellsX) * static_cast<std::size_t>(grid.cellsZ);
+  // 0: not drawn, 1: a wet cell drawn alone, 2: a wet cell whose surface is flat at the level.
+  std::vector<std::uint8_t> kind(total, 0);
+  const int w = field.width();
+  const int h = field.height();
+  const std::vector<float>& samples = field.samples();
+  const auto flatCorner = [&](int gx, int gz) {
+    // The water shader's vertex: sample min(g · stride, field − 1), surface max(level, height + lift).
+    const int sx = std::min(gx * grid.stride, w - 1);
+    const int sz = std::min(gz * grid.stride, h - 1);
+    const float height = samples[static_cast<std::size_t>(sz) * static_cast<std::size_t>(w) + sx];
+    return std::isfinite(height) && height + lift <= level;
+  };
+  for (std::uint32_t c : cells) {
+    if (c >= total) {
+      fail("shore: water cell {} outside the {}x{} grid", c, grid.cellsX, grid.cellsZ);
+    }
+    const int cx = static_cast<int>(c % static_cast<std::uint32_t>(grid.cellsX));
+    const int cz = static_cast<int>(c / static_cast<std::uint32_t>(grid.cellsX));
+    const bool flat =
+        flatCorner(cx, cz) && flatCorner(cx + 1, cz) && flatCorner(cx, cz + 1) && flatCorner(cx + 1, cz + 1);
+    kind[c] = flat ? 2 : 1;
+  }
+  const auto at = [&](int x, int z) -> std::uint8_t& {
+    return kind[static_cast<std::size_t>(z) * static_cast<std::size_t>(grid.cellsX) +
+                static_cast<std::size_t>(x)];
+  };
+  // Aligned square blocks of flat cells, largest first (a fan of a b × b block has 8b triangles against the
+  // cells' 2b²: worth it from b = 8), then every cell left on its own.
+  std::vector<glm::uvec4> rects;
+  for (int b = 64; b >= 8; b /= 2) {
+    for (int z = 0; z + b <= grid.cellsZ; z += b) {
+      for (int x = 0; x + b <= grid.cellsX; x += b) {
+        bool flat = true;
+        for (int j = 0; j < b && flat; ++j) {
+          for (int i = 0; i < b && flat; ++i) {
+            flat = at(x + i, z + j) == 2;
+          }
+        }
+        if (!flat) {
+          continue;
+        }
+        for (int j = 0; j < b; ++j) {
+          for (int i = 0; i < b; ++i) {
+            at(x + i, z + j) = 0;
+          }
+        }
+        rects.emplace_back(x, z, b, b);
+      }
+    }
+  }
+  for (int z = 0; z < grid.cellsZ; ++z) {
+    for (int x = 0; x < grid.cellsX; ++x) {
+      if (at(x, z) != 0) {
+        rects.emplace_back(x, z, 1, 1);
+      }
+    }
+  }
+  return rects;
+}
+
+std::vector<glm::ivec2> waterTriangles(std::span<const glm::uvec4> rects) {
+  std::vector<glm::ivec2> points;
+  const auto cell = [&](int x, int z) {
+    for (const glm::ivec2 c : {glm::ivec2(0, 0), glm::ivec2(0, 1), glm::ivec2(1, 0), glm::ivec2(1, 0),
+                               glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
+      points.push_back(glm::ivec2(x, z) + c);
+    }
+  };
+  // The cells' turn: (0,0) → (0,1) → (1,0) has cross((b − a), (c − a)) < 0 in (x, z).
+  const auto triangle = [&](glm::ivec2 a, glm::ivec2 b, glm::ivec2 c) {
+    const glm::ivec2 u = b - a;
+    const glm::ivec2 v = c - a;
+    if (u.x * v.y - u.y * v.x > 0) {
+      std::swap(b, c);
+    }
+    points.push_back(a);
+    points.push_back(b);
+    points.push_back(c);
+  };
+  for (const glm::uvec4& r : rects) {
+    const int x0 = static_cast<int>(r.x);
+    const int z0 = static_cast<int>(r.y);
+    const int w = static_cast<int>(r.z);
+    const int h = static_cast<int>(r.w);
+    if (w < 2 || h < 2) {
+      for (int z = z0; z < z0 + h; ++z) {
+        for (int x = x0; x < x0 + w; ++x) {
+          cell(x, z);
+        }
+      }
+      continue;
+    }
+    // The border, corner by corner, and a fan from an inner grid point.
+    std::vector<glm::ivec2> border;
+    for (int x = x0; x < x0 + w; ++x) {
+      border.emplace_back(x, z0);
+    }
+    for (int z = z0; z < z0 + h; ++z) {
+      border.emplace_back(x0 + w, z);
+    }
+    for (int x = x0 + w; x > x0; --x) {
+      border.emplace_back(x, z0 + h);
+    }
+    for (int z = z0 + h; z > z0; --z) {
+      border.emplace_back(x0, z);
+    }
+    const glm::ivec2 centre(x0 + w / 2, z0 + h / 2);
+    for (std::size_t i = 0; i < border.size(); ++i) {
+      triangle(centre, border[i], border[(i + 1) % border.size()]);
+    }
+  }
+  return points;
+}
+
 double swashTime(double time, double period, double projectPeriod) {
   if (!(projectPeriod > 0.0) || !std::isfinite(projectPeriod)) {
     fail("shore: the folding project's period {} s must be > 0", projectPeriod);

@@ -245,5 +245,92 @@ TEST(Shore, WetCellsHoldEveryFragmentTheWaterShaderKeeps) {
   EXPECT_THROW(waterGrid(1, 5, 10), Error);
 }
 
+TEST(Shore, FlatWaterMergesIntoFansWithoutTJunctions) {
+  // A bowl lake (stride 1), absent samples in one corner: the wet cells as rectangles, then triangles.
+  const int w = 200;
+  const int h = 160;
+  terrain::HeightField field(w, h, 2.0f, 2.0f);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const float dx = static_cast<float>(i - 100);
+      const float dz = static_cast<float>(j - 80);
+      field.at(i, j) = 0.005f * (dx * dx + dz * dz) - 20.0f + std::sin(0.7f * dx) * 0.3f;
+    }
+  }
+  for (int j = 40; j < 50; ++j) {
+    for (int i = 55; i < 65; ++i) {
+      field.at(i, j) = std::numeric_limits<float>::quiet_NaN(); // a hole in the lake bed
+    }
+  }
+  const WaterGrid grid = waterGrid(w, h, 512);
+  ASSERT_EQ(grid.stride, 1);
+  const float level = 0.0f;
+  const float lift = 0.03f;
+  const std::vector<std::uint32_t> cells = wetCells(field, grid, 0.5f, 1e-3f);
+  const std::vector<glm::uvec4> rects = waterRects(field, grid, cells, level, lift);
+  ASSERT_FALSE(rects.empty());
+  const auto corner = [&](int gx, int gz) { return field.at(std::min(gx, w - 1), std::min(gz, h - 1)); };
+  // Every wet cell exactly once; merged rectangles only over cells flat at the level.
+  std::vector<int> covered(static_cast<std::size_t>(grid.cellsX * grid.cellsZ), 0);
+  std::size_t merged = 0;
+  for (const glm::uvec4& r : rects) {
+    ASSERT_GE(r.z, 1u);
+    ASSERT_GE(r.w, 1u);
+    merged += r.z * r.w > 1 ? 1 : 0;
+    for (unsigned z = r.y; z < r.y + r.w; ++z) {
+      for (unsigned x = r.x; x < r.x + r.z; ++x) {
+        ++covered[x + z * static_cast<unsigned>(grid.cellsX)];
+        if (r.z * r.w > 1) {
+          for (const glm::ivec2 c :
+               {glm::ivec2(0, 0), glm::ivec2(1, 0), glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
+            const float height = corner(static_cast<int>(x) + c.x, static_cast<int>(z) + c.y);
+            ASSERT_TRUE(std::isfinite(height) && height + lift <= level) << x << ", " << z;
+          }
+        }
+      }
+    }
+  }
+  std::vector<int> expected(covered.size(), 0);
+  for (std::uint32_t c : cells) {
+    expected[c] = 1;
+  }
+  EXPECT_EQ(covered, expected);
+  EXPECT_GT(merged, 0u);
+  EXPECT_LT(rects.size(), cells.size() / 3) << "the flat lake merges";
+  // The triangles: all turning like the cells', areas adding up to the cells (no gap, no overlap inside a
+  // rectangle), far fewer vertices; a fan holds every grid point of its border (no T-junction).
+  const std::vector<glm::ivec2> points = waterTriangles(rects);
+  ASSERT_EQ(points.size() % 3, 0u);
+  long long doubleArea = 0;
+  for (std::size_t t = 0; t < points.size(); t += 3) {
+    const glm::ivec2 u = points[t + 1] - points[t];
+    const glm::ivec2 v = points[t + 2] - points[t];
+    const int cross = u.x * v.y - u.y * v.x;
+    ASSERT_LT(cross, 0) << "triangle " << t / 3;
+    doubleArea -= cross;
+  }
+  EXPECT_EQ(doubleArea, 2 * static_cast<long long>(cells.size()));
+  EXPECT_LT(points.size(), 6 * cells.size() / 3) << "a third of the cells' vertices";
+  for (const glm::uvec4& r : rects) {
+    if (r.z < 2 || r.w < 2) {
+      continue;
+    }
+    const std::vector<glm::ivec2> fan = waterTriangles(std::span<const glm::uvec4>(&r, 1));
+    EXPECT_EQ(fan.size(), 3 * 2 * static_cast<std::size_t>(r.z + r.w));
+    const glm::ivec2 lo(r.x, r.y);
+    const glm::ivec2 hi = lo + glm::ivec2(r.z, r.w);
+    for (int z = lo.y; z <= hi.y; ++z) {
+      for (int x = lo.x; x <= hi.x; ++x) {
+        if (x != lo.x && x != hi.x && z != lo.y && z != hi.y) {
+          continue;
+        }
+        EXPECT_NE(std::find(fan.begin(), fan.end(), glm::ivec2(x, z)), fan.end())
+            << "border point " << x << ", " << z << " of the rectangle at " << lo.x << ", " << lo.y;
+      }
+    }
+  }
+  EXPECT_THROW(waterRects(field, grid, std::vector<std::uint32_t>{1u << 30}, level, lift), Error);
+}
+
 } // namespace
 } // namespace sylva::scene

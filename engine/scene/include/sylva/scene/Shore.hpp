@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,27 @@ WaterGrid waterGrid(int fieldWidth, int fieldHeight, int maxCells);
  */
 std::vector<std::uint32_t> wetCells(const terrain::HeightField& field, const WaterGrid& grid, float wetTop,
                                     float tolerance);
+
+/**
+ * The wet cells `cells` (wetCells' indices, ascending) as rectangles of cells (x, z of the first cell, cells
+ * along x, along z), each drawn as one quad. Cells whose four corner samples all lie at or below `level −
+ * lift` (world metres) have their surface flat at `level` (the shader's max(level, height + lift)): aligned
+ * square blocks of them (64, 32, 16 then 8 cells a side, largest first) become one rectangle each, which
+ * waterTriangles draws as a fan with a fraction of the cells' vertices. Every other wet cell stays a 1 × 1
+ * rectangle. Together the rectangles cover exactly `cells`, each once; absent (NaN) corners are never flat.
+ */
+std::vector<glm::uvec4> waterRects(const terrain::HeightField& field, const WaterGrid& grid,
+                                   std::span<const std::uint32_t> cells, float level, float lift);
+
+/**
+ * The water mesh of `rects` (waterRects) as triangles, three grid points (cell corners, x and z) each: a 1 ×
+ * 1 rectangle as its cell's two triangles, a larger one (at least 2 × 2 cells) as a fan from a grid point
+ * inside it to every grid point of its border (2·(w + h) triangles instead of 2·w·h), so a neighbour's
+ * corners on the border are corners of the fan too: no T-junction, no crack between the flat water and its
+ * shore cells. Strips one cell wide stay cells. Every triangle turns the same way as the cells' (x, z) → (x,
+ * z + 1) → (x + 1, z).
+ */
+std::vector<glm::ivec2> waterTriangles(std::span<const glm::uvec4> rects);
 
 /**
  * Time (seconds) of the folding frame shown at scene time `time` seconds: fract(time / period) ·

@@ -40,6 +40,8 @@ public:
   static constexpr int kMaxCells = 512;
   /** Cells of the mesh drawn (the wet ones: scene::wetCells) and in all. */
   int drawnCells() const { return mWetCells; }
+  /** Vertices drawn for them (scene::waterTriangles: flat rectangles as fans), three per triangle. */
+  int drawnVertices() const { return mVertexCount; }
   int gridCells() const { return mCellsX * mCellsZ; }
   /** Draw every cell of the grid instead of the wet ones (comparisons: the pixels must not change). */
   void setDrawEveryCell(bool on) { mDrawEveryCell = on; }
@@ -80,6 +82,14 @@ public:
   const ShoreSettings& settings() const { return mSettings; }
   /** The project's longest profile period, seconds (what settings.period 0 plays). */
   double projectPeriod() const { return mProjectPeriod; }
+  /**
+   * The finest mip level of the swash texture that update() renders and the water samples (clamped to the
+   * texture's levels; 0 by default). A frame drawn at a fraction s of the resolution samples levels at least
+   * log2(1/s) coarser everywhere, so level floor(log2(1/s)) draws the same picture for a quarter of the swash
+   * work per level (SceneWorld::setQuality).
+   */
+  void setSwashLevel(int level);
+  int swashLevel() const { return mSwashLevel; }
   /** The swash texture (RGBA8, row 0 of the folding image at the top, i.e. at t = 1). */
   const gl::Texture& swashTexture() const { return mSwash; }
   /** Height / width of the swash frame (the project image's crop). */
@@ -95,9 +105,11 @@ private:
   int mStride = 1;
   int mCellsX = 1;
   int mCellsZ = 1;
-  int mWetCells = 0;                   ///< cells drawn (wetCells): those that can show water
-  gl::Buffer mCellList{gl::NoCreate};  ///< their indices, x + z · cellsX
-  gl::Buffer mEveryCell{gl::NoCreate}; ///< 0 … cells − 1, made when setDrawEveryCell(true) is first drawn
+  int mWetCells = 0;                  ///< cells drawn (wetCells): those that can show water
+  int mVertexCount = 0;               ///< the vertices they are drawn with (waterTriangles)
+  gl::Buffer mCellList{gl::NoCreate}; ///< their triangles' grid points, ivec2
+  gl::Buffer mEveryCell{
+      gl::NoCreate}; ///< every cell's two triangles, made when setDrawEveryCell(true) is first drawn
   bool mDrawEveryCell = false;
   double mProjectPeriod = 1.0;
   float mAspect = 1.0f;
@@ -109,6 +121,7 @@ private:
   gl::Texture mHeights{gl::NoCreate};
   gl::Texture mSwash{gl::NoCreate};
   gl::Framebuffer mSwashTarget;
+  int mSwashLevel = 0;
   gl::VertexArray mVao;
   render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
 };
