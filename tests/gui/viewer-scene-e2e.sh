@@ -6,7 +6,7 @@
 #   key 4 turns the grass on again: the ground is as before;
 #   G walks (eyes 1.8 m above the ground instead of the camera's 2.5 m): the view moves;
 #   B throws a ball from the eye:   the log says so (the meadow has physics) and the ball fills the view;
-#   Q turns auto quality on:        the governor steps the quality down (the log says which step).
+#   R turns auto quality on:        the governor steps the quality down (the log says which step).
 # The viewer must then quit on Esc with status 0 and log no error. Last, a scripted run
 # (--frames 1 --no-ui --screenshot) must show exactly the frame `sylva render SCENE.json` writes.
 # On a failure the screenshots go to <golden-out>/llvmpipe/viewer-scene-e2e.*.png.
@@ -120,12 +120,12 @@ if ! grep -q "ball thrown at" "$work/log"; then
   failed=1
 fi
 
-# 5. Q turns auto quality on (a fixed step starts the viewer at full quality): frames of a second or more on
+# 5. R turns auto quality on (a fixed step starts the viewer at full quality): frames of a second or more on
 # llvmpipe miss 10 frames/s, so the governor steps down and says so.
-key q
+key r
 wait_log "$work/log" "quality step [1-9]"
 if ! grep -q "auto quality on" "$work/log" || ! grep -q "quality step [1-9]" "$work/log"; then
-  echo "$name: Q did not turn auto quality on, or it never stepped down" >&2
+  echo "$name: R did not turn auto quality on, or it never stepped down" >&2
   failed=1
 fi
 frames 2

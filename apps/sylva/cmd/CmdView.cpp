@@ -65,7 +65,7 @@ void registerView(CLI::App& app) {
       ->add_option(
           "--quality", o->window.quality,
           "Frame quality of a scene: auto (steps resolution, grass distance and shadows down until "
-          "frames reach --target-fps, and back up; shown in the panel, Q toggles), full (the scene as "
+          "frames reach --target-fps, and back up; shown in the panel, R toggles), full (the scene as "
           "described) or a step of the ladder by number, 0 being full (docs/scenes.md). Default: "
           "auto; full for runs with --fixed-step or --screenshot, so their frames repeat")
       ->check(CLI::IsMember(qualityNames()));

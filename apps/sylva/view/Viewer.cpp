@@ -93,7 +93,7 @@ struct ViewerQuality {
   /** The panel's lines: the auto checkbox, the step and what it gives up. */
   void show(glm::ivec2 output) {
     const int last = static_cast<int>(scene::qualityLadder().size()) - 1;
-    if (ImGui::Checkbox("auto quality (Q)", &automatic) && automatic) {
+    if (ImGui::Checkbox("auto quality (R)", &automatic) && automatic) {
       governor.reset(manual);
     }
     ImGui::SameLine();
@@ -112,7 +112,7 @@ struct ViewerQuality {
 
 /**
  * The window loop: `build` makes the content once the window (and its GL context) exists. Keys: F5 reload
- * shaders, F fly, G walk, B throw a ball, Space pause, 1-8 passes, Q auto quality, Tab panel, Esc quit.
+ * shaders, F fly, G walk, B throw a ball, Space pause, 1-8 passes, R auto quality, Tab panel, Esc quit.
  */
 void runViewer(const ViewerOptions& o, const std::string& title,
                const std::function<ViewerContent(const shader::Library&, float aspect)>& build) {
@@ -176,7 +176,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
   bool throwRequested = false;
   bool reloadRequested = false;
   std::string status = world != nullptr
-                           ? "F: fly  G: walk  B: throw a ball  Space: pause  1-8: passes  Q: auto quality  "
+                           ? "F: fly  G: walk  B: throw a ball  Space: pause  1-8: passes  R: auto quality  "
                              "F5: reload shaders  Tab: panel"
                            : "F5: reload shaders  Space: pause  Tab: panel";
   bool wireframe = false; // the demo's
@@ -193,7 +193,7 @@ void runViewer(const ViewerOptions& o, const std::string& title,
       throwRequested = world != nullptr; // thrown once the frame's camera is known
     } else if (key == GLFW_KEY_SPACE) {
       paused = !paused;
-    } else if (key == GLFW_KEY_Q && world != nullptr) {
+    } else if (key == GLFW_KEY_R && world != nullptr) {
       quality.automatic = !quality.automatic;
       if (quality.automatic) {
         quality.governor.reset(quality.manual);
