@@ -44,7 +44,7 @@ ShoreWater::ShoreWater(const shader::Library& library, const terrain::HeightFiel
       wetCells(field, grid, wetTop, 1e-4f * std::max(1.0f, std::abs(wetTop)));
   mWetCells = static_cast<int>(cells.size());
   const std::vector<glm::uvec4> rects =
-      waterRects(field, grid, cells, mSettings.level, 0.02f * verticalScale); // uLift, as draw() sets it
+      waterRects(field, grid, cells, mSettings.level, lift()); // the surface draw() draws
   const std::vector<glm::ivec2> points = waterTriangles(rects);
   mVertexCount = static_cast<int>(points.size());
   mCellList = gl::Buffer(std::max<std::size_t>(points.size(), 1) * sizeof(glm::ivec2));
@@ -95,8 +95,8 @@ ShoreWater::ShoreWater(const shader::Library& library, const terrain::HeightFiel
                                          static_cast<float>(std::max(mRegion.width(), mRegion.height())));
   const int w = std::max(1, static_cast<int>(std::lround(static_cast<float>(mRegion.width()) * scale)));
   const int h = std::max(1, static_cast<int>(std::lround(static_cast<float>(mRegion.height()) * scale)));
-  const int levels = 1 + static_cast<int>(std::floor(std::log2(static_cast<float>(std::max(w, h)))));
-  mSwash = gl::Texture::create2D(GL_RGBA8, w, h, levels);
+  mSwashLevels = 1 + static_cast<int>(std::floor(std::log2(static_cast<float>(std::max(w, h)))));
+  mSwash = gl::Texture::create2D(GL_RGBA8, w, h, mSwashLevels);
   mSwash.setSampler({GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT});
   glTextureParameteri(mSwash.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE); // across the shore: no repeat
   gl::setLabel(GL_TEXTURE, mSwash.id(), "shore swash");
@@ -116,10 +116,7 @@ void ShoreWater::reloadShaders(const shader::Library& library) {
 }
 
 void ShoreWater::setSwashLevel(int level) {
-  const int levels =
-      1 +
-      static_cast<int>(std::floor(std::log2(static_cast<float>(std::max(mSwash.width(), mSwash.height())))));
-  level = std::clamp(level, 0, levels - 1);
+  level = std::clamp(level, 0, mSwashLevels - 1);
   if (level == mSwashLevel) {
     return;
   }
@@ -166,7 +163,7 @@ void ShoreWater::draw(const render::Camera& camera, int width, int height, doubl
   mProgram.setUniform("uSpacing", glm::vec2(mSpacingX, mSpacingZ));
   mProgram.setUniform("uStride", mStride);
   mProgram.setUniform("uLevel", mSettings.level);
-  mProgram.setUniform("uLift", 0.02f * mVerticalScale); // waterRects' lift: keep them equal
+  mProgram.setUniform("uLift", lift());
   mProgram.setUniform("uWetTop", mSettings.level + mSettings.wet * mVerticalScale);
   mProgram.setUniform("uVerticalScale", mVerticalScale);
   mProgram.setUniform("uBand", mSettings.band);

@@ -122,6 +122,9 @@ private:
   gl::Texture mSwash{gl::NoCreate};
   gl::Framebuffer mSwashTarget;
   int mSwashLevel = 0;
+  int mSwashLevels = 1; ///< mip levels of mSwash
+  /** How far above the ground the surface is draped on the wet strip (world metres; uLift, waterRects). */
+  float lift() const { return 0.02f * mVerticalScale; }
   gl::VertexArray mVao;
   render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
 };
