@@ -99,7 +99,8 @@ void registerBench(CLI::App& app) {
       ->add_option(
           "--quality", o->quality,
           "scene: default, full (every shadow cascade every frame, for comparisons; docs/performance.md) or "
-          "auto (the viewer's quality steps, chosen to keep --target-fps)")
+          "auto (the viewer's loop: quality steps chosen to keep --target-fps, scene time moving on by each "
+          "frame's wall time)")
       ->check(CLI::IsMember({"default", "full", "auto"}))
       ->capture_default_str();
   command->add_option("--target-fps", o->targetFps, "scene --quality auto: frames per second to keep to")

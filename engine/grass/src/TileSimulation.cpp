@@ -137,7 +137,8 @@ void TileSimulation::step(const std::vector<SimBody>& bodies, const wind::WindSe
     for (int tz = z0; tz <= z1; ++tz) {
       for (int tx = x0; tx <= x1; ++tx) {
         const glm::vec2 range = mField->tileRange(tx, tz);
-        if (!(range.x <= range.y) || box.max.y < range.x - top || box.min.y > range.y + top) {
+        if (!(range.x <= range.y) || box.max.y < range.x - top || box.min.y > range.y + top ||
+            !inFocus({tx, tz})) {
           continue;
         }
         const glm::vec2 c = layout.origin + (glm::vec2(tx, tz) + 0.5f) * layout.tileSize;
@@ -150,21 +151,41 @@ void TileSimulation::step(const std::vector<SimBody>& bodies, const wind::WindSe
     }
   }
   // Simulate the tiles already in the pool (releasing ones too, with no bodies: they keep moving while they
-  // ramp back), each with the bodies near it.
+  // ramp back), each with the bodies near it; tiles beyond the focus are held, their clocks paused.
   std::vector<std::vector<BladeCollider>> colliders(mSlots.size());
   std::vector<int> used;
+  // held[s]: 0 stepped, 1 held, 2 held with a body touching it.
+  std::vector<std::uint8_t> held(mSlots.size(), 0);
   for (std::size_t s = 0; s < mSlots.size(); ++s) {
     if (!mSlots[s].used) {
       continue;
     }
-    used.push_back(static_cast<int>(s));
-    const glm::vec2 lo = layout.origin + glm::vec2(mSlots[s].tile) * layout.tileSize - top;
+    SimSlot& slot = mSlots[s];
+    const bool seen = inFocus(slot.tile);
+    if (seen) {
+      used.push_back(static_cast<int>(s));
+      if (slot.held) {
+        slot.held = false;
+        slot.trampledUntil = mTime + slot.trampleLeft;
+      }
+    } else {
+      held[s] = 1;
+      if (!slot.held) {
+        slot.held = true;
+        slot.trampleLeft = std::max(0.0, slot.trampledUntil - mTime);
+      }
+    }
+    const glm::vec2 lo = layout.origin + glm::vec2(slot.tile) * layout.tileSize - top;
     const glm::vec2 hi = lo + layout.tileSize + 2.0f * top;
     for (const SimBody& b : bodies) {
       if (b.box.max.x >= lo.x && b.box.min.x <= hi.x && b.box.max.z >= lo.y && b.box.min.z <= hi.y) {
+        if (!seen) {
+          held[s] = 2;
+          break;
+        }
         colliders[s].push_back(b.shape);
         if (b.shape.mass >= mSolver.trampleMass) {
-          mSlots[s].trampledUntil = mTime + static_cast<double>(mSolver.trampleRecovery);
+          slot.trampledUntil = mTime + static_cast<double>(mSolver.trampleRecovery);
         }
       }
     }
@@ -174,7 +195,26 @@ void TileSimulation::step(const std::vector<SimBody>& bodies, const wind::WindSe
   } else {
     stepOnCpu(used, colliders, wind);
   }
-  finishStep(wanted, wind);
+  finishStep(wanted, held, wind);
+}
+
+bool TileSimulation::inFocus(glm::ivec2 tile) const {
+  if (!mFocus) {
+    return true;
+  }
+  const FieldLayout& layout = mField->layout();
+  const glm::vec2 lo = layout.origin + glm::vec2(tile) * layout.tileSize;
+  const glm::vec2 nearest = glm::clamp(mFocus->centre, lo, lo + layout.tileSize);
+  return glm::length(nearest - mFocus->centre) <= mFocus->radius + mField->bladeTop();
+}
+
+void TileSimulation::setFocus(std::optional<SimFocus> focus) {
+  if (focus && (!std::isfinite(focus->centre.x) || !std::isfinite(focus->centre.y) ||
+                !std::isfinite(focus->radius) || focus->radius < 0.0f)) {
+    fail("grass simulation: the focus needs a finite centre and a radius ≥ 0 m, got ({}, {}) and {}",
+         focus->centre.x, focus->centre.y, focus->radius);
+  }
+  mFocus = focus;
 }
 
 void TileSimulation::stepOnCpu(const std::vector<int>& used,
@@ -276,26 +316,33 @@ void TileSimulation::stepOnCpu(const std::vector<int>& used,
 }
 
 void TileSimulation::finishStep(const std::map<std::pair<int, int>, float>& wanted,
-                                const wind::WindSettings& wind) {
+                                const std::vector<std::uint8_t>& held, const wind::WindSettings& wind) {
   const float dt = mSolver.step();
   const auto seconds = static_cast<float>(mTime);
   // Release bookkeeping: a tile no body is near starts ramping back once its blades stand (none trampled);
-  // a body coming back stops the ramp.
+  // a body coming back stops the ramp. A held tile (not drawn) goes back at once or waits as it is.
+  mStats.heldTiles = 0;
   for (std::size_t s = 0; s < mSlots.size(); ++s) {
     SimSlot& slot = mSlots[s];
     if (!slot.used) {
       continue;
     }
-    if (wanted.count({slot.tile.x, slot.tile.y}) != 0) {
+    const bool near = wanted.count({slot.tile.x, slot.tile.y}) != 0;
+    if (held[s] != 0) {
+      // Not drawn: it waits as it is while a body touches it or its blades are trampled, else goes back now.
+      if (held[s] == 2 || slot.trampleLeft > 0.0) {
+        ++mStats.heldTiles;
+        continue;
+      }
+    } else if (near) {
       slot.releasing = false;
       slot.release = 0.0f;
       continue;
-    }
-    if (!slot.releasing) {
+    } else if (!slot.releasing) {
       slot.releasing = mTime >= slot.trampledUntil;
       continue;
     }
-    slot.release += dt / mPool.releaseTime;
+    slot.release = held[s] != 0 ? 1.0f : slot.release + dt / mPool.releaseTime;
     if (slot.release >= 1.0f) {
       slot = SimSlot{};
       const std::size_t base = s * static_cast<std::size_t>(mPerTile);

@@ -325,6 +325,9 @@ void SceneWorld::advanceToFrame(int frame) {
   if (frame < mFrame) {
     buildSimulation();
   }
+  if (mSimulation) {
+    mSimulation->setFocus(std::nullopt); // frame-exact: every tile, whatever was drawn before
+  }
   for (int f = std::max(mFrame + 1, 0); f <= frame; ++f) {
     stepTo(frameTime(f));
   }
@@ -409,6 +412,15 @@ void SceneWorld::draw(const render::Camera& camera, int width, int height, doubl
     mPasses->setFogDensity(render::fogDensityFor(camera.position, mTerrain->bounds(), *mDesc.fog.farSide));
   }
   mPasses->render(camera, width, height, time, casters, depth, timers);
+  // Real time (advanceTo): the next steps leave the simulated grass tiles this camera cannot draw held.
+  if (mSimulation) {
+    const float drawn = scaledGrassCull(static_cast<std::size_t>(mSimulatedGrass),
+                                        mDesc.grass[static_cast<std::size_t>(mSimulatedGrass)])
+                            .maxDistance;
+    mSimulation->setFocus(mDrawOptions.fullQuality ? std::nullopt
+                                                   : std::optional<grass::SimFocus>(
+                                                         {{camera.position.x, camera.position.z}, drawn}));
+  }
 }
 
 void SceneWorld::addDrop(const BodyDrop& drop) {

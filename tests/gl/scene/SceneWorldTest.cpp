@@ -9,6 +9,7 @@
 #include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/render/gpu/ShadowMaps.hpp>
+#include <sylva/scene/gpu/GrassSimulation.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 
@@ -334,6 +335,53 @@ TEST_F(SceneWorldTest, QualityStepsShortenTheGrassDropShadowsAndComeBackToTheSam
   EXPECT_EQ(world.grass(0).readCounters().blades.x, bladesBefore);
   const render::CompareResult same = render::compareImages(again, before, {0, 0.0});
   EXPECT_TRUE(same.passed) << same.failingFraction();
+}
+
+TEST_F(SceneWorldTest, RealTimeFramesHoldTheSimulatedGrassTheyCannotDraw) {
+  SceneDesc desc = forestDesc();
+  GrassLayer layer;
+  layer.layer = "none";
+  layer.patchBlades = 1024;
+  layer.bladesPerTile = 64;
+  layer.distance = 40.0f;
+  layer.simulate = true;
+  desc.grass.push_back(layer);
+  // Balls 70 m from the camera's ground position (forestCamera: (114, 142)), beyond the drawn 40 m.
+  desc.drops.push_back(BodyDrop{{170.0f, 100.0f}, 1.5f, 4, 9, 0.5f});
+  SceneWorld world(shaders(), desc);
+  ASSERT_NE(world.simulation(), nullptr);
+  // Frame-exact (a sequence): every tile near a ball is stepped.
+  world.advanceToFrame(12);
+  const grass::SimStats& stats = world.simulation()->stats();
+  ASSERT_GT(stats.activeTiles, 0u);
+  EXPECT_EQ(stats.heldTiles, 0u);
+  // Real time: after a frame from here, the tiles out there are held, not stepped.
+  const render::Camera camera = forestCamera(world);
+  (void)draw(world, camera);
+  world.advanceTo(1.0);
+  EXPECT_GT(stats.steps, 0);
+  EXPECT_GT(stats.heldTiles, 0u);
+  EXPECT_EQ(stats.heldTiles, stats.activeTiles);
+  // A camera among the balls steps them again; so does the full path, and a sequence's next frame.
+  render::Camera near = camera;
+  near.position = glm::vec3(170.0f, world.groundHeight(170.0f, 100.0f) + 2.0f, 104.0f);
+  near.target = glm::vec3(170.0f, world.groundHeight(170.0f, 100.0f), 100.0f);
+  (void)draw(world, near);
+  world.advanceTo(1.2);
+  EXPECT_EQ(stats.heldTiles, 0u);
+  (void)draw(world, camera);
+  world.advanceTo(1.4);
+  EXPECT_GT(stats.heldTiles, 0u);
+  SceneDrawOptions full = world.drawOptions();
+  full.fullQuality = true;
+  world.setDrawOptions(full);
+  (void)draw(world, camera);
+  world.advanceTo(1.6);
+  EXPECT_EQ(stats.heldTiles, 0u);
+  world.setDrawOptions(SceneDrawOptions{});
+  (void)draw(world, camera);
+  world.advanceToFrame(48);
+  EXPECT_EQ(stats.heldTiles, 0u);
 }
 
 } // namespace

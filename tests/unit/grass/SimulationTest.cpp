@@ -231,6 +231,62 @@ TEST(TileSimulation, TrampledTilesStayUntilTheyRecover) {
   EXPECT_LT(sim.slotOf({10, 10}), 0) << "released after recovering";
 }
 
+TEST(TileSimulation, TilesBeyondTheFocusAreHeldAsTheyWereAndResume) {
+  auto field = std::make_shared<const GrassField>(smallField());
+  PoolSettings pool;
+  pool.tiles = 32;
+  pool.releaseTime = 0.25f;
+  SolverSettings solver;
+  solver.trampleRecovery = 1.5f;
+  TileSimulation sim(field, pool, solver);
+  wind::WindSettings wind;
+  wind.speed = 6.0f;
+  const SimBody heavy = ballAt(*field, {20.0f, 20.0f}, 0.4f, 50.0f);
+  sim.advance(0.5, {heavy}, wind);
+  const int slot = sim.slotOf({10, 10});
+  ASSERT_GE(slot, 0);
+  const std::size_t active = sim.stats().activeTiles;
+  const std::vector<glm::vec3> before = sim.blades().position;
+  // The eye 28 m away, grass drawn to 5 m: nothing simulated is seen, so nothing is stepped, ball or not,
+  // and the trample clock waits too (3 s is past the 1.5 s recovery).
+  sim.setFocus(SimFocus{{0.0f, 0.0f}, 5.0f});
+  sim.advance(1.0, {heavy}, wind);
+  EXPECT_EQ(sim.stats().heldTiles, active);
+  sim.advance(3.5, {}, wind);
+  EXPECT_EQ(sim.stats().heldTiles, active);
+  EXPECT_EQ(sim.slotOf({10, 10}), slot);
+  EXPECT_TRUE(sim.blades().position == before) << "held blades do not move";
+  // In view again: the blades move on from where they were, and recover before the tiles go back.
+  sim.setFocus(SimFocus{{20.0f, 20.0f}, 5.0f});
+  sim.advance(3.6, {}, wind);
+  EXPECT_EQ(sim.stats().heldTiles, 0u);
+  EXPECT_EQ(sim.slotOf({10, 10}), slot) << "still trampled: its clock waited";
+  EXPECT_FALSE(sim.blades().position == before);
+  sim.advance(6.0, {}, wind);
+  EXPECT_LT(sim.slotOf({10, 10}), 0) << "released after recovering in view";
+
+  // A tile beyond the focus is not taken into the pool; a held one with nothing on it and nothing trampled
+  // goes back at once, not over the release ramp.
+  SolverSettings light = solver;
+  light.trampleMass = 1000.0f;
+  TileSimulation far(field, pool, light);
+  const SimBody ball = ballAt(*field, {20.0f, 20.0f}, 0.4f, 1.0f);
+  far.setFocus(SimFocus{{0.0f, 0.0f}, 5.0f});
+  far.advance(0.2, {ball}, wind);
+  EXPECT_EQ(far.stats().activeTiles, 0u);
+  EXPECT_EQ(far.stats().refusedTiles, 0u);
+  far.setFocus(std::nullopt);
+  far.advance(0.4, {ball}, wind);
+  ASSERT_GT(far.stats().activeTiles, 0u);
+  far.setFocus(SimFocus{{0.0f, 0.0f}, 5.0f});
+  far.advance(0.45, {ball}, wind);
+  EXPECT_GT(far.stats().heldTiles, 0u) << "the ball still touches them";
+  far.advance(0.5, {}, wind);
+  EXPECT_EQ(far.stats().activeTiles, 0u) << "released in one step, before the 0.25 s ramp";
+  EXPECT_THROW(far.setFocus(SimFocus{{0.0f, std::nanf("")}, 5.0f}), Error);
+  EXPECT_THROW(far.setFocus(SimFocus{{0.0f, 0.0f}, -1.0f}), Error);
+}
+
 TEST(TileSimulation, BadSettingsAreErrors) {
   auto field = std::make_shared<const GrassField>(smallField());
   PoolSettings zero;

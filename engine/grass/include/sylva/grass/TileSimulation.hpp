@@ -12,8 +12,10 @@
 
 #include <glm/vec2.hpp>
 
+#include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace sylva::grass {
@@ -44,12 +46,27 @@ struct SimSlot {
   /** Simulation time until which the tile counts as trampled (a heavy body was near): it is not released
    * before, so bent blades stay bent and stand up again under simulation. */
   double trampledUntil = 0.0;
+  /** Beyond the focus, not stepped (TileSimulation::setFocus); its clocks wait. */
+  bool held = false;
+  /** While held: the seconds of trampling it had left when it was held. */
+  double trampleLeft = 0.0;
+};
+
+/**
+ * Where the simulated blades can be seen (real time): the eye's ground position and the distance beyond which
+ * the grass is not drawn, world metres. Tiles wholly beyond it are held (TileSimulation::setFocus).
+ */
+struct SimFocus {
+  glm::vec2 centre{0.0f}; ///< eye, world xz
+  float radius = 0.0f;    ///< drawn grass distance, metres (horizontal; ≥ 0)
 };
 
 /** What the last advance() did. */
 struct SimStats {
   std::size_t activeTiles = 0;
   std::size_t simulatedBlades = 0;
+  /** Tiles in the pool not stepped in the last step: beyond the focus, held as they were (setFocus). */
+  std::size_t heldTiles = 0;
   /** Tiles near a body that got no slot (pool exhausted) in the last step. */
   std::size_t refusedTiles = 0;
   std::size_t activations = 0;
@@ -101,6 +118,16 @@ public:
    * management: the solver part of a step, for benchmarks. Runs on the backend when there is one.
    */
   void stepSolver(const std::vector<std::vector<BladeCollider>>& colliders, const wind::WindSettings& wind);
+  /**
+   * Real time: steps only the tiles the frame can draw. A tile whose nearest point lies farther than
+   * `focus->radius` (plus the tallest blade) from `focus->centre` is held: not stepped, its trample clock and
+   * release ramp paused, so it resumes as it was when it comes back into view; a held tile no body touches
+   * and with no trampled blades is released at once (nobody sees it go back to the procedural pose), and
+   * tiles beyond the focus are not activated (they start at the procedural pose of the moment they come into
+   * view). Null (the default): every tile is stepped, and a sequence's state depends only on its times.
+   */
+  void setFocus(std::optional<SimFocus> focus);
+  const std::optional<SimFocus>& focus() const { return mFocus; }
   /** Runs the steps on `backend` instead of the CPU (null: the CPU reference). Not owned. */
   void setBackend(SimulationBackend* backend) { mBackend = backend; }
 
@@ -128,7 +155,10 @@ private:
   void step(const std::vector<SimBody>& bodies, const wind::WindSettings& wind);
   void stepOnCpu(const std::vector<int>& used, const std::vector<std::vector<BladeCollider>>& colliders,
                  const wind::WindSettings& wind);
-  void finishStep(const std::map<std::pair<int, int>, float>& wanted, const wind::WindSettings& wind);
+  void finishStep(const std::map<std::pair<int, int>, float>& wanted, const std::vector<std::uint8_t>& held,
+                  const wind::WindSettings& wind);
+  /** Whether tile (tx, tz) lies within the focus (always without one). */
+  bool inFocus(glm::ivec2 tile) const;
   void activate(int slot, glm::ivec2 tile, float seconds, const wind::WindSettings& wind);
   /** Sets blade `blade`'s rest pose for `wind`; returns the wind velocity at its root. */
   glm::vec2 restPose(std::size_t blade, const gpu::WindUniforms& wind);
@@ -145,6 +175,7 @@ private:
   double mTime = 0.0;
   long long mStepIndex = 0;
   SimulationBackend* mBackend = nullptr;
+  std::optional<SimFocus> mFocus;
 };
 
 } // namespace sylva::grass

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace sylva::scene {
@@ -55,6 +56,9 @@ public:
                   const render::Environment& environment);
   void reloadShaders(const shader::Library& library);
 
+  /** Real time: the grass steps only the tiles within `focus` (grass::TileSimulation::setFocus); null: all.
+   */
+  void setFocus(std::optional<grass::SimFocus> focus) { mTiles->setFocus(focus); }
   const grass::SimStats& stats() const { return mTiles->stats(); }
   std::size_t bodies() const { return mWorld->bodyCount(); }
   double time() const { return mTime; }

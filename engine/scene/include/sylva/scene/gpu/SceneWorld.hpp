@@ -90,7 +90,11 @@ public:
    * same state in every process, so shards and resumed runs draw identical frames.
    */
   void advanceToFrame(int frame);
-  /** Interactive use (viewer): advances the simulations to `time` seconds directly (not frame-exact). */
+  /**
+   * Interactive use (viewer): advances the simulations to `time` seconds directly (not frame-exact). After a
+   * real-time draw (SceneDrawOptions::fullQuality off) the simulated grass tiles beyond that camera's drawn
+   * grass distance are held, not stepped (grass::TileSimulation::setFocus); advanceToFrame steps them all.
+   */
   void advanceTo(double time);
   /** Adds a drop of balls (it becomes part of the description; the simulation restarts from time 0). Throws
    * without a simulated grass layer. */
