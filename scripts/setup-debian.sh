@@ -28,6 +28,8 @@ packages=(
   xdotool imagemagick x11-utils
   # web preview parity: headless Chromium (WebGL 2 on SwiftShader)
   chromium fonts-dejavu-core
+  # the performance page's plots (scripts/plot-performance.sh)
+  gnuplot-nox
   # the sanitizer build and fuzzing: clang with libFuzzer and its sanitizer runtimes (the `asan` preset)
   clang libclang-rt-14-dev
 )
