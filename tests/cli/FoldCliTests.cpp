@@ -351,6 +351,16 @@ TEST(CliFold, TemplateAnimatesAZoneAndWritesAProjectThatSynthesises) {
       runSylva(dir, "fold template " + quote(file.string()) + " --zone nope --template blink");
   EXPECT_EQ(bad.status, 2);
   EXPECT_THAT(bad.err, ::testing::HasSubstr("--zone: " + file.string() + " has no zone 'nope'"));
+  // Bare file names, run where the project is (they once crashed: "cannot make absolute path").
+  ASSERT_EQ(file.parent_path(), dir.path());
+  const test::RunResult bare = test::runSylvaFrom(dir.path(), dir,
+                                                  "fold template " + quote(file.filename().string()) +
+                                                      " --zone " + zone + " --template blink -o bare.json");
+  ASSERT_EQ(bare.status, 0) << bare.err;
+  EXPECT_EQ(nlohmann::json::parse(readAll(dir / "bare.json"))["atlas"]["images"][0]["file"], "pic.png");
+  const test::RunResult bareSynth =
+      test::runSylvaFrom(dir.path(), dir, "fold synth bare.json -o " + quote((dir / "t2").string()));
+  EXPECT_EQ(bareSynth.status, 0) << bareSynth.err;
 }
 
 TEST(CliFold, FfmpegFailureIsOneLineAndLeavesNothing) {

@@ -226,5 +226,25 @@ TEST(SceneCli, BadScenesAndRangesFailWithOneLineAndNoOutput) {
   }
 }
 
+// A lake without "folding" takes the data folder's wave swash (docs/scenes.md; it once failed with a message
+// naming no file); a still whose --out is a directory is refused before the scene is built.
+TEST(SceneCli, ALakeWithoutFoldingRendersAndOutputsAreCheckedFirst) {
+  test::TempDir dir;
+  const fs::path lake = writeScene(dir, "lake.json", R"({"sylva_scene": 1,
+    "terrain": {"seed": 1, "size": 129, "spacing": 2.0, "relief": 40.0},
+    "water": [{"level": 15.0}],
+    "cameras": {"main": {"position": {"at": [200, 60, 200]}, "target": {"at": [128, 0, 128]}}},
+    "output": {"camera": "main", "width": 96, "height": 54}})");
+  const test::RunResult r =
+      runSylva(dir, "render " + quote(lake.string()) + " --out " + test::at(dir, "lake.png"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "lake.png"));
+  const test::RunResult d =
+      runSylva(dir, "render " + quote(kMeadow) + " --out " + quote(dir.path().string()));
+  EXPECT_EQ(d.status, 2) << d.err;
+  EXPECT_EQ(test::lineCount(d.err), 1u) << d.err;
+  EXPECT_NE(d.err.find("--out " + dir.path().string() + ": is a directory"), std::string::npos) << d.err;
+}
+
 } // namespace
 } // namespace sylva

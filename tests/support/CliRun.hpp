@@ -34,6 +34,11 @@ RunResult runProgram(const std::string& exe, const std::filesystem::path& dir, c
 inline RunResult runSylva(const TempDir& dir, const std::string& args) {
   return runProgram(SYLVA_EXE, dir.path(), args);
 }
+/** The same with `cwd` as the working directory (output captured in `dir`). */
+inline RunResult runSylvaFrom(const std::filesystem::path& cwd, const TempDir& dir, const std::string& args) {
+  return runProgram("/bin/sh", dir.path(),
+                    "-c " + quote("cd " + quote(cwd.string()) + " && exec " + quote(SYLVA_EXE) + " " + args));
+}
 #endif
 
 /** `name` in the test's directory, as a quoted shell argument (the command runs elsewhere). */

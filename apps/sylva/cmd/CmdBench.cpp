@@ -27,7 +27,7 @@ struct BenchFlags {
   int height = 720;
   std::string out;
   double maxGrowthPercent = 1.0;
-  std::string sceneFile = "data/scenes/meadow.json";
+  std::string sceneFile; // empty: the data folder's scenes/meadow.json
   std::string quality = "default";
   double targetFps = 10.0;
 
@@ -92,9 +92,11 @@ void registerBench(CLI::App& app) {
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
   command->add_option("-o,--out", o->out, "JSON report path (default: out/bench-<area>.json)");
-  command->add_option("--scene", o->sceneFile, "scene: the scene file to measure")
-      ->check(CLI::ExistingFile)
-      ->capture_default_str();
+  command
+      ->add_option("--scene", o->sceneFile,
+                   "scene: the scene file to measure (default: the data folder's scenes/meadow.json, "
+                   "wherever sylva runs)")
+      ->check(CLI::ExistingFile);
   command
       ->add_option(
           "--quality", o->quality,
@@ -150,8 +152,8 @@ void registerBench(CLI::App& app) {
     } else if (o->area == "scene") {
 #ifdef SYLVA_HAVE_SCENE
       report = bench::header(options, "scene", *context);
-      bench::benchScene(o->sceneFile, o->frames, o->warmup, o->width, o->height, o->quality, o->targetFps,
-                        report);
+      bench::benchScene(o->sceneFile.empty() ? dataPath("scenes/meadow.json").string() : o->sceneFile,
+                        o->frames, o->warmup, o->width, o->height, o->quality, o->targetFps, report);
 #else
       fail("bench scene: this sylva was built without the scene module");
 #endif

@@ -736,24 +736,8 @@ void registerFoldTemplate(CLI::App& fold) {
     applyMotionTemplate(history, zone, *parseMotionTemplate(o->name), params);
     const std::filesystem::path out =
         o->out.empty() ? std::filesystem::path(o->project) : std::filesystem::path(o->out);
-    Project edited = history.project();
-    if (!o->out.empty()) {
-      // File names stay relative to the project's images: rewrite them for the new location.
-      const std::filesystem::path from = std::filesystem::absolute(project.baseDir);
-      const std::filesystem::path to = std::filesystem::absolute(out).parent_path();
-      auto rebase = [&](std::filesystem::path& file) {
-        if (!file.empty() && file.is_relative()) {
-          file = std::filesystem::relative(from / file, to);
-        }
-      };
-      for (ImageEntry& image : edited.images) {
-        rebase(image.file);
-      }
-      for (Zone& z : edited.zones) {
-        rebase(z.freezeMask);
-        rebase(z.folding.mask);
-      }
-    }
+    // File names stay relative to the project's images: rewritten for a new location.
+    const Project edited = o->out.empty() ? history.project() : rebasedProject(history.project(), out);
     saveProject(out, edited);
     std::printf("%s: zone '%s' now plays '%s'\n", out.string().c_str(), o->zone.c_str(), o->name.c_str());
   });

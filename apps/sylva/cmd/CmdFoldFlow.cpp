@@ -60,25 +60,6 @@ int zoneIndex(const Project& project, const std::string& file, const std::string
   fail("--zone: {} has no zone '{}' (zones: {})", file, id, ids.empty() ? "none" : ids);
 }
 
-/** The project as saved next to `out`: file names relative to the old project's directory are rewritten. */
-Project rebased(Project project, const fs::path& out) {
-  const fs::path from = fs::absolute(project.baseDir.empty() ? fs::path(".") : project.baseDir);
-  const fs::path to = fs::absolute(out).parent_path();
-  auto rebase = [&](fs::path& file) {
-    if (!file.empty() && file.is_relative()) {
-      file = fs::relative(from / file, to);
-    }
-  };
-  for (ImageEntry& image : project.images) {
-    rebase(image.file);
-  }
-  for (Zone& zone : project.zones) {
-    rebase(zone.freezeMask);
-    rebase(zone.folding.mask);
-  }
-  return project;
-}
-
 void run(const FlowOptions& o) {
   checkExtension("--picture", o.picture, ".png");
   checkExtension("--out", o.out, ".json");
@@ -149,7 +130,7 @@ void run(const FlowOptions& o) {
   if (!o.out.empty()) {
     EditHistory history(project);
     applyFlowSuggestion(history, zone, pairs);
-    saveProject(o.out, rebased(history.project(), o.out));
+    saveProject(o.out, rebasedProject(history.project(), o.out));
     std::printf("%s: zone '%s' gets a points tool with %zu anchors\n", o.out.c_str(), o.zone.c_str(),
                 pairs.size());
   }

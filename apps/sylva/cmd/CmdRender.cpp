@@ -1,5 +1,6 @@
 #include "Commands.hpp"
 
+#include <sylva/core/Files.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
@@ -138,6 +139,10 @@ void registerRender(CLI::App& app) {
       frameCount = static_cast<int>(n);
     }
     o->world.check(false);
+    checkOutputFile(o->out, "--out");
+    if (!o->gif.empty()) {
+      checkOutputFile(o->gif, "--gif", "anim.gif");
+    }
     auto context = platform::createHeadlessContext(o->context.options());
     shader::Library library(o->shaderDir);
     render::RenderTarget target(o->width, o->height);

@@ -3,6 +3,7 @@
 #include "cmd/CmdScene.hpp"
 
 #include <sylva/scene/gpu/SceneWorld.hpp>
+#include <sylva/core/Files.hpp>
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
@@ -105,6 +106,16 @@ void renderSceneFile(const SceneRenderOptions& o) {
   const std::filesystem::path out =
       !o.out.empty() ? std::filesystem::path(o.out)
                      : std::filesystem::path("out") / (sequence ? desc.name : desc.name + ".png");
+  // Outputs checked before the scene is built and drawn.
+  if (!sequence) {
+    checkOutputFile(out, "--out");
+  }
+  if (!o.gif.empty()) {
+    checkOutputFile(o.gif, "--gif", "anim.gif");
+  }
+  if (!o.mp4.empty()) {
+    checkOutputFile(o.mp4, "--mp4", "anim.mp4");
+  }
   if (sequence) {
     if (std::filesystem::exists(out) && !std::filesystem::is_directory(out)) {
       fail("--out {}: a sequence needs a directory, and this is a file", out.string());

@@ -335,7 +335,7 @@ bakeImpostor(const ContextFlags& context, const trees::PieceSet& pieces, const t
   log::info("impostor: baking {} x {} views of {} px ({} px atlas{}{})", bake.views, bake.views, bake.cell,
             bake.views * bake.cell, bake.bark ? ", bark tiles" : "", bake.foliage ? ", foliage" : "");
   std::optional<Image> leaf;
-  const fs::path autoLeaf = "data/external/ez-tree/leaves/oak_color.png";
+  const fs::path& autoLeaf = trees::kAutoLeafImage;
   if (bake.foliage && fs::exists(autoLeaf)) {
     leaf = trees::loadLeafImage(autoLeaf);
     bake.leafImage = &*leaf;
@@ -357,7 +357,7 @@ void registerExport(CLI::App& tree) {
     std::string levels = "8,3,1";
     std::string barkAtlas;
     std::string bark = "auto";
-    std::string barkPhotos = "data/external/ez-tree/bark";
+    std::string barkPhotos; // empty: the data folder's
     std::string impostorAtlas;
     int impostorViews = 8;
     std::string impostorLayout = "octahedral";
@@ -390,8 +390,9 @@ void registerExport(CLI::App& tree) {
                    "auto (the species' photos from --bark-photos, else procedural), procedural, a tile-set "
                    "directory from 'sylva texsynth tiles', or none (the species' bark colour)")
       ->capture_default_str();
-  command->add_option("--bark-photos", o->barkPhotos, "Directory of <name>_color_1k.jpg bark photos")
-      ->capture_default_str();
+  command->add_option("--bark-photos", o->barkPhotos,
+                      "Directory of <name>_color_1k.jpg bark photos (default: the data folder's "
+                      "external/ez-tree/bark; a directory named here must exist)");
   command->add_option(
       "--impostor-atlas", o->impostorAtlas,
       "PNG impostor atlas of N x N views of the tree: adds a camera-facing quad as the last LOD "
@@ -441,6 +442,9 @@ void registerExport(CLI::App& tree) {
     if (o->impostor && !o->impostorAtlas.empty()) {
       fail("--impostor: bakes the impostor atlas; it cannot be combined with --impostor-atlas (give one)");
     }
+    if (!o->barkPhotos.empty() && !fs::is_directory(o->barkPhotos)) {
+      fail("--bark-photos: no directory '{}'", o->barkPhotos);
+    }
     if (ext == ".obj" && !o->impostorAtlas.empty()) {
       fail("--impostor-atlas: OBJ has no LOD chain; export .gltf or .glb for an impostor");
     }
@@ -482,7 +486,9 @@ void registerExport(CLI::App& tree) {
     if (tiles) {
       trees::BarkSources sources;
       sources.mode = o->bark;
-      sources.photoDir = o->barkPhotos;
+      if (!o->barkPhotos.empty()) {
+        sources.photoDir = o->barkPhotos;
+      }
       bark = trees::barkSetFromSource(trees::barkSource(species.bark, sources), sources);
     }
     if (!o->barkAtlas.empty()) {

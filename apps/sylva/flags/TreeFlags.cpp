@@ -77,11 +77,11 @@ void TreeFlags::add(CLI::App& command) {
                   "Bark tiles: auto (each species' photos from --trees-bark-photos, else procedural), "
                   "procedural, none (flat colours), or a tile-set directory from 'sylva texsynth tiles'")
       ->capture_default_str();
-  command
-      .add_option("--trees-bark-photos", barkPhotos,
-                  "Directory of <name>_color_1k.jpg / <name>_normal_1k.jpg bark photos "
-                  "(scripts/fetch-sample-data.sh fetches oak, birch, pine, willow)")
-      ->capture_default_str();
+  command.add_option(
+      "--trees-bark-photos", barkPhotos,
+      "Directory of <name>_color_1k.jpg / <name>_normal_1k.jpg bark photos (default: the data "
+      "folder's external/ez-tree/bark, where scripts/fetch-sample-data.sh puts oak, birch, pine, "
+      "willow; a directory named here must exist)");
   command.add_option("--trees-bark-tile", barkTile, "Bark tile size, texels")
       ->check(CLI::Range(8, 512))
       ->capture_default_str();

@@ -34,7 +34,7 @@ struct TreeFlags {
   /** --trees-bark: auto | procedural | none | a tile-set directory (docs/trees.md "Bark"). */
   std::string bark = "auto";
   /** --trees-bark-photos, --trees-bark-tile, --trees-bark-variants. */
-  std::string barkPhotos = "data/external/ez-tree/bark";
+  std::string barkPhotos; ///< empty: the data folder's (trees::BarkSources::photoDir)
   int barkTile = trees::BarkSources::defaultBarkTiles().tileSize;
   int barkVariants = trees::BarkSources{}.variants;
   /** --trees-foliage: 2.5D leaf-cloud impostors at the branch tips (docs/trees.md "Foliage"). */

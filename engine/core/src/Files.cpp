@@ -94,6 +94,40 @@ void removeTemporaryFilesForSignal() noexcept {
   }
 }
 
+std::filesystem::path dataDirectory() {
+  namespace fs = std::filesystem;
+  if (const char* env = std::getenv("SYLVA_DATA_DIR"); env != nullptr && *env != '\0') {
+    return fs::absolute(env).lexically_normal();
+  }
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = (exe.parent_path() / ".." / "share" / "sylva" / "data").lexically_normal();
+    if (fs::is_directory(installed, ec)) {
+      return installed;
+    }
+  }
+  return fs::path(SYLVA_SOURCE_DATA_DIR).lexically_normal();
+}
+
+std::filesystem::path dataPath(const std::filesystem::path& relative) {
+  return dataDirectory() / relative;
+}
+
+void checkOutputFile(const std::filesystem::path& path, std::string_view option, std::string_view example) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    fail("{} {}: is a directory; give a file name (e.g. {})", option, path.string(),
+         (path / example).string());
+  }
+  for (std::filesystem::path dir = path.parent_path(); !dir.empty() && dir != dir.root_path();
+       dir = dir.parent_path()) {
+    if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {
+      fail("{} {}: {} is a file, not a directory", option, path.string(), dir.string());
+    }
+  }
+}
+
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& writer) {
   std::error_code ec;

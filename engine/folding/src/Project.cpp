@@ -613,6 +613,28 @@ Project loadProject(const std::filesystem::path& path) {
   return project;
 }
 
+Project rebasedProject(Project project, const std::filesystem::path& out) {
+  namespace fs = std::filesystem;
+  // fs::absolute("") throws: an empty directory is the working directory.
+  const auto directory = [](const fs::path& dir) { return fs::absolute(dir.empty() ? fs::path(".") : dir); };
+  const fs::path from = directory(project.baseDir).lexically_normal();
+  const fs::path to = directory(out.parent_path()).lexically_normal();
+  const auto rebase = [&](fs::path& file) {
+    if (!file.empty() && file.is_relative()) {
+      file = (from / file).lexically_normal().lexically_relative(to);
+    }
+  };
+  for (ImageEntry& image : project.images) {
+    rebase(image.file);
+  }
+  for (Zone& zone : project.zones) {
+    rebase(zone.freezeMask);
+    rebase(zone.folding.mask);
+  }
+  project.baseDir = out.parent_path();
+  return project;
+}
+
 json toJson(const Project& p) {
   json images = json::array();
   for (const ImageEntry& image : p.images) {

@@ -70,7 +70,9 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
     settings.level = w.level * e;
     settings.band = w.band;
     settings.tile = w.tile;
-    settings.folding = w.folding;
+    if (!w.folding.empty()) {
+      settings.folding = w.folding;
+    }
     mWater.push_back(std::make_unique<ShoreWater>(library, mTerrain->field(), e, settings));
   }
 

@@ -21,6 +21,9 @@ void check(const ForestLook& look, const FieldName& name) {
       !std::filesystem::is_regular_file(look.leaves)) {
     fail("{}: '{}' is not auto, procedural or an image file", fieldName(name, "leaves"), look.leaves);
   }
+  if (!look.barkPhotos.empty() && !std::filesystem::is_directory(look.barkPhotos)) {
+    fail("{}: no directory '{}'", fieldName(name, "bark_photos"), look.barkPhotos.string());
+  }
   if (!look.leafModel.empty() && !std::filesystem::is_regular_file(look.leafModel)) {
     fail("{}: no file '{}'", fieldName(name, "leaf_model"), look.leafModel.string());
   }
@@ -41,7 +44,9 @@ std::optional<BarkSources> barkSources(const ForestLook& look) {
   }
   BarkSources s;
   s.mode = look.bark;
-  s.photoDir = look.barkPhotos;
+  if (!look.barkPhotos.empty()) {
+    s.photoDir = look.barkPhotos;
+  }
   s.tiles.tileSize = look.barkTile;
   s.variants = look.barkVariants;
   // Synthesised sets are cached per user, as build tools cache their work.

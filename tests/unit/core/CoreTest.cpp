@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -139,6 +141,37 @@ TEST(Files, AtomicWriteIntoOwnTemporaryNeedsNoSecondTemporary) {
 
 namespace sylva {
 namespace {
+
+TEST(Files, TheDataFolderDoesNotDependOnTheWorkingDirectory) {
+  const std::filesystem::path before = dataDirectory();
+  EXPECT_TRUE(before.is_absolute());
+  EXPECT_TRUE(std::filesystem::is_regular_file(dataPath("scenes/meadow.json"))) << before;
+  const test::TempDir dir;
+  const std::filesystem::path cwd = std::filesystem::current_path();
+  std::filesystem::current_path(dir.path());
+  const std::filesystem::path elsewhere = dataDirectory();
+  std::filesystem::current_path(cwd);
+  EXPECT_EQ(elsewhere, before);
+  ::setenv("SYLVA_DATA_DIR", dir.path().c_str(), 1);
+  EXPECT_EQ(dataPath("x/y.json"), dir.path().lexically_normal() / "x" / "y.json");
+  ::unsetenv("SYLVA_DATA_DIR");
+  EXPECT_EQ(dataDirectory(), before);
+}
+
+TEST(Files, OutputsAreCheckedBeforeTheWork) {
+  const test::TempDir dir;
+  EXPECT_NO_THROW(checkOutputFile(dir / "a" / "b.png", "--out")); // directories are made when writing
+  try {
+    checkOutputFile(dir.path(), "--gif", "anim.gif");
+    ADD_FAILURE() << "a directory was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "--gif " + dir.path().string() +
+                                         ": is a directory; give a file name (e.g. " +
+                                         (dir / "anim.gif").string() + ")");
+  }
+  writeTextFile(dir / "file", "x");
+  EXPECT_THROW(checkOutputFile(dir / "file" / "b.png", "--out"), Error);
+}
 
 TEST(Files, JsonVersionEnvelope) {
   EXPECT_NO_THROW(requireJsonVersion(nlohmann::json{{"version", 2}}, 2, "x.json"));

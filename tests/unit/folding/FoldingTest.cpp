@@ -638,6 +638,27 @@ TEST(FoldingProject, JsonRoundTrip) {
   EXPECT_EQ(loaded, p);
 }
 
+TEST(FoldingProject, RebasingKeepsEveryFileWhereverTheProjectGoes) {
+  Project p;
+  p.images.push_back({"a", "pic.png", true});
+  p.images.push_back({"b", "/abs/pic.png", true});
+  Zone z;
+  z.freezeMask = "masks/freeze.png";
+  p.zones.push_back(z);
+  // Bare names where the project is the working directory (an empty baseDir once threw).
+  const Project same = rebasedProject(p, "out.json");
+  EXPECT_EQ(same.images[0].file, "pic.png");
+  EXPECT_EQ(same.images[1].file, "/abs/pic.png");
+  EXPECT_EQ(same.zones[0].freezeMask, "masks/freeze.png");
+  const Project down = rebasedProject(p, "sub/dir/out.json");
+  EXPECT_EQ(down.images[0].file, "../../pic.png");
+  EXPECT_EQ(down.zones[0].freezeMask, "../../masks/freeze.png");
+  EXPECT_EQ(down.baseDir, "sub/dir");
+  p.baseDir = "projects";
+  EXPECT_EQ(rebasedProject(p, "projects/copy.json").images[0].file, "pic.png");
+  EXPECT_EQ(rebasedProject(p, "elsewhere/copy.json").images[0].file, "../projects/pic.png");
+}
+
 TEST(FoldingProject, BadInputNamesTheField) {
   const json good = baseProject(richZone());
   auto with = [&](const std::string& pointer, const json& value) {

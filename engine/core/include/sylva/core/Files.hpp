@@ -25,6 +25,24 @@ void writeFileAtomically(const std::filesystem::path& path,
  */
 void removeTemporaryFilesForSignal() noexcept;
 
+/**
+ * Sylva's data folder (scenes, blade models, folding projects, fetched sample data), whatever the working
+ * directory: $SYLVA_DATA_DIR when set, else `share/sylva/data` beside the running program's directory (an
+ * installed layout: PREFIX/bin/sylva, PREFIX/share/sylva/data), else the source tree's data/ the program was
+ * built from. Absolute.
+ */
+std::filesystem::path dataDirectory();
+/** `relative` (e.g. "external/ez-tree/bark") inside dataDirectory(). */
+std::filesystem::path dataPath(const std::filesystem::path& relative);
+
+/**
+ * Checks, before any expensive work, that a file can be written at `path` later: throws sylva::Error
+ * "`option` PATH: ..." when it is a directory (suggesting PATH/`example`) or when a part of its parent path
+ * is an existing file.
+ */
+void checkOutputFile(const std::filesystem::path& path, std::string_view option,
+                     std::string_view example = "image.png");
+
 /** Writes `text` to `path` atomically; throws sylva::Error naming the file. */
 void writeTextFile(const std::filesystem::path& path, std::string_view text);
 

@@ -225,6 +225,12 @@ inline constexpr int kProjectVersion = 1;
 Project parseProject(const nlohmann::json& json, const std::string& where);
 /** loadJsonFile + parseProject; baseDir is the file's directory. */
 Project loadProject(const std::filesystem::path& path);
+/**
+ * The project as it must be saved at `out` (any path, relative to the working directory or absolute):
+ * relative image and mask file names, which resolve against `project.baseDir` (empty: the working directory),
+ * rewritten to resolve from `out`'s directory to the same files; baseDir becomes that directory.
+ */
+Project rebasedProject(Project project, const std::filesystem::path& out);
 /** The canonical JSON of a project (parseProject(toJson(p)) == p for every valid p). */
 nlohmann::json toJson(const Project& project);
 /** Saves atomically (temporary file + rename). */

@@ -120,7 +120,7 @@ struct ForestDesc {
 /** A water plane at a level; its shore band can use a folding texture (wave swash). */
 struct WaterDesc {
   float level = 0.0f;  ///< metres, data heights (before exaggeration)
-  std::string folding; ///< resolved folding project (.json); empty: plain water
+  std::string folding; ///< resolved folding project (.json); empty: ShoreSettings' default (the wave swash)
   float band = 6.0f;   ///< shore band width, metres of horizontal distance
   float tile = 12.0f;  ///< folding-texture tile size, metres
 };

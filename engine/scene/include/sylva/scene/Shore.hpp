@@ -1,5 +1,6 @@
 #pragma once
 
+#include <sylva/core/Files.hpp>
 #include <sylva/terrain/HeightField.hpp>
 
 #include <glm/glm.hpp>
@@ -34,8 +35,8 @@ struct ShoreSettings {
    */
   float waterline = 0.47f;
   /** The folding project (sylva-fold JSON) whose frames animate the band; its water must advance down the
-   * image. */
-  std::string folding = "data/folding/beach.json";
+   * image. Default: the data folder's folding/beach.json (the wave swash; dataPath()). */
+  std::string folding = dataPath("folding/beach.json").string();
 };
 
 /** Smallest slope (true metres per metre) used to turn depth into distance from the waterline. */

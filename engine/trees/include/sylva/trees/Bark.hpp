@@ -8,6 +8,7 @@
 // colour this is the paper's case (one border for all tiles). Each quad gets a rotation that puts the tile's
 // y axis along the branch. CPU side here; shaders/trees/piece.tese and piece.frag are the GPU twins.
 
+#include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/texsynth/TileSet.hpp>
@@ -122,8 +123,9 @@ struct BarkSources {
    * for every species.
    */
   std::string mode = "auto";
-  /** Directory of `<name>_color_1k.jpg` and `<name>_normal_1k.jpg` (scripts/fetch-sample-data.sh). */
-  std::filesystem::path photoDir = "data/external/ez-tree/bark";
+  /** Directory of `<name>_color_1k.jpg` and `<name>_normal_1k.jpg`: by default the data folder's, which
+   * scripts/fetch-sample-data.sh fills (dataDirectory(), whatever the working directory). */
+  std::filesystem::path photoDir = dataPath("external/ez-tree/bark");
   /** Synthesised sets are kept here and reused (empty: no cache). */
   std::filesystem::path cacheDir;
   /** Tile construction (tile size, seed, …). */

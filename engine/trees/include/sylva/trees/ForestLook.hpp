@@ -22,8 +22,9 @@ struct ForestLook {
   /** "auto" (species photos when fetched, else procedural), "procedural", "none" (flat colours) or a tile-set
    * directory (`sylva texsynth tiles`). */
   std::string bark = "auto";
-  /** Where "auto" looks for the species' bark photos (scripts/fetch-sample-data.sh). */
-  std::filesystem::path barkPhotos = BarkSources{}.photoDir;
+  /** Where "auto" looks for the species' bark photos; empty: the data folder's (BarkSources::photoDir, used
+   * when scripts/fetch-sample-data.sh fetched them). A directory named here must exist (check()). */
+  std::filesystem::path barkPhotos;
   /** Synthesised tile side, texels, and tiles per class and edge colouring. */
   int barkTile = BarkSources::defaultBarkTiles().tileSize;
   int barkVariants = BarkSources{}.variants;
@@ -40,8 +41,9 @@ struct ForestLook {
   int farCount = 0;
 };
 
-/** Where ez-tree's oak leaf lies after scripts/fetch-sample-data.sh (the "auto" leaves). */
-inline const std::filesystem::path kAutoLeafImage = "data/external/ez-tree/leaves/oak_color.png";
+/** Where ez-tree's oak leaf lies after scripts/fetch-sample-data.sh (the "auto" leaves), in the data folder.
+ */
+inline const std::filesystem::path kAutoLeafImage = dataPath("external/ez-tree/leaves/oak_color.png");
 
 /**
  * Throws sylva::Error naming the field through `name` ("bark", "leaves", "leaf_model", "far_distance",
