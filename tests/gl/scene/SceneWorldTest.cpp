@@ -285,14 +285,20 @@ TEST_F(SceneWorldTest, RealTimeShadowsRedrawOneFarCascadeAFrameAndLookTheSame) {
   EXPECT_EQ(realTime.passes().lastCascadesDrawn(), 3);
 }
 
-TEST_F(SceneWorldTest, QualityStepsShortenTheGrassDropShadowsAndComeBackToTheSameFrame) {
-  SceneDesc desc = forestDesc();
+/** A small grass layer over the whole terrain, drawn to 40 m. */
+GrassLayer smallGrass(bool simulate) {
   GrassLayer layer;
   layer.layer = "none";
   layer.patchBlades = 1024;
   layer.bladesPerTile = 64;
   layer.distance = 40.0f;
-  desc.grass.push_back(layer);
+  layer.simulate = simulate;
+  return layer;
+}
+
+TEST_F(SceneWorldTest, QualityStepsShortenTheGrassDropShadowsAndComeBackToTheSameFrame) {
+  SceneDesc desc = forestDesc();
+  desc.grass.push_back(smallGrass(false));
   SceneWorld world(shaders(), desc);
   SceneDrawOptions full = world.drawOptions();
   full.fullQuality = true;
@@ -339,13 +345,7 @@ TEST_F(SceneWorldTest, QualityStepsShortenTheGrassDropShadowsAndComeBackToTheSam
 
 TEST_F(SceneWorldTest, RealTimeFramesHoldTheSimulatedGrassTheyCannotDraw) {
   SceneDesc desc = forestDesc();
-  GrassLayer layer;
-  layer.layer = "none";
-  layer.patchBlades = 1024;
-  layer.bladesPerTile = 64;
-  layer.distance = 40.0f;
-  layer.simulate = true;
-  desc.grass.push_back(layer);
+  desc.grass.push_back(smallGrass(true));
   // Balls 70 m from the camera's ground position (forestCamera: (114, 142)), beyond the drawn 40 m.
   desc.drops.push_back(BodyDrop{{170.0f, 100.0f}, 1.5f, 4, 9, 0.5f});
   SceneWorld world(shaders(), desc);

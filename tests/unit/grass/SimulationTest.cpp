@@ -213,13 +213,23 @@ TEST(TileSimulation, AFullPoolTakesTheNearestTilesAndSaysSo) {
   EXPECT_GE(sim.slotOf({10, 10}), 0);
 }
 
-TEST(TileSimulation, TrampledTilesStayUntilTheyRecover) {
-  auto field = std::make_shared<const GrassField>(smallField());
+/** 32 slots released over 0.25 s, trampled blades recovering over 1.5 s. */
+PoolSettings quickPool() {
   PoolSettings pool;
   pool.tiles = 32;
   pool.releaseTime = 0.25f;
+  return pool;
+}
+SolverSettings quickRecovery() {
   SolverSettings solver;
   solver.trampleRecovery = 1.5f;
+  return solver;
+}
+
+TEST(TileSimulation, TrampledTilesStayUntilTheyRecover) {
+  auto field = std::make_shared<const GrassField>(smallField());
+  const PoolSettings pool = quickPool();
+  const SolverSettings solver = quickRecovery();
   TileSimulation sim(field, pool, solver);
   const SimBody heavy = ballAt(*field, {20.0f, 20.0f}, 0.4f, 50.0f);
   sim.advance(0.5, {heavy}, {});
@@ -233,11 +243,8 @@ TEST(TileSimulation, TrampledTilesStayUntilTheyRecover) {
 
 TEST(TileSimulation, TilesBeyondTheFocusAreHeldAsTheyWereAndResume) {
   auto field = std::make_shared<const GrassField>(smallField());
-  PoolSettings pool;
-  pool.tiles = 32;
-  pool.releaseTime = 0.25f;
-  SolverSettings solver;
-  solver.trampleRecovery = 1.5f;
+  const PoolSettings pool = quickPool();
+  const SolverSettings solver = quickRecovery();
   TileSimulation sim(field, pool, solver);
   wind::WindSettings wind;
   wind.speed = 6.0f;
