@@ -246,5 +246,22 @@ TEST(SceneCli, ALakeWithoutFoldingRendersAndOutputsAreCheckedFirst) {
   EXPECT_NE(d.err.find("--out " + dir.path().string() + ": is a directory"), std::string::npos) << d.err;
 }
 
+// A forest asking for more trees than its spacing and region leave room for warns with the numbers (it once
+// said so only at info level).
+TEST(SceneCli, AForestThatDoesNotFitSaysHowManyTreesItPlaced) {
+  test::TempDir dir;
+  const fs::path crowded = writeScene(dir, "crowded.json", R"({"sylva_scene": 1,
+    "terrain": {"seed": 1, "size": 129, "spacing": 2.0, "relief": 10.0},
+    "forests": [{"species": {"almond": 1}, "count": 500, "spacing": 5.0, "max_slope": 60.0,
+                 "region": {"centre": [128.0, 128.0], "radius": 20.0}}],
+    "cameras": {"main": {"position": {"at": [160, 40, 160]}, "target": {"at": [128, 0, 128]}}},
+    "output": {"camera": "main", "width": 64, "height": 36}})");
+  const test::RunResult r =
+      runSylva(dir, "render " + quote(crowded.string()) + " --out " + test::at(dir, "crowded.png"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("/forests/0/count: 500 trees asked, "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("warn"), std::string::npos) << r.err;
+}
+
 } // namespace
 } // namespace sylva

@@ -206,11 +206,19 @@ std::filesystem::path findOnPath(const std::string& name) {
 }
 
 std::string readTextFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    fail("{}: is a directory, not a file", path.string());
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     fail("{}: cannot open file (missing or unreadable)", path.string());
   }
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  try {
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  } catch (const std::exception& e) {
+    fail("{}: cannot read the file: {}", path.string(), e.what());
+  }
 }
 
 nlohmann::json loadJsonFile(const std::filesystem::path& path) {

@@ -112,6 +112,11 @@ std::unique_ptr<trees::ForestScene> SceneWorld::makeForest(std::size_t i, const 
   auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), placement));
   auto scene = std::make_unique<trees::ForestScene>(mLibrary, forest, f.wind);
   scene->applyLook(look, placement, farGround(*mTerrain));
+  if (forest->trees.size() < static_cast<std::size_t>(std::max(f.count, 0))) {
+    // Spacing, slope, height band and region leave room for fewer trees than asked: say so, not only at info.
+    log::warn("{}: /forests/{}/count: {} trees asked, {} fit (spacing {} m, slope, heights and region)",
+              mDesc.path, i, f.count, forest->trees.size(), f.spacing);
+  }
   log::info("scene {}: forest {}: {} trees", mDesc.name, i, forest->trees.size());
   return scene;
 }

@@ -158,6 +158,18 @@ TEST(Files, TheDataFolderDoesNotDependOnTheWorkingDirectory) {
   EXPECT_EQ(dataDirectory(), before);
 }
 
+TEST(Files, ADirectoryGivenAsAFileIsNamedInOneLine) {
+  const test::TempDir dir;
+  const std::filesystem::path project = dir / "project.json";
+  std::filesystem::create_directories(project);
+  try {
+    (void)loadJsonFile(project);
+    ADD_FAILURE() << "a directory was read";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), project.string() + ": is a directory, not a file");
+  }
+}
+
 TEST(Files, OutputsAreCheckedBeforeTheWork) {
   const test::TempDir dir;
   EXPECT_NO_THROW(checkOutputFile(dir / "a" / "b.png", "--out")); // directories are made when writing
