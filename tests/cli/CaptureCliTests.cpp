@@ -26,6 +26,7 @@ namespace {
 using test::at;
 using test::lineCount;
 using test::runSylva;
+using test::runSylvaFrom;
 
 namespace fs = std::filesystem;
 using test::quote;
@@ -99,6 +100,16 @@ TEST(CaptureCli, SyntheticPngGivesBladeModelsAndAnOverlay) {
   for (const char* stage : {"1-depth.png", "2-mask.png", "3-contour.png", "4-signal.png", "5-blades.png"}) {
     EXPECT_TRUE(fs::exists(dir / "stages" / stage)) << stage;
   }
+
+  // --stages alone still writes the model and the overlay where they go by default, and says so.
+  fs::create_directories(dir / "w");
+  const test::RunResult stages =
+      runSylvaFrom(dir / "w", dir, "capture " + at(dir, "s.png") + " --stages " + at(dir, "w/stages"));
+  ASSERT_EQ(stages.status, 0) << stages.err;
+  EXPECT_TRUE(fs::exists(dir / "w/out/capture/s.blades.json"));
+  EXPECT_TRUE(fs::exists(dir / "w/out/capture/s-overlay.png"));
+  EXPECT_TRUE(fs::exists(dir / "w/stages/5-blades.png"));
+  EXPECT_THAT(stages.out, testing::HasSubstr("wrote out/capture/s.blades.json"));
 }
 
 TEST(CaptureCli, SyntheticEvaluatePrintsEveryFrame) {
@@ -179,6 +190,9 @@ TEST(CaptureCli, BadInputsFailWithOneLineAndWriteNothing) {
 
   saveImage(dir / "grey8.png", Image(64, 48, 1, PixelType::U8));
   saveImage(dir / "zero16.png", Image(64, 48, 1, PixelType::U16));
+  Image dot(1, 1, 1, PixelType::U16);
+  dot.set(0, 0, 0, 0.02f);
+  saveImage(dir / "dot.png", dot);
   capture::DepthFrame background(640, 480);
   std::fill(background.depth.begin(), background.depth.end(), 1.5f);
   capture::saveDepthPng(dir / "background.png", background);
@@ -195,6 +209,7 @@ TEST(CaptureCli, BadInputsFailWithOneLineAndWriteNothing) {
   const std::vector<Case> cases = {
       {"capture " + at(dir, "grey8.png") + " --format png", {"grey8.png", "16-bit", "got 8-bit"}},
       {"capture " + at(dir, "zero16.png"), {"zero16.png", "no valid depth pixel"}},
+      {"capture " + at(dir, "dot.png"), {"dot.png", "1x1 frame is too small"}},
       {"capture " + at(dir, "background.png"), {"background.png", "no blades found"}},
       {"capture " + at(dir, "background.png") + " --near 0.3 --far 0.5",
        {"background.png", "no blades found", "empty mask"}},
@@ -217,6 +232,9 @@ TEST(CaptureCli, BadInputsFailWithOneLineAndWriteNothing) {
       EXPECT_THAT(r.err, testing::HasSubstr(part)) << c.args;
     }
     EXPECT_FALSE(fs::exists(dir / "out")) << c.args;
+    if (c.args.find("--roi") == std::string::npos) {
+      EXPECT_THAT(r.err, testing::Not(testing::HasSubstr("--roi"))) << c.args;
+    }
   }
 
   // A depth file listed in INDEX.txt but missing is a warning naming it and its frame; the other frames are

@@ -3,6 +3,7 @@
 #include "CliRun.hpp"
 #include "TempDir.hpp"
 
+#include <sylva/blades/BladeModel.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 
@@ -57,7 +58,21 @@ TEST(GrassCli, BadInputsFailWithOneLineAndNoImage) {
   writeTextFile(dir / "notes.txt", "not an image");
   Image wide(64, 16, 1, PixelType::U8);
   saveImage(dir / "wide.png", wide);
+  // A blade library written in millimetres: each blade 1000 times too long and too wide.
+  blades::BladeModelFile millimetres = blades::loadBladeModels(test::sourcePath("data/blades/slim.json"));
+  for (blades::BladeModel& blade : millimetres.blades) {
+    for (blades::BladeLod& lod : blade.lods) {
+      for (glm::vec3& p : lod.positions) {
+        p *= 1000.0f;
+      }
+      for (float& w : lod.widths) {
+        w *= 1000.0f;
+      }
+    }
+  }
+  blades::saveBladeModels(dir / "mm.json", millimetres);
   const std::pair<std::string, std::string> cases[] = {
+      {"--grass-types " + at(dir, "mm.json"), "mm.json: /blades/0: blade model"},
       {"--grass-types " + at(dir, "missing.json"), "missing.json"},
       {"--grass-types " + at(dir, "broken.json"), "broken.json"},
       {"--grass-paint " + at(dir, "wide.png"), "wide.png"},

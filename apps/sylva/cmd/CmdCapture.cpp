@@ -340,7 +340,7 @@ void runCapture(const CaptureOptions& o) {
   const std::string base = o.name.empty() ? stem(source.label) : o.name;
   std::string out = o.out;
   std::string overlay = o.overlay;
-  if (out.empty() && overlay.empty() && o.stages.empty()) {
+  if (out.empty() && overlay.empty()) {
     out = "out/capture/" + base + ".blades.json";
     overlay = "out/capture/" + base + "-overlay.png";
   }
@@ -726,8 +726,12 @@ void registerCapture(CLI::App& app) {
       ->add_option("--scale-to", o->scaleTo,
                    "Scale the models so the longest blade is this long, metres (for relative depth)")
       ->check(finiteRange(1e-4, 100.0));
-  command->add_option("-o,--out", o->out, "Blade-model JSON (default out/capture/<name>.blades.json)");
-  command->add_option("--overlay", o->overlay, "Debug overlay PNG (default out/capture/<name>-overlay.png)");
+  command->add_option(
+      "-o,--out", o->out,
+      "Blade-model JSON (default, with neither -o nor --overlay: out/capture/<name>.blades.json)");
+  command->add_option(
+      "--overlay", o->overlay,
+      "Debug overlay PNG (default, with neither -o nor --overlay: out/capture/<name>-overlay.png)");
   command->add_option("--stages", o->stages, "Folder for a picture of every pipeline stage (for docs)");
   command->add_flag("-q,--quiet", o->quiet, "No summary");
   command->add_flag(

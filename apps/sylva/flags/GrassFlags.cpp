@@ -44,6 +44,8 @@ void GrassFlags::add(CLI::App& command) {
                   "Blade types: 'procedural' (meadow, fescue, broadleaf) or comma-separated blade-model "
                   "files from `sylva capture` (e.g. data/blades/slim.json)")
       ->capture_default_str();
+  command.add_flag("--grass-extreme-blades", extremeBlades,
+                   "Accept blade models outside the plausible 5 mm to 5 m long, 0.1 mm to 30 cm wide");
   command.add_option("--grass-blades", field.patch.blades, "Blades in the patch every tile draws from")
       ->check(CLI::Range(1, 1 << 22))
       ->capture_default_str();
@@ -170,6 +172,7 @@ scene::GrassLayer GrassFlags::layerDesc() const {
   l.paint = paint;
   l.layer = layer;
   l.maxSlope = maxSlope;
+  l.extremeBlades = extremeBlades;
   l.distance = cull.maxDistance;
   l.patchBlades = field.patch.blades;
   l.tileSize = field.patch.tileSize;

@@ -27,13 +27,16 @@ struct GrassFlags {
   std::string layer = "grass";
   /** Steepest ground with grass, true degrees (a scene file's max_slope). */
   float maxSlope = 38.0f;
+  /** Accept blade models outside grass::BladeSizeLimits (a scene file's extreme_blades). */
+  bool extremeBlades = false;
   float windSpeed = 3.0f;
   float windDirection = 30.0f;
   float gusts = 0.8f;
   std::uint64_t windSeed = 5;
 
   static grass::FieldSettings defaultField();
-  /** Adds --grass, --grass-types, --grass-blades, --grass-per-tile, --grass-tile, --grass-density,
+  /** Adds --grass, --grass-types, --grass-extreme-blades, --grass-blades, --grass-per-tile, --grass-tile,
+   * --grass-density,
    * --grass-coverage, --grass-seed, --grass-paint, --grass-layer, --grass-max-slope, --grass-distance,
    * --grass-lod, --grass-view, --wind-speed, --wind-direction, --wind-gusts, --wind-seed (the wind options
    * are the scene's wind: trees read them too, with or without --grass). */

@@ -578,6 +578,10 @@ void buildMask(Context& c) {
   const int y0 = wholeFrame ? 0 : std::min(o.roi[1], f.height);
   const int x1 = wholeFrame ? f.width : std::min(o.roi[2], f.width);
   const int y1 = wholeFrame ? f.height : std::min(o.roi[3], f.height);
+  if (wholeFrame && (f.width < 2 || f.height < 2)) {
+    fail("{}: the {}x{} frame is too small to hold blades (at least 2x2 pixels)", f.label(), f.width,
+         f.height);
+  }
   if (x1 - x0 < 2 || y1 - y0 < 2) {
     fail("--roi: region {},{},{},{} is empty within the {}x{} frame", o.roi[0], o.roi[1], o.roi[2], o.roi[3],
          f.width, f.height);

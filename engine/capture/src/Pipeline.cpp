@@ -239,9 +239,13 @@ CaptureRun captureBlades(int frameCount, const std::function<DepthFrame(int)>& f
     meta.blade = static_cast<int>(b);
     meta.intrinsics = run.reference.intrinsics;
     meta.relativeDepth = run.reference.relativeDepth;
-    blades::BladeModel m =
-        makeBladeModel(run.tracks[b].reference,
-                       run.motion == CaptureMotion::Recording ? run.tracks[b].motion : still, model, meta);
+    blades::BladeModel m;
+    try {
+      m = makeBladeModel(run.tracks[b].reference,
+                         run.motion == CaptureMotion::Recording ? run.tracks[b].motion : still, model, meta);
+    } catch (const Error& e) {
+      fail("{}: blade {} of cluster {}: {}", source, b, meta.cluster, e.what());
+    }
     m.name = settings.name + "-" + std::to_string(b);
     run.file.blades.push_back(std::move(m));
   }

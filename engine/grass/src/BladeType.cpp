@@ -119,15 +119,37 @@ BladeType bladeTypeFromModel(const blades::BladeModel& model, const glm::vec3& c
   return type;
 }
 
+void checkBladeSize(const blades::BladeModel& model, const BladeSizeLimits& limits) {
+  const float length = model.length();
+  const float width = model.maxWidth();
+  const char* allow = "; allow it with the grass layer's \"extreme_blades\": true or --grass-extreme-blades";
+  if (!(length >= limits.minLength && length <= limits.maxLength)) {
+    fail("blade model '{}': {:.4g} m long, outside the {:g} to {:g} m of grass blades (a unit mistake?){}",
+         model.name, length, limits.minLength, limits.maxLength, allow);
+  }
+  if (!(width >= limits.minWidth && width <= limits.maxWidth)) {
+    fail("blade model '{}': {:.4g} m at its widest, outside the {:g} to {:g} m of grass blades{}{}",
+         model.name, width, limits.minWidth, limits.maxWidth,
+         width < limits.minWidth ? " (it would draw nothing)" : "", allow);
+  }
+}
+
 std::vector<BladeType> loadBladeTypes(const std::filesystem::path& path, const glm::vec3& colour,
-                                      float stiffness) {
+                                      float stiffness, bool extreme) {
   const blades::BladeModelFile file = blades::loadBladeModels(path);
   if (file.blades.empty()) {
     fail("{}: no blades", path.string());
   }
   std::vector<BladeType> types;
-  for (const blades::BladeModel& model : file.blades) {
-    types.push_back(bladeTypeFromModel(model, colour, stiffness));
+  for (std::size_t i = 0; i < file.blades.size(); ++i) {
+    try {
+      if (!extreme) {
+        checkBladeSize(file.blades[i]);
+      }
+      types.push_back(bladeTypeFromModel(file.blades[i], colour, stiffness));
+    } catch (const Error& e) {
+      fail("{}: /blades/{}: {}", path.string(), i, e.what());
+    }
   }
   return types;
 }

@@ -185,7 +185,8 @@ void readTerrain(const Node& n, TerrainDesc& t) {
 }
 
 GrassLayer readGrass(const Node& n) {
-  n.object({"blades", "density", "coverage", "layer", "paint", "max_slope", "seed", "simulate", "distance"});
+  n.object({"blades", "extreme_blades", "density", "coverage", "layer", "paint", "max_slope", "seed",
+            "simulate", "distance"});
   GrassLayer g;
   if (n.has("blades")) {
     const Node b = n["blades"];
@@ -193,6 +194,9 @@ GrassLayer readGrass(const Node& n) {
     for (std::size_t i = 0; i < count; ++i) {
       g.blades.push_back(b.item(i).file({".json"}));
     }
+  }
+  if (n.has("extreme_blades")) {
+    g.extremeBlades = n["extreme_blades"].boolean();
   }
   if (n.has("density")) {
     g.density = n["density"].real(0.0, kMaxGrassDensity);

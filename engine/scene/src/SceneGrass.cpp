@@ -122,7 +122,8 @@ std::vector<grass::BladeType> grassBladeTypes(const GrassLayer& layer, const Gra
   std::vector<grass::BladeType> types;
   for (const std::string& file : layer.blades) {
     try {
-      std::vector<grass::BladeType> loaded = grass::loadBladeTypes(file);
+      std::vector<grass::BladeType> loaded = grass::loadBladeTypes(
+          file, grass::BladeType{}.colour, grass::BladeType{}.stiffness, layer.extremeBlades);
       types.insert(types.end(), loaded.begin(), loaded.end());
     } catch (const Error& e) {
       fail("{}: {}", name("blades"), e.what());

@@ -66,6 +66,59 @@ TEST(BladeTypes, FromTheCapturedLibrary) {
   EXPECT_THROW(loadBladeTypes("no-such-blades.json"), Error);
 }
 
+TEST(BladeTypes, EveryBladeOfTheLibraryIsAPlausibleSize) {
+  for (const char* name : {"aloe", "bamboo", "quadratic", "sharp", "slender", "slim"}) {
+    const std::filesystem::path path = test::sourcePath(std::string("data/blades/") + name + ".json");
+    EXPECT_NO_THROW(loadBladeTypes(path)) << name;
+  }
+}
+
+// The class of mistakes: a model in the wrong unit (millimetres read as metres: a 350 m blade), widths that
+// all came out 0 (a field that draws nothing), a blade with no length. Each fails naming the file, the blade
+// and the way to allow it; the deliberate extreme loads with `extreme`.
+TEST(BladeTypes, ImplausibleSizesFailNamingTheFileAndTheBlade) {
+  const test::TempDir dir;
+  const blades::BladeModelFile slim = blades::loadBladeModels(test::sourcePath("data/blades/slim.json"));
+  ASSERT_GE(slim.blades.size(), 2u);
+  struct Case {
+    const char* name;
+    float positionScale;
+    float widthScale;
+    const char* message;
+  };
+  for (const Case& c :
+       {Case{"millimetres", 1000.0f, 1000.0f, "m long"}, Case{"invisible", 1.0f, 0.0f, "draw nothing"},
+        Case{"sprout", 1e-3f, 1e-3f, "m long"}, Case{"point", 0.0f, 1.0f, "m long"}}) {
+    blades::BladeModelFile file = slim;
+    for (blades::BladeLod& lod : file.blades[1].lods) {
+      for (glm::vec3& p : lod.positions) {
+        p *= c.positionScale;
+      }
+      for (float& w : lod.widths) {
+        w *= c.widthScale;
+      }
+    }
+    const std::filesystem::path path = dir.path() / (std::string(c.name) + ".json");
+    blades::saveBladeModels(path, file);
+    try {
+      loadBladeTypes(path);
+      ADD_FAILURE() << c.name << " loaded";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(path.string() + ": /blades/1: blade model '" + file.blades[1].name + "'"),
+                std::string::npos)
+          << message;
+      EXPECT_NE(message.find(c.message), std::string::npos) << message;
+      EXPECT_NE(message.find("--grass-extreme-blades"), std::string::npos) << message;
+    }
+    if (c.positionScale > 0.0f && c.widthScale > 0.0f) {
+      EXPECT_EQ(loadBladeTypes(path, BladeType{}.colour, BladeType{}.stiffness, true).size(),
+                file.blades.size())
+          << c.name;
+    }
+  }
+}
+
 TEST(Patch, DeterministicEvenAndShuffled) {
   PatchSettings s;
   s.blades = 4096;

@@ -139,6 +139,8 @@ TEST(SceneFile, DefaultsWhenKeysAreAbsent) {
   EXPECT_EQ(g.grass[0].maxSlope, 35.0f);
   EXPECT_FALSE(g.grass[0].simulate);
   EXPECT_EQ(g.grass[0].distance, 60.0f);
+  EXPECT_FALSE(g.grass[0].extremeBlades);
+  EXPECT_TRUE(parseScene(with(R"(, "grass": [{"extreme_blades": true}])"), "g.json").grass[0].extremeBlades);
   ASSERT_EQ(g.forests.size(), 1u);
   EXPECT_EQ(g.forests[0].count, 100);
   EXPECT_EQ(g.forests[0].bark, "auto");

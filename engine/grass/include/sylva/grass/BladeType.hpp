@@ -48,10 +48,32 @@ std::vector<BladeType> proceduralBladeTypes();
  */
 BladeType bladeTypeFromModel(const blades::BladeModel& model, const glm::vec3& colour, float stiffness);
 
-/** Every blade of a blade-model file as a type; throws sylva::Error naming the file (empty file: an error).
+/**
+ * Sizes a grass blade can plausibly have, metres: from a 5 mm sprout to 5 m giant reed, at most 30 cm wide
+ * and at least 0.1 mm at its widest (an all-zero width profile draws nothing). A model outside them is almost
+ * always a unit mistake (millimetres read as metres) or a broken capture; `extreme` lets it through on
+ * purpose.
+ */
+struct BladeSizeLimits {
+  float minLength = 0.005f;
+  float maxLength = 5.0f;
+  float minWidth = 1e-4f; ///< of the widest knot
+  float maxWidth = 0.3f;  ///< of the widest knot
+};
+
+/**
+ * Throws sylva::Error, naming the model, its size and how to allow it, when `model` (its finest level) is
+ * outside `limits`.
+ */
+void checkBladeSize(const blades::BladeModel& model, const BladeSizeLimits& limits = {});
+
+/**
+ * Every blade of a blade-model file as a type; throws sylva::Error naming the file (empty file: an error),
+ * and for a blade outside BladeSizeLimits unless `extreme` is set.
  */
 std::vector<BladeType> loadBladeTypes(const std::filesystem::path& path,
-                                      const glm::vec3& colour = {0.2f, 0.45f, 0.1f}, float stiffness = 0.5f);
+                                      const glm::vec3& colour = {0.2f, 0.45f, 0.1f}, float stiffness = 0.5f,
+                                      bool extreme = false);
 
 /** Resamples a knot line (and widths) to `count` knots evenly spaced by arc length; ends kept. */
 BladeShapeLod resampleBlade(const std::vector<glm::vec3>& knots, const std::vector<float>& widths, int count);
