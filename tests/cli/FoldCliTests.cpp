@@ -255,6 +255,38 @@ TEST(CliFold, PngSequenceHasOneFilePerFrame) {
             loadImage(dir / "pic.png").converted(PixelType::U8));
 }
 
+// Profiles of different periods loop together only at a common multiple: 0.3 s and 0.4 s are back at their
+// start after 1.2 s (12 frames at 10 fps, where the longest period would cut the 0.3 s zone mid-cycle and the
+// loop would jump); periods with no common multiple within the limits render the longest period and warn.
+TEST(CliFold, MixedPeriodsLoopAtTheirCommonMultipleOrWarn) {
+  const test::TempDir dir;
+  for (const auto& [second, frames, warns] : {std::tuple{0.4, 12u, false}, std::tuple{0.41, 4u, true}}) {
+    nlohmann::json json = project();
+    json["profiles"][0]["period_s"] = 0.3;
+    json["profiles"].push_back(json["profiles"][0]);
+    json["profiles"][1]["id"] = "slow";
+    json["profiles"][1]["period_s"] = second;
+    json["zones"].push_back(json["zones"][0]);
+    json["zones"][1]["id"] = "other";
+    json["zones"][1]["profile"] = "slow";
+    json["zones"][1]["shape"]["pts"] = {{2, 2}, {9, 2}, {9, 9}, {2, 9}};
+    json["zones"][1].erase("folding");
+    json["zones"][1]["tools"] = {{{"type", "translate"}, {"v", {1, 0}}}};
+    const fs::path file = writeProject(dir, json, fmt::format("mixed-{}.json", second));
+    const fs::path out = dir / fmt::format("frames-{}", second);
+    const test::RunResult r =
+        runSylva(dir, "fold render " + quote(file.string()) + " --fps 10 -o " + quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(entriesUnder(out).size(), frames) << second;
+    EXPECT_EQ(r.err.find("loop jumps") != std::string::npos, warns) << r.err;
+    if (warns) {
+      EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+      EXPECT_NE(r.err.find("--duration"), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(file.filename().string()), std::string::npos) << r.err;
+    }
+  }
+}
+
 TEST(CliFold, VideoWithoutFfmpegIsOneClearLineAndNoFile) {
   const test::TempDir dir;
   const fs::path file = writeProject(dir, project());

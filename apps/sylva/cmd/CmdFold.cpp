@@ -13,6 +13,7 @@
 #include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
+#include <sylva/core/Log.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
 #include <sylva/media/Export.hpp>
@@ -286,7 +287,17 @@ void runRender(const RenderOptions& o) {
   playback.shift = o.shift;
   playback.function = function;
   const std::vector<Profile> profiles = applyPlayback(l.project.profiles, playback);
-  const double duration = o.duration > 0.0 ? o.duration : longestPeriod(profiles);
+  const LoopPeriod loop = loopPeriod(profiles);
+  if (o.duration <= 0.0 && !loop.seamless) {
+    std::string periods;
+    for (const Profile& p : profiles) {
+      periods += fmt::format("{}{} {:g} s", periods.empty() ? "" : ", ", p.id, p.periodS);
+    }
+    log::warn("{}: the profile periods ({}) have no common multiple within {} cycles or {:g} s, so the loop "
+              "jumps at {:g} s: make them multiples of one period, or give --duration",
+              o.project, periods, kMaxLoopCycles, kMaxLoopS, loop.seconds);
+  }
+  const double duration = o.duration > 0.0 ? o.duration : loop.seconds;
   const int count = o.frames > 0 ? o.frames : std::max(1, static_cast<int>(std::lround(duration * o.fps)));
   // The frames are the image's atlas crop, at most the whole image.
   const Image& shown = l.images.images[static_cast<std::size_t>(index)];
@@ -354,8 +365,9 @@ void registerFoldRender(CLI::App& fold) {
       ->check(finiteRange(0.1, 1000.0))
       ->capture_default_str();
   command
-      ->add_option("--duration", o->duration,
-                   "Seconds to render (default: the longest profile period, one loop at --speed 1)")
+      ->add_option(
+          "--duration", o->duration,
+          "Seconds to render (default: one seamless loop, the least common multiple of the profile periods)")
       ->check(finiteRange(1e-3, 3600.0));
   command->add_option("--gif", o->gif, "Write an animated GIF (one palette, loops forever)");
   command->add_option("--mp4", o->mp4, "Write an H.264 MP4 through ffmpeg");
@@ -426,7 +438,7 @@ void runFoldViewer(const ViewOptions& o) {
   int function = 0; // 0: as in the project, else kFunctionNames[function - 1]
   bool paused = false;
   double t = 0.0;
-  const double period = longestPeriod(l.project.profiles);
+  const double period = loopPeriod(l.project.profiles).seconds;
   const auto updateProfiles = [&] {
     PlaybackOptions playback;
     playback.shift = shift; // speed scales the clock below, so changing it never jumps the phase

@@ -135,7 +135,7 @@ void FoldEditor::requireZone() const {
 std::vector<Image> FoldEditor::frames(double fps) {
   synthesizeNow();
   const Textures& tex = *mSession->textures();
-  const double period = longestPeriod(mSession->project().profiles);
+  const double period = loopPeriod(mSession->project().profiles).seconds;
   const int count = std::clamp(static_cast<int>(std::lround(period * fps)), 1, 600);
   std::vector<Image> out;
   const AtlasEntry& entry = tex.atlas.entries[static_cast<std::size_t>(mImage)];

@@ -10,7 +10,7 @@ void FoldEditor::drawPreview(ImVec2 pos, ImVec2 size) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);
   const Project& p = mSession->project();
-  const double period = longestPeriod(p.profiles);
+  const double period = loopPeriod(p.profiles).seconds;
   if (mUploaded && mSession->textures()) {
     const AtlasEntry& entry = mSession->textures()->atlas.entries.at(static_cast<std::size_t>(mImage));
     const Rect region = entry.atlasRect();

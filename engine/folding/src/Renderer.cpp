@@ -264,4 +264,19 @@ double longestPeriod(const std::vector<Profile>& profiles) {
   return longest > 0.0 ? longest : 1.0;
 }
 
+LoopPeriod loopPeriod(const std::vector<Profile>& profiles) {
+  const double longest = longestPeriod(profiles);
+  for (int k = 1; k <= kMaxLoopCycles && (k == 1 || k * longest <= kMaxLoopS * (1.0 + 1e-9)); ++k) {
+    const double t = k * longest;
+    const bool whole = std::all_of(profiles.begin(), profiles.end(), [&](const Profile& p) {
+      const double cycles = t / p.periodS;
+      return std::abs(cycles - std::round(cycles)) <= 1e-6 * std::max(1.0, cycles);
+    });
+    if (whole) {
+      return {t, true};
+    }
+  }
+  return {longest, false};
+}
+
 } // namespace sylva::folding

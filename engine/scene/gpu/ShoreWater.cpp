@@ -80,7 +80,7 @@ ShoreWater::ShoreWater(const shader::Library& library, const terrain::HeightFiel
     }
     fail("shore: {}: {}", where, message);
   }
-  mProjectPeriod = folding::longestPeriod(project.profiles);
+  mProjectPeriod = folding::loopPeriod(project.profiles).seconds;
   const folding::AtlasEntry& entry =
       textures.atlas.entries.at(static_cast<std::size_t>(project.canvasIndex()));
   mRegion = entry.atlasRect();

@@ -129,6 +129,35 @@ TEST(FoldingFunctions, LoopsAreSeamless) {
   EXPECT_NEAR(a.s2, b.s2, 1e-5);
 }
 
+TEST(FoldingFunctions, ProfilesOfDifferentPeriodsLoopAtTheirCommonMultiple) {
+  const auto periods = [](std::initializer_list<double> list) {
+    std::vector<Profile> profiles;
+    for (double s : list) {
+      profiles.emplace_back().periodS = s;
+    }
+    return loopPeriod(profiles);
+  };
+  EXPECT_EQ(periods({}).seconds, 1.0);
+  EXPECT_EQ(periods({2.0}).seconds, 2.0);
+  EXPECT_EQ(periods({4.0, 3.0}).seconds, 12.0);             // the blink and a 3 s template
+  EXPECT_DOUBLE_EQ(periods({1.5, 4.0, 3.0}).seconds, 12.0); // every built-in template period
+  EXPECT_DOUBLE_EQ(periods({0.3, 0.4}).seconds, 1.2);       // decimal periods, to 1e-6
+  EXPECT_EQ(periods({100.0}).seconds, 100.0);               // one long period is its own loop
+  const LoopPeriod none = periods({3.0, 4.1});              // 123 s: beyond the limits
+  EXPECT_FALSE(none.seamless);
+  EXPECT_EQ(none.seconds, 4.1);
+  // Where it is seamless, every profile is at its start again: the frame at the loop is the frame at 0.
+  std::vector<Profile> profiles(2);
+  profiles[0].periodS = 0.3;
+  profiles[1].periodS = 0.4;
+  const double loop = loopPeriod(profiles).seconds;
+  for (Profile& p : profiles) {
+    p.fn.type = PositionFunction::Type::Linear;
+    EXPECT_NEAR(progressAt(p, loop, 0.0), progressAt(p, 0.0, 0.0), 1e-5);
+    EXPECT_NEAR(progressAt(p, loop + 0.05, 0.0), progressAt(p, 0.05, 0.0), 1e-5);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------------------
 
 TEST(FoldingInterpolation, ExactAtAnchorsAndPartitionOfUnity) {

@@ -41,6 +41,24 @@ Image renderFrame(const Textures& textures, const std::vector<Profile>& profiles
 /** The longest profile period, seconds: one full cycle of the slowest zone (1 when there is none). */
 double longestPeriod(const std::vector<Profile>& profiles);
 
+/** The period after which every profile is back where it started (see loopPeriod). */
+struct LoopPeriod {
+  double seconds = 1.0; ///< the common period; the longest period when there is none within the limits
+  bool seamless = true; ///< false: some profile is mid-cycle at `seconds`, so a loop of it jumps
+};
+
+/** Longest common period searched: at most this many cycles of the slowest profile, and at most kMaxLoopS. */
+inline constexpr int kMaxLoopCycles = 16;
+inline constexpr double kMaxLoopS = 60.0;
+
+/**
+ * The shortest time, seconds, at which every profile completes a whole number of cycles: the least common
+ * multiple of the periods (3 s and 4 s: 12 s), found among the first kMaxLoopCycles multiples of the longest
+ * period up to kMaxLoopS (the longest itself always), to 1e-6 relative. Where there is none (3 s and 4.1 s),
+ * the longest period and seamless = false. One period: that period; no profiles: 1 s.
+ */
+LoopPeriod loopPeriod(const std::vector<Profile>& profiles);
+
 /** The part of an atlas-sized frame that shows image `entry` (its crop). */
 Image cropToEntry(const Image& frame, const AtlasEntry& entry);
 
