@@ -4,6 +4,7 @@
 // bad projects fail with one line naming the file and the field and leave no files. Projects and their image
 // are written by each test into its own directory.
 #include "CliRun.hpp"
+#include "ExternalData.hpp"
 #include "TempDir.hpp"
 
 #include <sylva/core/Files.hpp>
@@ -283,6 +284,40 @@ TEST(CliFold, MixedPeriodsLoopAtTheirCommonMultipleOrWarn) {
       EXPECT_EQ(lineCount(r.err), 1u) << r.err;
       EXPECT_NE(r.err.find("--duration"), std::string::npos) << r.err;
       EXPECT_NE(r.err.find(file.filename().string()), std::string::npos) << r.err;
+    }
+  }
+}
+
+// The project example of docs/folding.md, on the photo it names: it synthesises and moves, and its settings
+// do not cancel its own translate (the example once combined zone_boundary zero anchors with R beyond the
+// zone's depth); the same zone with R = 40 gets the warning naming the zone and the fix.
+TEST(CliFold, TheDocumentedExampleMovesAndATranslateItCancelsWarns) {
+  const fs::path photo = test::externalData("chelsea.png");
+  SYLVA_REQUIRE_EXTERNAL_DATA(photo);
+  const test::TempDir dir;
+  const std::string docs = readTextFile(test::sourcePath("docs/folding.md"));
+  const std::size_t begin = docs.find("```json\n{\"format\": \"sylva-fold\"");
+  ASSERT_NE(begin, std::string::npos);
+  const std::size_t end = docs.find("```", begin + 7);
+  nlohmann::json example = nlohmann::json::parse(docs.substr(begin + 7, end - begin - 7));
+  example["atlas"]["images"][0]["file"] = photo.string();
+  for (const double radius : {0.0, 40.0}) {
+    nlohmann::json json = example;
+    if (radius > 0.0) {
+      json["zones"][0]["interp"]["R"] = radius;
+    }
+    writeTextFile(dir / "example.json", json.dump());
+    const test::RunResult r = runSylva(dir, "fold synth " + quote((dir / "example.json").string()) + " -o " +
+                                                quote((dir / "syn").string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_THAT(r.out, testing::Not(testing::HasSubstr("jumpMax 0.000")));
+    if (radius > 0.0) {
+      EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+      EXPECT_THAT(r.err,
+                  testing::HasSubstr("example.json: /zones/0 ('eyeL'): its zone_boundary zero anchors"));
+      EXPECT_THAT(r.err, testing::HasSubstr("give R below"));
+    } else {
+      EXPECT_EQ(r.err, "") << "the documented example warns";
     }
   }
 }

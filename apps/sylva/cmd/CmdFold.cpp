@@ -133,9 +133,14 @@ template <typename F> auto withFileName(const Loaded& l, F&& work) {
 /** Synthesises with a progress line; Ctrl-C cancels with the one-line error. */
 Textures synthesizeWithProgress(const Loaded& l, SynthesisStats* stats = nullptr) {
   Progress progress("synthesis", std::max<std::size_t>(synthesisRows(l.project, l.images), 1));
-  Textures textures = withFileName(l, [&] { return synthesize(l.project, l.images, &progress, stats); });
+  SynthesisStats own;
+  SynthesisStats& s = stats ? *stats : own;
+  Textures textures = withFileName(l, [&] { return synthesize(l.project, l.images, &progress, &s); });
   if (progress.cancelled()) {
     fail("{}: synthesis cancelled", l.where);
+  }
+  for (const std::string& warning : stillZoneWarnings(l.project, s)) {
+    log::warn("{}: {}", l.where, warning);
   }
   return textures;
 }

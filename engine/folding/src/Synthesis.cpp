@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -428,12 +429,15 @@ SynthesisStats synthesizeZone(const Project& project, const ProjectImages& image
   std::atomic<std::size_t> zonePixels{0};
   std::atomic<std::size_t> folded{0};
   std::atomic<std::size_t> multi{0};
+  std::mutex jumpMutex;
+  double jumpMax = 0.0;
   parallelFor(
       static_cast<std::size_t>(clip.height()),
       [&](std::size_t begin, std::size_t end) {
         std::size_t localZone = 0;
         std::size_t localFolded = 0;
         std::size_t localMulti = 0;
+        double localJump = 0.0;
         for (std::size_t row = begin; row < end; ++row) {
           const int py = clip.min.y + static_cast<int>(row);
           for (int px = clip.min.x; px < clip.max.x; ++px) {
@@ -448,6 +452,7 @@ SynthesisStats synthesizeZone(const Project& project, const ProjectImages& image
               const double f = std::clamp(distanceToOutline(outline, c) / zone.feather, 0.0, 1.0);
               j *= f * f * (3.0 - 2.0 * f);
             }
+            localJump = std::max(localJump, glm::length(j));
             std::vector<Interval> intervals{{0.0, 1.0}};
             if (zone.folding.type == Folding::Type::Polygons ||
                 (zone.folding.type == Folding::Type::Object && objectMask.empty())) {
@@ -504,8 +509,12 @@ SynthesisStats synthesizeZone(const Project& project, const ProjectImages& image
         zonePixels += localZone;
         folded += localFolded;
         multi += localMulti;
+        const std::lock_guard lock(jumpMutex);
+        jumpMax = std::max(jumpMax, localJump);
       },
       4);
+  stats.zoneJumpMax.assign(project.zones.size(), 0.0);
+  stats.zoneJumpMax[z] = jumpMax;
   stats.zonePixels = zonePixels;
   stats.foldedPixels = folded;
   stats.multiInterval = multi;
@@ -534,8 +543,10 @@ SynthesisStats synthesizeRegion(const Project& project, const ProjectImages& ima
   }
   resetRegion(tex, region);
   SynthesisStats total;
+  total.zoneJumpMax.assign(project.zones.size(), 0.0);
   for (std::size_t z : zoneOrder(project)) {
     const SynthesisStats s = synthesizeZone(project, images, tex, z, region, progress, true);
+    total.zoneJumpMax[z] = s.zoneJumpMax.empty() ? 0.0 : s.zoneJumpMax[z];
     total.anchors += s.anchors;
     total.zonePixels += s.zonePixels;
     total.foldedPixels += s.foldedPixels;
@@ -575,6 +586,62 @@ Textures synthesize(const Project& project, const ProjectImages& images, Progres
     *stats = s;
   }
   return tex;
+}
+
+namespace {
+/** The largest distance from a texel centre of the zone to its outline, pixels (the zone's inradius). */
+double zoneDepth(const Zone& zone) {
+  const std::vector<Vec2> outline = zone.shape.outline();
+  const Rect box = zoneBox(zone, glm::ivec2(std::numeric_limits<int>::max() / 2));
+  const int step = std::max(1, std::max(box.width(), box.height()) / 256);
+  double depth = 0.0;
+  for (int y = box.min.y; y < box.max.y; y += step) {
+    for (int x = box.min.x; x < box.max.x; x += step) {
+      const Vec2 c(x + 0.5, y + 0.5);
+      if (zone.shape.type == Shape::Type::Rect || insidePolygon(outline, c)) {
+        depth = std::max(depth, distanceToOutline(outline, c));
+      }
+    }
+  }
+  return depth;
+}
+} // namespace
+
+std::vector<std::string> stillZoneWarnings(const Project& project, const SynthesisStats& stats) {
+  std::vector<std::string> warnings;
+  for (std::size_t z = 0; z < project.zones.size() && z < stats.zoneJumpMax.size(); ++z) {
+    const Zone& zone = project.zones[z];
+    const auto translate = std::find_if(zone.tools.begin(), zone.tools.end(), [](const Tool& t) {
+      return std::holds_alternative<TranslateTool>(t);
+    });
+    const std::string where = fmt::format("/zones/{} ('{}')", z, zone.id);
+    if (translate != zone.tools.end() && zone.zeroBoundary) {
+      // The translate is a base jump; the anchors carry residuals. Zero anchors on the border have residual
+      // +T, so wherever a border anchor is within R the interpolated residual pulls J back towards 0: when
+      // every texel is within R of the border the translate is cancelled almost everywhere.
+      const double depth = zoneDepth(zone);
+      if (zone.interp.radius >= depth) {
+        const Vec2 v = std::get<TranslateTool>(*translate).v;
+        warnings.push_back(fmt::format("{}: its zone_boundary zero anchors are within R = {:g} px of every "
+                                       "texel (at most {:.0f} px from "
+                                       "the border), so they cancel the translate [{:g}, {:g}] almost "
+                                       "everywhere (largest motion in the zone: "
+                                       "{:.2f} px): give R below {:.0f} px, or add points inside the zone",
+                                       where, zone.interp.radius, depth, v.x, v.y, stats.zoneJumpMax[z],
+                                       std::max(1.0, std::floor(depth))));
+        continue;
+      }
+    }
+    const bool asksForMotion = std::any_of(zone.tools.begin(), zone.tools.end(), [](const Tool& t) {
+      return !std::holds_alternative<ZeroTool>(t);
+    });
+    if (asksForMotion && stats.zoneJumpMax[z] < kStillZonePx) {
+      warnings.push_back(
+          fmt::format("{}: moves at most {:.2f} px although it has tools that move; they cancel out", where,
+                      stats.zoneJumpMax[z]));
+    }
+  }
+  return warnings;
 }
 
 void resynthesize(const Project& project, const ProjectImages& images, Textures& textures, Rect region) {

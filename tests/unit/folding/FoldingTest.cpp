@@ -376,6 +376,40 @@ TEST(FoldingSynthesis, TranslateZoneShiftsPixelsExactly) {
   EXPECT_EQ(pixel(shown, 2, 2), pixel(input, 2, 2)) << "outside the zone nothing moves";
 }
 
+// The class: a translate whose own zone_boundary zero anchors reach every texel (R at least the zone's depth)
+// is cancelled everywhere; tools that undo each other leave a zone still. Both are named, with what to
+// change; with R below the depth the same zone moves by its translate in the middle and says nothing.
+TEST(FoldingSynthesis, ZonesWhoseSettingsCancelTheirMotionAreNamed) {
+  const auto run = [](double radius, const json& tools) {
+    json zone = {{"id", "eye"},
+                 {"image", "img"},
+                 {"shape", {{"type", "rect"}, {"min", {8, 8}}, {"max", {56, 40}}}}, // 48x32: 16 px deep
+                 {"profile", "p"},
+                 {"zero_anchors", "zone_boundary"},
+                 {"interp", {{"type", "modified_shepard"}, {"R", radius}}},
+                 {"tools", tools}};
+    Fixture f = make(baseProject(zone), {pattern(64, 48)});
+    SynthesisStats stats;
+    (void)synthesize(f.project, f.images, nullptr, &stats);
+    return std::pair{stats.zoneJumpMax.at(0), stillZoneWarnings(f.project, stats)};
+  };
+  const json translate = {{{"type", "translate"}, {"v", {0, 6}}}};
+  const auto [cancelledJump, cancelled] = run(40.0, translate);
+  EXPECT_LT(cancelledJump, kStillZonePx);
+  ASSERT_EQ(cancelled.size(), 1u);
+  EXPECT_THAT(cancelled[0], ::testing::HasSubstr("/zones/0 ('eye')"));
+  EXPECT_THAT(cancelled[0], ::testing::HasSubstr("R = 40"));
+  EXPECT_THAT(cancelled[0], ::testing::HasSubstr("give R below 15 px"));
+  const auto [movingJump, moving] = run(12.0, translate);
+  EXPECT_NEAR(movingJump, 6.0, 1e-6);
+  EXPECT_TRUE(moving.empty()) << moving.front();
+  // Points that go nowhere: tools, but no motion.
+  const auto [stillJump, still] = run(12.0, json{{{"type", "points"}, {"pairs", {{{30, 20}, {30, 20}}}}}});
+  EXPECT_EQ(stillJump, 0.0);
+  ASSERT_EQ(still.size(), 1u);
+  EXPECT_THAT(still[0], ::testing::HasSubstr("cancel out"));
+}
+
 TEST(FoldingSynthesis, ScaleMatchesTheAnalyticField) {
   const json zone = {{"id", "z"},
                      {"image", "img"},

@@ -86,7 +86,20 @@ struct SynthesisStats {
   std::size_t zonePixels = 0;    ///< texels inside zones
   std::size_t foldedPixels = 0;  ///< texels with a fold interval other than (0, 1]
   std::size_t multiInterval = 0; ///< texels that need the extra fold layer
+  /** Per project zone: the largest |J| over its texels, pixels (0: the zone does not move). */
+  std::vector<double> zoneJumpMax;
 };
+
+/** Zones that move less than this many pixels at their farthest count as still (stillZoneWarnings). */
+inline constexpr double kStillZonePx = 0.5;
+
+/**
+ * One line per zone whose motion its own settings undo, naming the zone and what to change: a translate with
+ * zone_boundary zero anchors within R of every texel (the border anchors' residual +T cancels the translate
+ * almost everywhere), or tools that move yet leave the whole zone within kStillZonePx. `stats` from a full
+ * synthesis of `project`.
+ */
+std::vector<std::string> stillZoneWarnings(const Project& project, const SynthesisStats& stats);
 
 /**
  * Synthesises all textures (Algorithms 1–3). Deterministic: same project, images and seed give identical
