@@ -469,8 +469,14 @@ TEST(CliFold, BadProjectsFailWithOneLineNamingFileAndField) {
        },
        nullptr,
        {"/zones/0"}},
-      // The JSON reader itself refuses the overflow (before any field is known), naming the number.
-      {"infinite number", nullptr, nullptr, {"1e999"}},
+      // The JSON reader itself refuses the overflow, naming the number and the field it was for.
+      {"infinite number", nullptr, nullptr, {"1e999", "(in /profiles/0/period_s)"}},
+      {"NaN", nullptr, R"({"format": "sylva-fold", "version": 1, "seed": NaN})", {"no NaN", "(in /seed)"}},
+      // A 33-byte PNG claiming 20000x20000 pixels is refused from its header, before any decoding.
+      {"huge image",
+       [](nlohmann::json& j) { j["atlas"]["images"][0]["file"] = "huge.png"; },
+       nullptr,
+       {"/atlas/images/0/file", "20000×20000", "16384"}},
       {"unknown field", [](nlohmann::json& j) { j["zones"][0]["colour"] = "red"; }, nullptr, {"colour"}},
       {"newer version", [](nlohmann::json& j) { j["version"] = 2; }, nullptr, {"version", "newer"}},
       {"unknown profile",
@@ -482,6 +488,10 @@ TEST(CliFold, BadProjectsFailWithOneLineNamingFileAndField) {
     SCOPED_TRACE(c.name);
     const test::TempDir dir;
     writePicture(dir, "pic.png");
+    writeTextFile(dir / "huge.png",
+                  std::string("\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x00\x4e\x20\x00\x00\x4e"
+                              "\x20\x08\x06\x00\x00\x00\xe3\x70\x46\x39",
+                              33));
     std::string text;
     if (c.text != nullptr) {
       text = c.text;

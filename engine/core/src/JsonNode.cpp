@@ -328,14 +328,48 @@ nlohmann::json parseJsonStrict(std::string_view text, const std::string& where) 
     }
     return true;
   };
+  // Where the parser stopped: the key last read in an object, the element after the last complete one in an
+  // array (a scalar that fails to parse emits no event; a container counts itself when it starts).
+  auto stoppedIn = [&stack] {
+    std::string path;
+    for (std::size_t i = 0; i < stack.size(); ++i) {
+      const Level& l = stack[i];
+      if (l.isObject && l.key.empty()) {
+        break;
+      }
+      const bool last = i + 1 == stack.size();
+      path.append("/").append(l.isObject ? jsonPointerToken(l.key)
+                                         : std::to_string(last ? l.index + 1 : std::max(0LL, l.index)));
+    }
+    return path.empty() ? std::string() : fmt::format(" (in {})", path);
+  };
   try {
     return nlohmann::json::parse(text.begin(), text.end(), callback);
   } catch (const nlohmann::json::parse_error& e) {
     const auto [line, column] = lineColumn(text, e.byte);
+    std::string reason = parseReason(e.what());
+    // NaN, Infinity, -Infinity, nan, inf: what other writers print for non-finite numbers. The last token
+    // the parser read is at the end of its "last read: '…'".
+    if (const std::size_t read = reason.rfind("last read: '"); read != std::string::npos) {
+      std::string token = reason.substr(read + 12);
+      if (!token.empty() && token.back() == '\'') {
+        token.pop_back();
+      }
+      if (const std::size_t cut = token.find_last_of(" \t\n:,[{"); cut != std::string::npos) {
+        token.erase(0, cut + 1);
+      }
+      if (!token.empty() && token.front() == '-') {
+        token.erase(0, 1);
+      }
+      if (token.starts_with("N") || token.starts_with("I") || token.starts_with("na") ||
+          token.starts_with("in")) {
+        reason += " (JSON has no NaN or Infinity: give a finite number)";
+      }
+    }
     fail("{}",
-         oneLine(fmt::format("{}:{}:{}: invalid JSON: {}", where, line, column, parseReason(e.what()))));
+         oneLine(fmt::format("{}:{}:{}: invalid JSON: {}{}", where, line, column, reason, stoppedIn())));
   } catch (const nlohmann::json::exception& e) {
-    fail("{}", oneLine(fmt::format("{}: invalid JSON: {}", where, parseReason(e.what()))));
+    fail("{}", oneLine(fmt::format("{}: invalid JSON: {}{}", where, parseReason(e.what()), stoppedIn())));
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/ImageHeader.hpp>
 #include <sylva/core/Limits.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
@@ -59,8 +60,36 @@ std::vector<float> maskValues(const Image& image) {
   return mask;
 }
 
+/**
+ * Refuses, from its header alone (before a pixel is decoded), an image over kMaxAtlasSide per side, or of
+ * another size than `expected` when one is given: a 1.2 MB PNG of 20000×20000 took 23 s and 4 GB to decode
+ * before the atlas refused it. Formats readImageHeader does not read are checked after decoding, as before.
+ */
+void checkImageHeader(const std::filesystem::path& path, const std::string& where, const std::string& field,
+                      std::optional<glm::ivec2> expected = std::nullopt) {
+  std::optional<ImageHeader> header;
+  try {
+    header = readImageHeader(path);
+  } catch (const Error& e) {
+    fail("{}: {}: {}", where, field, e.what());
+  }
+  if (!header) {
+    return;
+  }
+  if (header->width > kMaxAtlasSide || header->height > kMaxAtlasSide) {
+    fail("{}: {}: {} is a {} of {}×{} pixels, more than the {} per side the renderers support; scale or crop "
+         "it",
+         where, field, path.string(), header->format, header->width, header->height, kMaxAtlasSide);
+  }
+  if (expected && (header->width != expected->x || header->height != expected->y)) {
+    fail("{}: {}: mask is {}×{} pixels, its image is {}×{}", where, field, header->width, header->height,
+         expected->x, expected->y);
+  }
+}
+
 std::vector<float> loadMask(const Project& project, const std::filesystem::path& file, glm::ivec2 size,
                             const std::string& where, const std::string& field) {
+  checkImageHeader(project.resolve(file), where, field, size);
   Image image;
   try {
     image = loadImage(project.resolve(file));
@@ -133,6 +162,9 @@ double reachOf(const Zone& zone, Rect box, const std::vector<Anchor>& anchors) {
 ProjectImages loadProjectImages(const Project& project, const std::string& where) {
   ProjectImages out;
   std::vector<glm::ivec2> sizes;
+  for (std::size_t i = 0; i < project.images.size(); ++i) {
+    checkImageHeader(project.resolve(project.images[i].file), where, fmt::format("/atlas/images/{}/file", i));
+  }
   for (std::size_t i = 0; i < project.images.size(); ++i) {
     Image image;
     try {

@@ -3,6 +3,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/JsonNode.hpp>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -80,6 +81,27 @@ TEST(JsonNode, StrictParsingRefusesDuplicateKeysAndNamesLineAndColumn) {
   EXPECT_EQ(
       messageOf([] { parseJsonStrict("{\n  \"a\": ]\n}", "f.json"); }).rfind("f.json:2:8: invalid JSON: ", 0),
       0u);
+}
+
+// The class: a number JSON cannot hold (NaN, Infinity from other writers; 1e999 overflows a double) fails to
+// parse, and the message names the field it was for, not only a line and column.
+TEST(JsonNode, ParseErrorsNameTheFieldTheParserStoppedIn) {
+  const auto message = [](const std::string& text) {
+    return messageOf([&] { parseJsonStrict(text, "f.json"); });
+  };
+  EXPECT_THAT(message(R"({"profiles": [{"id": "p", "period_s": 1e999}]})"),
+              ::testing::AllOf(::testing::HasSubstr("number overflow"),
+                               ::testing::HasSubstr("(in /profiles/0/period_s)")));
+  EXPECT_THAT(message(R"({"a": {"b": [1, 2, NaN]}})"),
+              ::testing::AllOf(::testing::HasSubstr("JSON has no NaN or Infinity"),
+                               ::testing::HasSubstr("(in /a/b/2)")));
+  EXPECT_THAT(message(R"({"x": -Infinity})"),
+              ::testing::AllOf(::testing::HasSubstr("no NaN or Infinity"), ::testing::HasSubstr("(in /x)")));
+  EXPECT_THAT(message(R"([{"a": 1}, {"b": nan}])"), ::testing::HasSubstr("(in /1/b)"));
+  // A plain syntax error keeps its line and column, with the field where there is one.
+  EXPECT_THAT(message("{\n  \"a\": ]\n}"), ::testing::HasSubstr("(in /a)"));
+  EXPECT_THAT(message("{"), ::testing::Not(::testing::HasSubstr("(in ")));
+  EXPECT_THAT(message(R"({"a": nul})"), ::testing::Not(::testing::HasSubstr("NaN")));
 }
 
 } // namespace
