@@ -108,6 +108,25 @@ TEST(CliTreesRender, TreesAreVisible) {
   EXPECT_GT(differentPixels(trees, empty), total / 400) << "the same camera with no tree drawn";
 }
 
+// The bark tile-id debug view is a picture like the others: opaque (it once wrote the trees at alpha 1/255,
+// invisible in an image viewer), with the ids in colour where the trees are.
+TEST(CliTreesRender, TheTileIdViewIsOpaque) {
+  const test::TempDir dir;
+  const Image tiles = loadImage(render(dir, "--trees --trees-view tiles --time 1", "tiles.png"));
+  const Image shaded = loadImage(render(dir, "--trees --time 1", "shaded.png"));
+  ASSERT_EQ(tiles.channels(), 4);
+  std::size_t translucent = 0;
+  for (int y = 0; y < tiles.height(); ++y) {
+    for (int x = 0; x < tiles.width(); ++x) {
+      translucent += tiles.get(x, y, 3) < 1.0f ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(translucent, 0u);
+  const std::size_t total =
+      static_cast<std::size_t>(tiles.width()) * static_cast<std::size_t>(tiles.height());
+  EXPECT_GT(differentPixels(tiles, shaded), total / 400) << "the trees show their ids";
+}
+
 // --frames steps the wind between frames (at 30 frames/s, two 60 Hz steps each) and writes the last frame,
 // and --gif all of them.
 TEST(CliTreesRender, SeveralFramesRun) {

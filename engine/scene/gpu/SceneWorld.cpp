@@ -16,6 +16,7 @@
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/Species.hpp>
 
+#include <epoxy/gl.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -419,6 +420,17 @@ void SceneWorld::draw(const render::Camera& camera, int width, int height, doubl
     mPasses->setFogDensity(render::fogDensityFor(camera.position, mTerrain->bounds(), *mDesc.fog.farSide));
   }
   mPasses->render(camera, width, height, time, casters, depth, timers);
+  if (mDrawOptions.treeView == trees::TreeView::Tiles) {
+    // The tile-id view keeps the piece instance's high bits in alpha (TreeRenderer.hpp) for code that reads
+    // the renderer's ids; the world's frame is a picture, opaque like every other view (a saved PNG showed
+    // the trees at alpha 1/255).
+    GLboolean mask[4];
+    glGetBooleanv(GL_COLOR_WRITEMASK, mask);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+    const GLfloat opaque[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    glClearBufferfv(GL_COLOR, 0, opaque);
+    glColorMask(mask[0], mask[1], mask[2], mask[3]);
+  }
   // Real time (advanceTo): the next steps leave the simulated grass tiles this camera cannot draw held.
   if (mSimulation) {
     const float drawn = scaledGrassCull(static_cast<std::size_t>(mSimulatedGrass),

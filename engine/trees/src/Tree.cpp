@@ -189,6 +189,10 @@ void validate(const TreeTopology& tree, const PieceSet& pieces, const std::strin
       if (node.parent != -1) {
         fail("{}: /nodes/0/parent: the root has no parent", where);
       }
+      if (pieces[static_cast<std::size_t>(node.piece)].name != "Foot") {
+        fail("{}: /nodes/0/piece: the root is always a Foot (the trunk's base), not '{}'", where,
+             pieces[static_cast<std::size_t>(node.piece)].name);
+      }
       continue;
     }
     if (node.parent < 0 || node.parent >= static_cast<int>(n)) {
@@ -309,6 +313,9 @@ TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, co
       childScale[i] = n.has("scale") ? static_cast<float>(n["scale"].number(0.02, 100)) : 1.0f;
     } else if (n.has("parent")) {
       n["parent"].error("the root node has no parent");
+    } else if (pieces[static_cast<std::size_t>(node.piece)].name != "Foot") {
+      n["piece"].error(fmt::format("the root is always a Foot (the trunk's base), not '{}'",
+                                   pieces[static_cast<std::size_t>(node.piece)].name));
     }
     tree.nodes.push_back(node);
   }

@@ -166,6 +166,19 @@ TEST(Assembly, TreeJsonRoundTripsAndRejectsBadFiles) {
   j = toJson(a, pieces);
   j["extra"] = 1;
   expectError(j, "/extra: unknown field");
+  // The root is the Foot: a trunk of I pieces standing on nothing is refused, by the loader and by validate.
+  j = toJson(a, pieces);
+  j["nodes"][0]["piece"] = "I";
+  expectError(j, "t.json: /nodes/0/piece: the root is always a Foot (the trunk's base), not 'I'");
+  TreeTopology rootless = a;
+  rootless.nodes[0].piece = pieces.find("Y");
+  try {
+    validate(rootless, pieces, "t.json");
+    ADD_FAILURE() << "validate accepted a Y root";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nodes/0/piece: the root is always a Foot"), std::string::npos)
+        << e.what();
+  }
   // A chain deeper than the recursion limit.
   nlohmann::json deep{{"version", 1}, {"nodes", nlohmann::json::array({{{"piece", "Foot"}}})}};
   for (int i = 1; i < 70; ++i) {
