@@ -214,12 +214,12 @@ TEST(Reliability, KilledRunsLeaveNoPartialOutputs) {
 }
 
 /**
- * SIGINT after `fraction` of the command's usual time: one line on stderr, no output, no temporary. A run
- * that ends before the signal arrives (the machine was less loaded than for the reference run) proves
- * nothing; it is retried with half the delay, up to five times.
+ * SIGINT after `fraction` of the command's usual time: one line on stderr, none of `outputs` (files or
+ * directories), no temporary. A run that ends before the signal arrives (the machine was less loaded than
+ * for the reference run) proves nothing; it is retried with half the delay, up to five times.
  */
-void expectCleanInterrupt(const std::vector<std::string>& args, const std::string& output, double fraction,
-                          const test::TempDir& dir, const std::string& name) {
+void expectCleanInterrupt(const std::vector<std::string>& args, const std::vector<std::string>& outputs,
+                          double fraction, const test::TempDir& dir, const std::string& name) {
   // The command's usual time is counted from the moment it catches SIGINT, and the signal is sent that
   // fraction after the interrupted run reaches the same moment: process start-up (exec, loading libraries)
   // varies with the machine's load and would otherwise decide whether sylva or the kernel answers.
@@ -253,11 +253,17 @@ void expectCleanInterrupt(const std::vector<std::string>& args, const std::strin
       }
     }
     if (WIFEXITED(raw) && WEXITSTATUS(raw) == 0 && err.empty()) {
-      // Finished before the signal: the output must be the complete one, and the next try signals sooner.
-      EXPECT_EQ(readAll(run / output), readAll(ref / output));
+      // Finished before the signal: the outputs must be the complete ones, and the next try signals sooner.
+      for (const std::string& output : outputs) {
+        if (fs::is_regular_file(ref / output)) {
+          EXPECT_EQ(readAll(run / output), readAll(ref / output));
+        }
+      }
       continue;
     }
-    EXPECT_FALSE(fs::exists(run / output)) << "interrupted run wrote " << output;
+    for (const std::string& output : outputs) {
+      EXPECT_FALSE(fs::exists(run / output)) << "interrupted run wrote " << output;
+    }
     EXPECT_TRUE(temporaries(run).empty());
     ASSERT_FALSE(err.empty()) << "no message on SIGINT";
     EXPECT_EQ(err.find('\n'), err.size() - 1) << "more than one line: " << err;
@@ -276,14 +282,24 @@ void expectCleanInterrupt(const std::vector<std::string>& args, const std::strin
 TEST(Reliability, SigintCancelsLongGenerationWithOneLine) {
   const test::TempDir dir;
   // Progress-reporting work (generation in strips) cancels and the command fails with its own message.
-  expectCleanInterrupt({"terrain", "heightmap", "--seed", "3", "--size", "4097", "-o", "big.png"}, "big.png",
-                       0.3, dir, "heightmap");
+  expectCleanInterrupt({"terrain", "heightmap", "--seed", "3", "--size", "4097", "-o", "big.png"},
+                       {"big.png"}, 0.3, dir, "heightmap");
 }
 
 TEST(Reliability, SigintInterruptsRenderWithOneLine) {
   const test::TempDir dir;
   expectCleanInterrupt({"render", "--size", "513", "--width", "480", "--height", "270", "-o", "r.png"},
-                       "r.png", 0.5, dir, "render");
+                       {"r.png"}, 0.5, dir, "render");
+}
+
+// A folding render writes a GIF and then a folder of PNG frames, the last part of its run: a SIGINT while
+// they are written (first at 90 % of the usual time) once left the complete GIF and some frames. Now it
+// leaves none of them.
+TEST(Reliability, SigintWhileAFoldRenderWritesLeavesNoOutput) {
+  const test::TempDir dir;
+  const std::string project = test::sourcePath("data/folding/beach.json").string();
+  expectCleanInterrupt({"fold", "render", project, "--fps", "50", "--gif", "b.gif", "-o", "frames"},
+                       {"b.gif", "frames"}, 0.9, dir, "fold");
 }
 
 /** Every command that writes files, with relative paths only (so the working directory is all that differs).

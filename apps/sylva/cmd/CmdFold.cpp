@@ -328,30 +328,66 @@ void runRender(const RenderOptions& o) {
   }
   const std::vector<Image> frames = renderFrames(o, l, textures, profiles, index, count);
 
-  // Video first: it is the output most likely to fail (ffmpeg, codecs), and then nothing else is written.
-  for (const std::string& video : {o.mp4, o.webm}) {
-    if (!video.empty()) {
-      writeVideo(video, frames, o.fps);
-      std::printf("%s\n", video.c_str());
+  // All outputs or none: a live Progress turns Ctrl-C into a request checked after each file (the handler
+  // otherwise ends the process between two outputs, leaving the first), and a failure or a cancellation part
+  // way removes every file this run wrote. Video first: it is the output most likely to fail (ffmpeg,
+  // codecs), and then nothing else is written.
+  const int digits = std::max(4, static_cast<int>(std::to_string(count - 1).size()));
+  const std::size_t files = (o.mp4.empty() ? 0 : 1) + (o.webm.empty() ? 0 : 1) + (o.sprites.empty() ? 0 : 2) +
+                            (o.gif.empty() ? 0 : 1) + (pngDir.empty() ? 0 : static_cast<std::size_t>(count));
+  Progress writing("writing", std::max<std::size_t>(files, 1));
+  std::vector<fs::path> written;
+  std::error_code ec;
+  const bool pngDirExisted = !pngDir.empty() && fs::exists(pngDir, ec);
+  const auto wrote = [&](const fs::path& path) {
+    written.push_back(path);
+    writing.advance();
+    if (writing.cancelled()) {
+      fail("{}: cancelled; the outputs written so far were removed", o.project);
     }
-  }
-  if (!o.sprites.empty()) {
-    const fs::path json = fs::path(o.sprites).replace_extension(".json");
-    writeSpriteSheet(o.sprites, json, frames, columns, o.fps);
-    std::printf("%s\n%s\n", o.sprites.c_str(), json.string().c_str());
-  }
-  if (!o.gif.empty()) {
-    const int delay = std::max(2, static_cast<int>(std::lround(100.0 / o.fps)));
-    writeGif(o.gif, frames, delay, true);
-    std::printf("%s (%d frames, %d cs each)\n", o.gif.c_str(), count, delay);
-  }
-  if (!pngDir.empty()) {
-    const int digits = std::max(4, static_cast<int>(std::to_string(count - 1).size()));
-    for (int i = 0; i < count; ++i) {
-      saveImage(fs::path(pngDir) / fmt::format("frame_{:0{}}.png", i, digits),
-                frames[static_cast<std::size_t>(i)]);
+  };
+  std::vector<std::string> report;
+  try {
+    for (const std::string& video : {o.mp4, o.webm}) {
+      if (!video.empty()) {
+        writeVideo(video, frames, o.fps);
+        wrote(video);
+        report.push_back(video);
+      }
     }
-    std::printf("%s (%d frames)\n", pngDir.c_str(), count);
+    if (!o.sprites.empty()) {
+      const fs::path json = fs::path(o.sprites).replace_extension(".json");
+      writeSpriteSheet(o.sprites, json, frames, columns, o.fps);
+      wrote(json);
+      wrote(o.sprites);
+      report.push_back(o.sprites);
+      report.push_back(json.string());
+    }
+    if (!o.gif.empty()) {
+      const int delay = std::max(2, static_cast<int>(std::lround(100.0 / o.fps)));
+      writeGif(o.gif, frames, delay, true);
+      wrote(o.gif);
+      report.push_back(fmt::format("{} ({} frames, {} cs each)", o.gif, count, delay));
+    }
+    if (!pngDir.empty()) {
+      for (int i = 0; i < count; ++i) {
+        const fs::path frame = fs::path(pngDir) / fmt::format("frame_{:0{}}.png", i, digits);
+        saveImage(frame, frames[static_cast<std::size_t>(i)]);
+        wrote(frame);
+      }
+      report.push_back(fmt::format("{} ({} frames)", pngDir, count));
+    }
+  } catch (...) {
+    for (const fs::path& path : written) {
+      fs::remove(path, ec);
+    }
+    if (!pngDir.empty() && !pngDirExisted && fs::is_empty(pngDir, ec)) {
+      fs::remove(pngDir, ec);
+    }
+    throw;
+  }
+  for (const std::string& line : report) {
+    std::printf("%s\n", line.c_str());
   }
 }
 
