@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end test of `sylva fold edit` driven by real input, as a user would: on its own Xvfb display, xdotool
 # opens an image through Ctrl+N and the path prompt, draws a rectangle zone (R + drag), adds two anchors
-# (A + drags), synthesises (Ctrl+Enter), saves (Ctrl+S), then opens the image in an "external editor" (Ctrl+E;
-# a script that rewrites it) and checks that the editor reloads it. The saved project must equal
+# (A + drags), synthesises (Ctrl+Enter), saves (Ctrl+S), opens and closes the help with F1, then opens the
+# image in an "external editor" (Ctrl+E; a script that rewrites it) and checks that the editor reloads it. The saved project must equal
 # tests/gui/fold-editor-e2e.expected.json byte for byte, and a screenshot of the whole screen must match
 # tests/golden/refs/llvmpipe/fold-editor-e2e.png. On a mismatch the actuals go to
 # <golden-out>/llvmpipe/fold-editor-e2e.actual.{png,json} (promote the PNG with scripts/promote-goldens.sh,
@@ -50,6 +50,13 @@ key ctrl+s
 # 5. The screenshot, with the pointer parked over the tool panel (no hover effects on the canvas).
 at 120 650
 screenshot "$work/shot.png"
+# 5b. F1, tapped as people tap it (down and up between two frames), opens the help; F1 again closes it.
+xdotool key F1
+frames 2
+screenshot "$work/help.png"
+xdotool key F1
+frames 2
+screenshot "$work/closed.png"
 # 6. Edit the image "externally": the editor must notice the new pixels and reload them.
 key ctrl+e
 wait_log "$work/log" "reloaded .*beach.png"
@@ -72,6 +79,16 @@ elif ! cmp -s "$project" "$expected"; then
   echo "$name: saved project differs from $expected:" >&2
   diff -u "$expected" "$project" >&2 || true
   cp "$project" "$out/$name.actual.json"
+  failed=1
+fi
+if "$exe" imgdiff "$work/help.png" "$work/shot.png" --max-diff 2 --max-fraction 0.02 >/dev/null 2>&1; then
+  echo "$name: F1 did not open the help window" >&2
+  cp "$work/help.png" "$out/$name.help.actual.png"
+  failed=1
+fi
+if ! "$exe" imgdiff "$work/closed.png" "$work/shot.png" --max-diff 2 --max-fraction 0.0005 >/dev/null 2>&1; then
+  echo "$name: F1 again did not close the help window" >&2
+  cp "$work/closed.png" "$out/$name.closed.actual.png"
   failed=1
 fi
 ref="$src/tests/golden/refs/llvmpipe/$name.png"

@@ -374,7 +374,7 @@ void FoldEditor::drawHelp() {
     ImGui::Text("%s   %s", t.key, t.name);
   }
   ImGui::Separator();
-  ImGui::TextUnformatted(
+  ImGui::TextWrapped( // wrapped: as one line it ran past the window's right edge and was cut off
       "Ctrl+Z / Ctrl+Y undo/redo, Ctrl+S save, Ctrl+O open, Ctrl+N new, Ctrl+E edit image "
       "externally, Ctrl+Enter synthesise, Space play/pause, Home fit, +/- zoom, 1 actual pixels, "
       "G pixel snapping, Alt no snapping, Del delete zone, Enter finish, Esc cancel; wheel zooms "

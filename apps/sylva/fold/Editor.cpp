@@ -375,9 +375,6 @@ void FoldEditor::run() {
     }
     mRetired.clear(); // last frame's draw lists are rendered: their old textures can go
     updateTitleAndSelection();
-    if (glfwGetKey(mShell.window().handle(), GLFW_KEY_F1) == GLFW_PRESS) {
-      mShowHelp = true;
-    }
     pollFiles();
     autosaveTick();
     if (mSession && !mGesture.active) {

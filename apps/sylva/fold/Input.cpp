@@ -5,6 +5,12 @@
 namespace sylva::app::fold {
 
 void FoldEditor::onKey(int key, int mods) {
+  // F1 from the key event, not by polling its state once a frame: a tap shorter than a frame (most taps on a
+  // slow renderer) was missed.
+  if (key == GLFW_KEY_F1) {
+    mShowHelp = !mShowHelp;
+    return;
+  }
   const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
   const bool shift = (mods & GLFW_MOD_SHIFT) != 0;
   if (ctrl) {
