@@ -447,9 +447,29 @@ void texsynthTileset(std::span<const std::uint8_t> bytes) {
 void sceneFile(std::span<const std::uint8_t> bytes) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   std::optional<scene::SceneDesc> desc;
+  std::string strictError;
   try {
     desc = scene::parseScene(text, "/nonexistent-sylva-fuzz/scene.json");
-  } catch (const Error&) {
+  } catch (const Error& e) {
+    strictError = e.what();
+  }
+  // `sylva scene check`'s reader goes on past errors: it must agree with the strict one on whether the file
+  // is valid, its first error must be the strict reader's, and every message must be one line.
+  scene::SceneFileErrors all;
+  try {
+    (void)scene::parseSceneAll(text, "/nonexistent-sylva-fuzz/scene.json", all);
+  } catch (const Error& e) {
+    all.messages.insert(all.messages.begin(), e.what());
+  }
+  if (all.messages.empty() != strictError.empty() ||
+      (!strictError.empty() && all.messages.front() != strictError)) {
+    throw std::logic_error("scene.json: parseSceneAll disagrees with parseScene: '" + strictError + "' vs '" +
+                           (all.messages.empty() ? std::string() : all.messages.front()) + "'");
+  }
+  for (const std::string& m : all.messages) {
+    if (m.find('\n') != std::string::npos) {
+      throw std::logic_error("scene.json: a multi-line message: " + m);
+    }
   }
   if (desc) {
     const scene::GroundHeight flat = [](float, float) { return 0.0f; };

@@ -74,6 +74,9 @@ std::unique_ptr<Cli> makeCli() {
 #ifdef SYLVA_HAVE_TEXSYNTH
   registerTexsynth(app);
 #endif
+#ifdef SYLVA_HAVE_SCENE
+  registerScene(app);
+#endif
   Cli* raw = cli.get();
   app.parse_complete_callback([raw] { log::setLevel(log::parseLevel(raw->logLevel)); });
   return cli;

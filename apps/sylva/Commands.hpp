@@ -39,6 +39,8 @@ void registerFold(CLI::App& app);
 void registerCapture(CLI::App& app);
 /** `sylva texsynth quilt|tiles|wang` (image quilting and tile sets, docs/texsynth.md). */
 void registerTexsynth(CLI::App& app);
+/** `sylva scene check`: every error of scene files, without rendering (CmdSceneCheck.cpp). */
+void registerScene(CLI::App& app);
 
 /** The whole `sylva` command line: every subcommand registered, callbacks running the commands. */
 struct Cli {

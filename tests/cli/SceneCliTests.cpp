@@ -226,6 +226,25 @@ TEST(SceneCli, BadScenesAndRangesFailWithOneLineAndNoOutput) {
   }
 }
 
+// `sylva scene check` lists every error of a file, one line each and a count, where render stops at the
+// first; a valid scene is one "ok" line on stdout with what it holds.
+TEST(SceneCli, CheckListsEveryErrorWithoutRendering) {
+  test::TempDir dir;
+  const fs::path two = writeScene(dir, "two.json", R"({"sylva_scene": 1, "terrain": {"sead": 3},
+    "forests": [{"species": {"almond": 1}, "count": 50000000}],
+    "cameras": {"main": {"position": {"at": [1, 2, 3]}, "target": {"at": [0, 0, 0]}}}})");
+  const test::RunResult bad = runSylva(dir, "scene check " + quote(two.string()));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(test::lineCount(bad.err), 3u) << bad.err;
+  EXPECT_NE(bad.err.find("two.json: /terrain/sead"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("two.json: /forests/0/count"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("2 errors in 1 of 1 scene file"), std::string::npos) << bad.err;
+  const test::RunResult good = runSylva(dir, "scene check " + quote(kMeadow));
+  EXPECT_EQ(good.status, 0) << good.err;
+  EXPECT_NE(good.out.find("meadow.json: ok (terrain "), std::string::npos) << good.out;
+  EXPECT_EQ(good.err, "");
+}
+
 // A lake without "folding" takes the data folder's wave swash (docs/scenes.md; it once failed with a message
 // naming no file); a still whose --out is a directory is refused before the scene is built.
 TEST(SceneCli, ALakeWithoutFoldingRendersAndOutputsAreCheckedFirst) {

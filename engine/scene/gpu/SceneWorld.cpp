@@ -44,19 +44,9 @@ SceneWorld::SceneWorld(const shader::Library& library, SceneDesc desc)
   log::info("scene {}: terrain {}×{} samples, {:.0f}×{:.0f} m", mDesc.name, mTerrain->field().width(),
             mTerrain->field().height(), mTerrain->field().extentX(), mTerrain->field().extentZ());
 
+  mSimulatedGrass = simulatedGrassLayer(mDesc);
   for (std::size_t i = 0; i < mDesc.grass.size(); ++i) {
     mGrass.push_back(makeGrass(i, mDesc.grass[i]));
-    if (mDesc.grass[i].simulate) {
-      if (mSimulatedGrass >= 0) {
-        fail("{}: /grass/{}/simulate: only one grass layer can be simulated (layer {} already is)",
-             mDesc.path, i, mSimulatedGrass);
-      }
-      mSimulatedGrass = static_cast<int>(i);
-    }
-  }
-  if ((!mDesc.bodies.empty() || !mDesc.drops.empty()) && mSimulatedGrass < 0) {
-    fail("{}: /bodies: bodies need a grass layer with \"simulate\": true (the physics world moves the grass)",
-         mDesc.path);
   }
 
   for (std::size_t i = 0; i < mDesc.forests.size(); ++i) {

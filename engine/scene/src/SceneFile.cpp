@@ -457,7 +457,34 @@ glm::vec3 SunDesc::direction() const {
   return glm::normalize(glm::vec3(std::sin(az) * std::cos(el), std::sin(el), -std::cos(az) * std::cos(el)));
 }
 
-SceneDesc parseScene(std::string_view text, const std::filesystem::path& fileForErrorsAndPaths) {
+namespace {
+
+/**
+ * The scene of `text`. Without `errors` the first error throws; with it every section and list item is read
+ * on its own and each error is appended (one per item: a bad grass layer does not hide a bad forest), and
+ * what could be read is returned.
+ */
+SceneDesc parseSceneCollecting(std::string_view text, const std::filesystem::path& fileForErrorsAndPaths,
+                               SceneFileErrors* errors) {
+  const auto attempt = [errors](const auto& read) {
+    if (errors == nullptr) {
+      read();
+      return true;
+    }
+    try {
+      read();
+      return true;
+    } catch (const Error& e) {
+      errors->messages.push_back(e.what());
+      return false;
+    }
+  };
+  // A list item that fails holds its defaults, so later checks keep the file's indices.
+  const auto failedItem = [errors](const char* list, std::size_t i) {
+    if (errors != nullptr) {
+      errors->items.insert(fmt::format("/{}/{}", list, i));
+    }
+  };
   Context ctx;
   ctx.file = fileForErrorsAndPaths.string();
   std::error_code ec;
@@ -480,124 +507,153 @@ SceneDesc parseScene(std::string_view text, const std::filesystem::path& fileFor
     version.error(
         fmt::format("version {} was written by a newer Sylva (this one reads {})", v, kSceneVersion));
   }
-  root.object({"sylva_scene", "name", "terrain", "grass", "forests", "water", "bodies", "drops", "sun", "sky",
-               "fog", "wind", "shadows", "cameras", "output"});
+  attempt([&] {
+    root.object({"sylva_scene", "name", "terrain", "grass", "forests", "water", "bodies", "drops", "sun",
+                 "sky", "fog", "wind", "shadows", "cameras", "output"});
+  });
   if (root.has("name")) {
-    scene.name = root["name"].string();
+    attempt([&] { scene.name = root["name"].string(); });
   }
   if (root.has("terrain")) {
-    readTerrain(root["terrain"], scene.terrain);
+    attempt([&] { readTerrain(root["terrain"], scene.terrain); });
   }
   if (root.has("grass")) {
     const Node list = root["grass"];
-    const std::size_t n = list.array(0, 16);
+    std::size_t n = 0;
+    attempt([&] { n = list.array(0, 16); });
     for (std::size_t i = 0; i < n; ++i) {
-      scene.grass.push_back(readGrass(list.item(i)));
+      if (!attempt([&] { scene.grass.push_back(readGrass(list.item(i))); })) {
+        scene.grass.emplace_back();
+        failedItem("grass", i);
+      }
     }
   }
   if (root.has("forests")) {
     const Node list = root["forests"];
-    const std::size_t n = list.array(0, 64);
+    std::size_t n = 0;
+    attempt([&] { n = list.array(0, 64); });
     for (std::size_t i = 0; i < n; ++i) {
-      scene.forests.push_back(readForest(list.item(i)));
+      if (!attempt([&] { scene.forests.push_back(readForest(list.item(i))); })) {
+        scene.forests.emplace_back();
+        failedItem("forests", i);
+      }
     }
   }
   if (root.has("water")) {
     const Node list = root["water"];
-    const std::size_t n = list.array(0, 16);
+    std::size_t n = 0;
+    attempt([&] { n = list.array(0, 16); });
     for (std::size_t i = 0; i < n; ++i) {
-      scene.water.push_back(readWater(list.item(i)));
+      if (!attempt([&] { scene.water.push_back(readWater(list.item(i))); })) {
+        scene.water.emplace_back();
+        failedItem("water", i);
+      }
     }
   }
   long long bodies = 0;
   if (root.has("bodies")) {
     const Node list = root["bodies"];
-    const std::size_t n = list.array(0, kMaxBodies);
+    std::size_t n = 0;
+    attempt([&] { n = list.array(0, kMaxBodies); });
     for (std::size_t i = 0; i < n; ++i) {
-      scene.bodies.push_back(readBody(list.item(i)));
+      attempt([&] { scene.bodies.push_back(readBody(list.item(i))); });
     }
     bodies = static_cast<long long>(n);
   }
   if (root.has("drops")) {
     const Node list = root["drops"];
-    const std::size_t n = list.array(0, 1000);
+    std::size_t n = 0;
+    attempt([&] { n = list.array(0, 1000); });
     for (std::size_t i = 0; i < n; ++i) {
-      scene.drops.push_back(readDrop(list.item(i)));
-      bodies += scene.drops.back().count;
-      if (bodies > kMaxBodies) {
-        list.item(i)["count"].error(fmt::format("{} bodies in all is more than {}", bodies, kMaxBodies));
-      }
+      attempt([&] {
+        const BodyDrop drop = readDrop(list.item(i));
+        bodies += drop.count;
+        if (bodies > kMaxBodies) {
+          list.item(i)["count"].error(fmt::format("{} bodies in all is more than {}", bodies, kMaxBodies));
+        }
+        scene.drops.push_back(drop);
+      });
     }
   }
   if (root.has("sun")) {
-    const Node n = root["sun"];
-    n.object({"azimuth", "elevation", "intensity"});
-    if (n.has("azimuth")) {
-      scene.sun.azimuth = n["azimuth"].real(-360.0, 360.0);
-    }
-    if (n.has("elevation")) {
-      scene.sun.elevation = n["elevation"].real(-90.0, 90.0);
-    }
-    if (n.has("intensity")) {
-      scene.sun.intensity = n["intensity"].real(0.0, 1000.0);
-    }
+    attempt([&] {
+      const Node n = root["sun"];
+      n.object({"azimuth", "elevation", "intensity"});
+      if (n.has("azimuth")) {
+        scene.sun.azimuth = n["azimuth"].real(-360.0, 360.0);
+      }
+      if (n.has("elevation")) {
+        scene.sun.elevation = n["elevation"].real(-90.0, 90.0);
+      }
+      if (n.has("intensity")) {
+        scene.sun.intensity = n["intensity"].real(0.0, 1000.0);
+      }
+    });
   }
   if (root.has("sky")) {
-    const Node n = root["sky"];
-    n.object({"enabled", "turbidity", "exposure", "flare"});
-    if (n.has("enabled")) {
-      scene.sky.enabled = n["enabled"].boolean();
-    }
-    if (n.has("turbidity")) {
-      scene.sky.turbidity = n["turbidity"].real(1.7, 10.0);
-    }
-    if (n.has("exposure")) {
-      scene.sky.exposure = n["exposure"].realAbove(0.0, 1000.0);
-    }
-    if (n.has("flare")) {
-      scene.sky.flare = n["flare"].boolean();
-    }
+    attempt([&] {
+      const Node n = root["sky"];
+      n.object({"enabled", "turbidity", "exposure", "flare"});
+      if (n.has("enabled")) {
+        scene.sky.enabled = n["enabled"].boolean();
+      }
+      if (n.has("turbidity")) {
+        scene.sky.turbidity = n["turbidity"].real(1.7, 10.0);
+      }
+      if (n.has("exposure")) {
+        scene.sky.exposure = n["exposure"].realAbove(0.0, 1000.0);
+      }
+      if (n.has("flare")) {
+        scene.sky.flare = n["flare"].boolean();
+      }
+    });
   }
   if (root.has("fog")) {
-    const Node n = root["fog"];
-    n.object({"density"});
-    if (n.has("density")) {
-      scene.fog.density = n["density"].real(0.0, 1.0);
-    }
+    attempt([&] {
+      const Node n = root["fog"];
+      n.object({"density"});
+      if (n.has("density")) {
+        scene.fog.density = n["density"].real(0.0, 1.0);
+      }
+    });
   }
   if (root.has("wind")) {
-    const Node n = root["wind"];
-    n.object({"speed", "direction", "gusts", "seed"});
-    if (n.has("speed")) {
-      scene.wind.speed = n["speed"].real(0.0, 100.0);
-    }
-    if (n.has("direction")) {
-      scene.wind.direction = n["direction"].real(-360.0, 360.0);
-    }
-    if (n.has("gusts")) {
-      scene.wind.gusts = n["gusts"].real(0.0, 4.0);
-    }
-    if (n.has("seed")) {
-      scene.wind.seed = n["seed"].seed();
-    }
+    attempt([&] {
+      const Node n = root["wind"];
+      n.object({"speed", "direction", "gusts", "seed"});
+      if (n.has("speed")) {
+        scene.wind.speed = n["speed"].real(0.0, 100.0);
+      }
+      if (n.has("direction")) {
+        scene.wind.direction = n["direction"].real(-360.0, 360.0);
+      }
+      if (n.has("gusts")) {
+        scene.wind.gusts = n["gusts"].real(0.0, 4.0);
+      }
+      if (n.has("seed")) {
+        scene.wind.seed = n["seed"].seed();
+      }
+    });
   }
   if (root.has("shadows")) {
-    const Node n = root["shadows"];
-    n.object({"cascades", "size", "distance", "lambda"});
-    if (n.has("cascades")) {
-      scene.shadows.cascades = n["cascades"].integer(0, 4);
-    }
-    if (n.has("size")) {
-      scene.shadows.size = n["size"].integer(64, 8192);
-    }
-    if (n.has("distance")) {
-      scene.shadows.distance = n["distance"].realAbove(0.0, 1e5);
-    }
-    if (n.has("lambda")) {
-      scene.shadows.lambda = n["lambda"].real(0.0, 1.0);
-    }
+    attempt([&] {
+      const Node n = root["shadows"];
+      n.object({"cascades", "size", "distance", "lambda"});
+      if (n.has("cascades")) {
+        scene.shadows.cascades = n["cascades"].integer(0, 4);
+      }
+      if (n.has("size")) {
+        scene.shadows.size = n["size"].integer(64, 8192);
+      }
+      if (n.has("distance")) {
+        scene.shadows.distance = n["distance"].realAbove(0.0, 1e5);
+      }
+      if (n.has("lambda")) {
+        scene.shadows.lambda = n["lambda"].real(0.0, 1.0);
+      }
+    });
   }
-  {
+  const bool camerasRead = attempt([&] {
     const Node cams = root["cameras"];
     if (!cams.value().is_object()) {
       cams.error(fmt::format("expected an object of name → camera, got {}", cams.value().type_name()));
@@ -609,16 +665,18 @@ SceneDesc parseScene(std::string_view text, const std::filesystem::path& fileFor
       cams.error(fmt::format("{} cameras is more than 1000", cams.value().size()));
     }
     for (const auto& [name, value] : cams.value().items()) {
-      if (name.empty()) {
-        cams.child(name).error("a camera name must not be empty");
-      }
-      scene.cameras[name] = readCamera(cams.child(name));
+      attempt([&] {
+        if (name.empty()) {
+          cams.child(name).error("a camera name must not be empty");
+        }
+        scene.cameras[name] = readCamera(cams.child(name));
+      });
     }
-  }
+  });
   if (root.has("output")) {
-    readOutput(root["output"], scene.output);
+    attempt([&] { readOutput(root["output"], scene.output); });
   }
-  if (!scene.cameras.contains(scene.output.camera)) {
+  if (camerasRead && !scene.cameras.empty() && !scene.cameras.contains(scene.output.camera)) {
     std::vector<std::string> names;
     for (const auto& [name, c] : scene.cameras) {
       names.push_back(name);
@@ -627,12 +685,25 @@ SceneDesc parseScene(std::string_view text, const std::filesystem::path& fileFor
     const std::string what =
         fmt::format("no camera '{}' in /cameras{}", scene.output.camera,
                     hint.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", hint));
-    if (root.has("output") && root["output"].has("camera")) {
-      root["output"]["camera"].error(what);
-    }
-    Node(doc, ctx, "/output/camera").error(what);
+    attempt([&] {
+      if (root.has("output") && root["output"].has("camera")) {
+        root["output"]["camera"].error(what);
+      }
+      Node(doc, ctx, "/output/camera").error(what);
+    });
   }
   return scene;
+}
+
+} // namespace
+
+SceneDesc parseScene(std::string_view text, const std::filesystem::path& fileForErrorsAndPaths) {
+  return parseSceneCollecting(text, fileForErrorsAndPaths, nullptr);
+}
+
+SceneDesc parseSceneAll(std::string_view text, const std::filesystem::path& fileForErrorsAndPaths,
+                        SceneFileErrors& errors) {
+  return parseSceneCollecting(text, fileForErrorsAndPaths, &errors);
 }
 
 SceneDesc loadScene(const std::filesystem::path& file) {

@@ -115,6 +115,24 @@ grass::FieldSettings grassFieldSettings(const GrassLayer& layer, const GrassGrou
   return s;
 }
 
+int simulatedGrassLayer(const SceneDesc& scene) {
+  int simulated = -1;
+  for (std::size_t i = 0; i < scene.grass.size(); ++i) {
+    if (scene.grass[i].simulate) {
+      if (simulated >= 0) {
+        fail("{}: /grass/{}/simulate: only one grass layer can be simulated (layer {} already is)",
+             scene.path, i, simulated);
+      }
+      simulated = static_cast<int>(i);
+    }
+  }
+  if ((!scene.bodies.empty() || !scene.drops.empty()) && simulated < 0) {
+    fail("{}: /bodies: bodies need a grass layer with \"simulate\": true (the physics world moves the grass)",
+         scene.path);
+  }
+  return simulated;
+}
+
 std::vector<grass::BladeType> grassBladeTypes(const GrassLayer& layer, const GrassFieldName& name) {
   if (layer.blades.empty()) {
     return grass::proceduralBladeTypes();

@@ -33,48 +33,18 @@ HeightField exaggerated(HeightField field, float factor) {
 std::unique_ptr<TerrainScene> TerrainScene::fromSetup(const shader::Library& library,
                                                       const TerrainSetup& setup,
                                                       const TerrainFieldName& name) {
-  const auto field = [&name](std::string_view f) { return fieldName(name, f); };
-  if (!(setup.exaggeration > 0.0f && setup.exaggeration <= 1000.0f)) {
-    fail("{}: {} is not in (0, 1000]", field("exaggeration"), setup.exaggeration);
-  }
-  if (setup.seaLevel.kind == SeaLevelRule::Kind::Metres &&
-      !(std::isfinite(setup.seaLevel.metres) && std::abs(setup.seaLevel.metres) <= 1.0e5f)) {
-    fail("{}: {} is not in [-100000, 100000] metres", field("sea_level"), setup.seaLevel.metres);
-  }
+  // Limits known before any work: the GPU's largest texture.
+  GLint maxTexture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  LoadedTerrain loaded = loadTerrainSetup(setup, name, maxTexture,
+                                          fmt::format("the GPU's largest texture side is {}", maxTexture));
   TerrainSceneOptions options;
   options.geomorph = setup.geomorph;
   options.exaggeration = setup.exaggeration;
-  if (!setup.layersFile.empty()) {
-    options.layers = loadSplatLayers(setup.layersFile); // before the heights: a bad rules file costs nothing
-  }
-  // Limits known before any work: the GPU's largest texture, and memory for a procedural field.
-  GLint maxTexture = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  const TerrainSource& source = setup.source;
-  if (source.dem.empty()) {
-    if (std::max(source.proceduralSize, source.rows()) > maxTexture) {
-      fail("{} {}: larger than the GPU's largest texture side ({}); use {} or less", field("size"),
-           std::max(source.proceduralSize, source.rows()), maxTexture, maxTexture);
-    }
-    validate(source.procedural, field("relief"));
-    checkMemoryFor(static_cast<std::size_t>(source.proceduralSize) * static_cast<std::size_t>(source.rows()),
-                   field("size"));
-  }
-  LoadOptions limits = source.load;
-  limits.maxSide = maxTexture;
-  limits.maxSideReason = fmt::format("the GPU's largest texture side is {}", maxTexture);
-  limits.maxSamples = std::min(limits.maxSamples, affordableSamples());
-  HeightField heights = loadTerrainSource(source, &limits);
-  const HeightFieldInfo info = heightFieldInfo(heights);
-  options.seaLevel = setup.seaLevel.resolve(info.minHeight);
-  const float relief = info.maxHeight - info.minHeight;
-  const float extent = std::max(heights.extentX(), heights.extentZ());
-  if (setup.exaggeration == 1.0f && relief > 0.0f && relief < 0.002f * extent) {
-    log::info("relief {:.0f} m is {:.2g} % of the {:.0f} km extent and will look flat; try {} {:.0f}", relief,
-              100.0 * relief / extent, extent / 1000.0, field("exaggeration"),
-              std::ceil(0.02f * extent / relief));
-  }
-  const QuadtreeConfig config = quadtreeFor(setup, heights, name);
+  options.layers = std::move(loaded.layers);
+  options.seaLevel = loaded.seaLevel;
+  const QuadtreeConfig config = loaded.config;
+  HeightField heights = std::move(loaded.heights);
   std::optional<Progress> progress;
   if (heights.samples().size() > kProgressSamples) {
     progress.emplace("building terrain (min/max tree, GPU normal and splat maps)", 1);

@@ -2,6 +2,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Limits.hpp>
+#include <sylva/core/Log.hpp>
 #include <sylva/core/Progress.hpp>
 
 #include <fmt/format.h>
@@ -117,6 +118,51 @@ void checkMemoryFor(std::size_t samples, const std::string& what) {
          what, samples, static_cast<double>(samples) * kRenderBytesPerSample / (1u << 30),
          kRenderBytesPerSample, static_cast<double>(affordable) * kRenderBytesPerSample / (1u << 30));
   }
+}
+
+LoadedTerrain loadTerrainSetup(const TerrainSetup& setup, const TerrainFieldName& name, int maxSide,
+                               const std::string& maxSideReason) {
+  const auto field = [&name](std::string_view f) { return fieldName(name, f); };
+  if (!(setup.exaggeration > 0.0f && setup.exaggeration <= 1000.0f)) {
+    fail("{}: {} is not in (0, 1000]", field("exaggeration"), setup.exaggeration);
+  }
+  if (setup.seaLevel.kind == SeaLevelRule::Kind::Metres &&
+      !(std::isfinite(setup.seaLevel.metres) && std::abs(setup.seaLevel.metres) <= 1.0e5f)) {
+    fail("{}: {} is not in [-100000, 100000] metres", field("sea_level"), setup.seaLevel.metres);
+  }
+  LoadedTerrain loaded;
+  if (!setup.layersFile.empty()) {
+    loaded.layers = loadSplatLayers(setup.layersFile); // before the heights: a bad rules file costs nothing
+  }
+  // Limits known before any work: the largest side, and memory for a procedural field.
+  const TerrainSource& source = setup.source;
+  if (source.dem.empty()) {
+    if (maxSide > 0 && std::max(source.proceduralSize, source.rows()) > maxSide) {
+      fail("{} {}: too large ({}); use {} or less", field("size"),
+           std::max(source.proceduralSize, source.rows()), maxSideReason, maxSide);
+    }
+    validate(source.procedural, field("relief"));
+    checkMemoryFor(static_cast<std::size_t>(source.proceduralSize) * static_cast<std::size_t>(source.rows()),
+                   field("size"));
+  }
+  LoadOptions limits = source.load;
+  if (maxSide > 0) {
+    limits.maxSide = maxSide;
+    limits.maxSideReason = maxSideReason;
+  }
+  limits.maxSamples = std::min(limits.maxSamples, affordableSamples());
+  loaded.heights = loadTerrainSource(source, &limits);
+  const HeightFieldInfo info = heightFieldInfo(loaded.heights);
+  loaded.seaLevel = setup.seaLevel.resolve(info.minHeight);
+  const float relief = info.maxHeight - info.minHeight;
+  const float extent = std::max(loaded.heights.extentX(), loaded.heights.extentZ());
+  if (setup.exaggeration == 1.0f && relief > 0.0f && relief < 0.002f * extent) {
+    log::info("relief {:.0f} m is {:.2g} % of the {:.0f} km extent and will look flat; try {} {:.0f}", relief,
+              100.0 * relief / extent, extent / 1000.0, field("exaggeration"),
+              std::ceil(0.02f * extent / relief));
+  }
+  loaded.config = quadtreeFor(setup, loaded.heights, name);
+  return loaded;
 }
 
 } // namespace sylva::terrain

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <set>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -264,6 +265,20 @@ SceneDesc loadScene(const std::filesystem::path& file);
  * directory resolves relative paths (it need not exist).
  */
 SceneDesc parseScene(std::string_view json, const std::filesystem::path& fileForErrorsAndPaths);
+
+/** The errors of a scene file read item by item (parseSceneAll). */
+struct SceneFileErrors {
+  std::vector<std::string> messages; ///< one line each, as parseScene would throw them, in file order
+  std::set<std::string> items;       ///< list items that failed ("/grass/1"): the scene holds defaults there
+};
+
+/**
+ * Like parseScene, but every section, list item and camera is read on its own: each error is appended to
+ * `errors` and reading goes on, so one run lists them all (`sylva scene check`). Still throws for what stops
+ * everything: JSON syntax, a root that is not an object, a missing or newer version.
+ */
+SceneDesc parseSceneAll(std::string_view json, const std::filesystem::path& fileForErrorsAndPaths,
+                        SceneFileErrors& errors);
 
 /**
  * Names the fields under JSON pointer `prefix` ("/terrain", "/grass/0", "/forests/1") of `scene` in errors:

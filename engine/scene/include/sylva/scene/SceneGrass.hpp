@@ -59,6 +59,12 @@ grass::FieldSettings grassFieldSettings(const GrassLayer& layer, const GrassGrou
 
 /** The blade types of `layer`: every blade of its blade-model files in order, or the procedural set when it
  * names none. Throws sylva::Error naming the field ("blades") for a file without blades. */
+/**
+ * The grass layer of `scene` that is simulated (its physics world also moves the bodies and drops), or −1 for
+ * none. Throws naming the field when two layers ask for simulation, or when bodies or drops have none.
+ */
+int simulatedGrassLayer(const SceneDesc& scene);
+
 std::vector<grass::BladeType> grassBladeTypes(const GrassLayer& layer, const GrassFieldName& name);
 
 /**

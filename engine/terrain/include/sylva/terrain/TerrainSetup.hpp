@@ -9,12 +9,14 @@
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/Quadtree.hpp>
+#include <sylva/terrain/TerrainMaps.hpp>
 
 #include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace sylva::terrain {
 
@@ -104,5 +106,23 @@ inline constexpr std::size_t kRenderBytesPerSample = 20;
 std::size_t affordableSamples();
 /** Throws `<what>: … need about X GiB, Y GiB is available` when `samples` cannot be rendered. */
 void checkMemoryFor(std::size_t samples, const std::string& what);
+
+/** What a terrain setup loads before any drawing: true heights, splat rules, sea level and quadtree layout.
+ */
+struct LoadedTerrain {
+  HeightField heights;            ///< true heights (not exaggerated)
+  std::vector<SplatLayer> layers; ///< the setup's rules file; empty: the default rules
+  std::optional<float> seaLevel;  ///< true metres, resolved over the heights; nullopt: none
+  QuadtreeConfig config;          ///< quadtreeFor(setup, heights)
+};
+
+/**
+ * Checks `setup` (exaggeration, sea level, splat rules file, procedural relief and memory, quadtree values),
+ * naming fields through `name`, and loads it: every check TerrainScene::fromSetup makes before it touches
+ * the GPU, so `sylva scene check` makes them too. `maxSide` > 0 limits the field's side (the GPU's largest
+ * texture, with `maxSideReason`); 0: no such limit.
+ */
+LoadedTerrain loadTerrainSetup(const TerrainSetup& setup, const TerrainFieldName& name, int maxSide = 0,
+                               const std::string& maxSideReason = {});
 
 } // namespace sylva::terrain
