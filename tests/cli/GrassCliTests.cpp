@@ -9,8 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace sylva {
 namespace {
@@ -93,6 +96,34 @@ TEST(GrassCli, BadInputsFailWithOneLineAndNoImage) {
     EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
     EXPECT_NE(r.err.find(named), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << args;
+  }
+}
+
+// The camera a render logs (--log-level info) is the options that render the same bytes again: the grass
+// camera, the camera that films the balls (with where they drop, which --camera-pos once moved out of view),
+// an exaggerated terrain (Y in true metres), and the forest camera. Passing a camera back once showed only
+// ground:
+// --look-at was re-aimed and the near plane differed.
+TEST(GrassCli, TheLoggedCameraRendersTheSameFrameAgain) {
+  test::TempDir dir;
+  const std::vector<std::string> worlds = {
+      "--grass", "--grass --physics balls --balls 3 --frames 3 --exaggeration 1.7", "--trees"};
+  for (std::size_t w = 0; w < worlds.size(); ++w) {
+    const std::string args = "render " + worlds[w] + kSmall;
+    const fs::path first = dir / fmt::format("first{}.png", w);
+    const test::RunResult chosen =
+        runSylva(dir, "--log-level info " + args + "-o " + test::quote(first.string()));
+    ASSERT_EQ(chosen.status, 0) << chosen.err;
+    const std::size_t at = chosen.err.find("camera: --camera-pos");
+    ASSERT_NE(at, std::string::npos) << chosen.err;
+    const std::size_t begin = at + std::string("camera: ").size();
+    const std::string options = chosen.err.substr(begin, chosen.err.find(" (these", begin) - begin);
+    EXPECT_EQ(options.find("--balls-at") != std::string::npos, worlds[w].find("balls") != std::string::npos)
+        << options;
+    const fs::path again = dir / fmt::format("again{}.png", w);
+    const test::RunResult given = runSylva(dir, args + options + " -o " + test::quote(again.string()));
+    ASSERT_EQ(given.status, 0) << given.err;
+    EXPECT_EQ(test::readAll(first), test::readAll(again)) << worlds[w] << ": " << options;
   }
 }
 

@@ -23,6 +23,9 @@ void SimulationFlags::add(CLI::App& command) {
   command.add_option("--balls", balls, "Balls of --physics balls")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
+  command.add_option("--balls-at", ballsAt,
+                     "Where the balls drop, X,Z metres (default: a grassy spot ahead of the camera; the "
+                     "camera line of --log-level info gives the value to render the same view again)");
   command.add_option("--physics-seed", seed, "Seed of the balls' sizes, masses and places")
       ->check(unsignedInteger())
       ->capture_default_str();

@@ -24,8 +24,10 @@ struct SimulationFlags {
   std::string solver = "auto";
   int pool = 512;
   float trampleRecovery = 6.0f;
+  /** "X,Z" metres: where the balls drop; empty: chosen ahead of the camera (scene::ballDropPoint). */
+  std::string ballsAt;
 
-  /** Adds --physics, --balls, --physics-seed, --grass-sim, --grass-pool, --trample-recovery. */
+  /** Adds --physics, --balls, --balls-at, --physics-seed, --grass-sim, --grass-pool, --trample-recovery. */
   void add(CLI::App& command);
   bool enabled() const { return physics != "none"; }
   grass::SolverSettings solverSettings() const;

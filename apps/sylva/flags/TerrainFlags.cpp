@@ -120,6 +120,9 @@ render::Camera CameraFlags::camera(const terrain::TerrainScene& scene, float asp
   const auto toWorld = [e](glm::vec3 p) { return glm::vec3(p.x, p.y * e, p.z); };
   const glm::vec3 target = lookAt.empty() ? box.center() : toWorld(parseVec3("--look-at", lookAt));
   render::Camera camera = render::frameBox(box, render::parseViewFrom(viewFrom), fov, aspect, target);
+  if (!lookAt.empty()) {
+    camera.target = target; // frameBox re-aims at the middle of what it sees; a point the user names is kept
+  }
   if (!cameraPos.empty()) {
     camera.position = toWorld(parseVec3("--camera-pos", cameraPos));
     camera.up = glm::vec3(0.0f, 1.0f, 0.0f);

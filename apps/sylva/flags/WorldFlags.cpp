@@ -6,8 +6,12 @@
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace sylva::app {
 
@@ -78,11 +82,47 @@ scene::SceneDesc WorldFlags::desc(const std::string& command, bool withSimulatio
   return d;
 }
 
+namespace {
+
+/** The true height whose product with `exaggeration` (as --camera-pos computes it, in float) is `drawn`. */
+float trueHeight(float drawn, float exaggeration) {
+  const float guess = drawn / exaggeration;
+  float lo = guess;
+  float hi = guess;
+  for (int i = 0; i < 8; ++i) {
+    if (lo * exaggeration == drawn) {
+      return lo;
+    }
+    if (hi * exaggeration == drawn) {
+      return hi;
+    }
+    lo = std::nextafter(lo, -std::numeric_limits<float>::infinity());
+    hi = std::nextafter(hi, std::numeric_limits<float>::infinity());
+  }
+  return guess;
+}
+
+/**
+ * Logs the camera a render uses as the options that render it again, byte for byte: floats with 9
+ * significant digits (they read back as the same floats), Y in true metres, the drop point of the balls.
+ */
+void logCamera(const render::Camera& view, float exaggeration, float fovDegrees,
+               std::optional<glm::vec2> drop) {
+  log::info("camera: --camera-pos {:.9g},{:.9g},{:.9g} --look-at {:.9g},{:.9g},{:.9g} --fov {:.9g}{} (these "
+            "options render this view again)",
+            view.position.x, trueHeight(view.position.y, exaggeration), view.position.z, view.target.x,
+            trueHeight(view.target.y, exaggeration), view.target.z, fovDegrees,
+            drop ? fmt::format(" --balls-at {:.9g},{:.9g}", drop->x, drop->y) : std::string());
+}
+
+} // namespace
+
 render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
   terrain::TerrainScene& ground = world.terrain();
   render::Camera view = camera.camera(ground, aspect);
   const float fov = glm::radians(camera.fovDegrees);
   const bool placed = !camera.cameraPos.empty();
+  std::optional<glm::vec2> dropCentre;
   if (grass.enabled) {
     const grass::GrassField& field = world.grass(0).field();
     log::info("grass: {} blade types, {} tiles of {} m, about {:.3g} blades in the field, patch {:.2f} MB",
@@ -92,11 +132,6 @@ render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
     if (!placed) {
       view = scene::grassCamera(ground.field(), ground.bounds(), ground.maxHeight(), field, fov,
                                 grass.windDirection);
-      const float e = ground.exaggeration();
-      log::info("grass: camera at {:.1f},{:.1f},{:.1f} looking at {:.1f},{:.1f},{:.1f} (--camera-pos, "
-                "--look-at)",
-                view.position.x, view.position.y / e, view.position.z, view.target.x, view.target.y / e,
-                view.target.z);
     }
   }
   if (trees.enabled) {
@@ -111,7 +146,13 @@ render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
   }
   if (simulation.enabled()) {
     scene::BodyDrop drop;
-    drop.centre = scene::ballDropPoint(ground.field(), world.grass(0).field(), view);
+    if (simulation.ballsAt.empty()) {
+      drop.centre = scene::ballDropPoint(ground.field(), world.grass(0).field(), view);
+    } else {
+      const std::vector<float> at = parseNumbers("--balls-at", simulation.ballsAt, 2, "X,Z in metres");
+      drop.centre = {at[0], at[1]};
+    }
+    dropCentre = drop.centre;
     drop.radius = 1.5f;
     drop.count = simulation.balls;
     drop.seed = simulation.seed;
@@ -121,6 +162,15 @@ render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
       view = scene::ballCamera(ground.field(), ground.bounds(), drop.centre, fov);
     }
   }
+  // A camera the options place clips as the camera chosen for the same world would, so the logged camera
+  // renders the same bytes again: among blades 5 cm; among trees alone the forest camera's planes.
+  if (grass.enabled) {
+    view.nearPlane = scene::kGrassNearPlane;
+  } else if (placed && trees.enabled) {
+    view.nearPlane = scene::kForestNearPlane;
+    view.farPlane = ground.defaultCamera().farPlane;
+  }
+  logCamera(view, ground.exaggeration(), camera.fovDegrees, dropCentre);
   return view;
 }
 

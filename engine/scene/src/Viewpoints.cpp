@@ -46,7 +46,7 @@ render::Camera ballCamera(const terrain::HeightField& t, const Aabb& bounds, glm
   camera.target = glm::vec3(look.x, terrain::heightAt(t, look.x, look.y), look.y);
   camera.fovY = fovY;
   render::fitClipPlanes(camera, bounds);
-  camera.nearPlane = 0.05f;
+  camera.nearPlane = kGrassNearPlane;
   return camera;
 }
 
@@ -86,7 +86,7 @@ render::Camera grassCamera(const terrain::HeightField& t, const Aabb& bounds, fl
   }
   camera.fovY = fovY;
   render::fitClipPlanes(camera, bounds);
-  camera.nearPlane = 0.05f;
+  camera.nearPlane = kGrassNearPlane;
   return camera;
 }
 
@@ -127,7 +127,7 @@ render::Camera forestCamera(const terrain::HeightField& field, float exaggeratio
                        exaggeration;
   camera.position = glm::vec3(eye.x, (std::isnan(ground) ? foot.y : ground) + 2.5f, eye.z);
   camera.target = foot + glm::vec3(0.0f, 0.45f * height, 0.0f);
-  camera.nearPlane = 0.1f;
+  camera.nearPlane = kForestNearPlane;
   return camera;
 }
 

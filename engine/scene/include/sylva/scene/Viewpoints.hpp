@@ -30,6 +30,11 @@ glm::vec2 ballDropPoint(const terrain::HeightField& terrain, const grass::GrassF
 render::Camera ballCamera(const terrain::HeightField& terrain, const Aabb& bounds, glm::vec2 drop,
                           float fovY);
 
+/** Near clip plane of every camera among grass blades, metres: a blade 5 cm from the eye still draws. */
+inline constexpr float kGrassNearPlane = 0.05f;
+/** Near clip plane of forestCamera, metres. */
+inline constexpr float kForestNearPlane = 0.1f;
+
 /**
  * A camera at eye height (1.7 m) over the densest grass near the terrain's centre (a 25 × 25 grid over the
  * middle half, ties nearest the centre, steep ground avoided), looking 25 m along the wind turned 35° across
