@@ -85,7 +85,20 @@ std::vector<FarTree> farFieldTrees(const ForestLook& look, const ForestSettings&
     }
   }
   const float floor = ground.floor.value_or(-1e30f);
-  // Only where trees may grow: above the sea, not steeper than the placement's max slope.
+  // The placement's height band (drawn metres); without a top, no higher than the forest's highest tree: the
+  // far field continues the forest and does not climb past its tree line onto snow and rock.
+  float bandLow = std::isnan(placement.minHeight) ? -1e30f : placement.minHeight;
+  float bandHigh = placement.maxHeight;
+  if (std::isnan(bandHigh)) {
+    bandHigh = 1e30f;
+    if (!forest.trees.empty()) {
+      bandHigh = -1e30f;
+      for (const ForestTree& tree : forest.trees) {
+        bandHigh = std::max(bandHigh, tree.base[3].y);
+      }
+    }
+  }
+  // Only where trees may grow: above the sea, in the band, not steeper than the placement's max slope.
   const float maxGrade = std::tan(glm::radians(placement.maxSlope));
   auto height = [&](float x, float z) {
     return terrain::heightAt(field, std::clamp(x, 0.0f, field.extentX()),
@@ -97,7 +110,8 @@ std::vector<FarTree> farFieldTrees(const ForestLook& look, const ForestSettings&
                      (2.0f * step);
     const float gz = (height(t.position.x, t.position.z + step) - height(t.position.x, t.position.z - step)) /
                      (2.0f * step);
-    if (t.position.y >= floor && std::hypot(gx, gz) <= maxGrade) {
+    if (t.position.y >= floor && t.position.y >= bandLow && t.position.y <= bandHigh &&
+        std::hypot(gx, gz) <= maxGrade) {
       extra.push_back(t);
     }
   }

@@ -2,6 +2,7 @@
 // view frames, the far-tree lists.
 #include <sylva/core/Error.hpp>
 #include <sylva/trees/FarField.hpp>
+#include <sylva/trees/ForestLook.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/Tree.hpp>
 
@@ -200,6 +201,48 @@ TEST(FarFieldTest, FarTreeFieldIsDeterministicAndFillsTheAnnulus) {
   t.innerRadius = 400.0f;
   t.outerRadius = 300.0f;
   EXPECT_THROW(farTreeField(t), Error);
+}
+
+// The impostor-only trees of --trees-far-count continue the forest: inside its height band, and without a top
+// to the band no higher than the forest's highest tree (they once climbed the whole terrain onto the snow).
+TEST(FarFieldTest, FarFieldTreesKeepToTheForestsHeightBand) {
+  terrain::HeightField field(65, 65, 10.0f, 10.0f); // a ramp from 0 m (west) to 128 m (east)
+  for (int j = 0; j < 65; ++j) {
+    for (int i = 0; i < 65; ++i) {
+      field.at(i, j) = static_cast<float>(i) * 2.0f;
+    }
+  }
+  Forest forest = gridForest({"almond"}, 2, 5.0f, 3);
+  for (ForestTree& t : forest.trees) {
+    t.base[3] = glm::vec4(320.0f + t.base[3].x, 64.0f, 320.0f + t.base[3].z, 1.0f); // the highest tree: 64 m
+  }
+  ForestLook look;
+  look.farCount = 4000;
+  ForestSettings placement;
+  placement.regionCentre = {320.0f, 320.0f};
+  placement.regionRadius = 60.0f;
+  const FarGround ground{&field, std::nullopt};
+  const auto heights = [&] {
+    float lo = 1e30f;
+    float hi = -1e30f;
+    const std::vector<FarTree> far = farFieldTrees(look, placement, forest, {}, ground);
+    for (const FarTree& t : far) {
+      lo = std::min(lo, t.position.y);
+      hi = std::max(hi, t.position.y);
+    }
+    return std::tuple{far.size(), lo, hi};
+  };
+  const auto [count, lo, hi] = heights();
+  EXPECT_GT(count, 1000u);
+  EXPECT_LE(hi, 64.0f) << "above the forest's highest tree";
+  EXPECT_LT(lo, 10.0f) << "the band has no floor: down to the low end of the ramp";
+  placement.minHeight = 20.0f;
+  placement.maxHeight = 100.0f;
+  const auto [bandCount, bandLo, bandHi] = heights();
+  EXPECT_GT(bandCount, 1000u);
+  EXPECT_GE(bandLo, 20.0f);
+  EXPECT_LE(bandHi, 100.0f);
+  EXPECT_GT(bandHi, 90.0f) << "a given top replaces the forest's highest tree";
 }
 
 } // namespace

@@ -66,8 +66,9 @@ struct FarGround {
 /**
  * The impostor-only trees of `look.farCount` around `forest`: an annulus from the forest's region radius to
  * the terrain's corners, crowns as tall as the forest's (`centres`: TreeRenderer::treeCentres, w = crown
- * height), kept only above the floor and on ground no steeper than the placement's max slope. Deterministic
- * in the placement's seed. Empty for farCount 0.
+ * height), kept only above the floor, inside the placement's height band (without a top: no higher than the
+ * forest's highest tree, so they do not climb onto snow) and on ground no steeper than the placement's max
+ * slope. Deterministic in the placement's seed. Empty for farCount 0.
  */
 std::vector<FarTree> farFieldTrees(const ForestLook& look, const ForestSettings& placement,
                                    const Forest& forest, std::span<const glm::vec4> centres,
