@@ -12,12 +12,13 @@ namespace sylva::scene {
 
 /** What checkScene found and read. */
 struct SceneCheck {
-  std::vector<std::string> errors; ///< one line each ("<file>: <json/path>: <what>"): the file's, then building's
-  std::size_t cameras = 0;         ///< cameras read
-  std::size_t grass = 0;           ///< grass layers
-  std::size_t forests = 0;         ///< forests
-  std::size_t water = 0;           ///< water bodies
-  int terrainWidth = 0;            ///< samples of the terrain that loaded (0: it did not)
+  /** One line each ("<file>: <json/path>: <what>"): the file's own errors in file order, then building's. */
+  std::vector<std::string> errors;
+  std::size_t cameras = 0; ///< cameras read
+  std::size_t grass = 0;   ///< grass layers
+  std::size_t forests = 0; ///< forests
+  std::size_t water = 0;   ///< water bodies
+  int terrainWidth = 0;    ///< samples of the terrain that loaded (0: it did not)
   int terrainHeight = 0;
 };
 
