@@ -242,12 +242,14 @@ void expectCleanInterrupt(const std::vector<std::string>& args, const std::vecto
     std::this_thread::sleep_for(std::chrono::duration<double>(fraction * seconds));
     ::kill(pid, SIGINT);
     const int raw = waitFor(pid);
-    // Progress lines (`<step>: 25% ...`, printed when stderr is not a terminal) are not messages: drop them.
+    // Progress lines (`<step>: 25% ...` and `<step>: done (N/N) in …`, printed when stderr is not a terminal)
+    // are not messages: drop them.
     std::string err;
     {
       std::istringstream lines(readAll(run / "stderr.txt"));
       for (std::string line; std::getline(lines, line);) {
-        if (line.find("%) ") == std::string::npos && line.find("% (") == std::string::npos) {
+        if (line.find("%) ") == std::string::npos && line.find("% (") == std::string::npos &&
+            line.find(": done (") == std::string::npos) {
           err += line + "\n";
         }
       }

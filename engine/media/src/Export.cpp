@@ -142,6 +142,79 @@ std::vector<GifColorType> quantisePalette(const std::filesystem::path& path, std
   return palette;
 }
 
+/** A pixel rectangle [x0, x1) × [y0, y1); empty when x1 <= x0. */
+struct Rect {
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = 0;
+  int y1 = 0;
+};
+
+/** The bounding rectangle of the pixels whose RGB differs between two RGBA8 frames (empty: none). */
+Rect changedRect(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b, int width, int height) {
+  Rect r{width, height, 0, 0};
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = 4 * (static_cast<std::size_t>(y) * width + x);
+      if (a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2]) {
+        r = {std::min(r.x0, x), std::min(r.y0, y), std::max(r.x1, x + 1), std::max(r.y1, y + 1)};
+      }
+    }
+  }
+  return r;
+}
+
+/**
+ * Floyd–Steinberg error diffusion of the RGBA8 `values` inside `rect` onto `palette`, serpentine (rows
+ * alternate direction so the error does not drift one way), errors in 1/16 levels and clamped to the 0..255
+ * range of the colour they are added to. Writes the indices of `rect` into `indices` (width × height).
+ */
+void diffuse(std::span<const std::uint8_t> values, int width, Rect rect,
+             std::span<const GifColorType> palette, NearestColour& nearest,
+             std::vector<GifPixelType>& indices) {
+  if (rect.x1 <= rect.x0) {
+    return;
+  }
+  const int w = rect.x1 - rect.x0;
+  // Two rows of accumulated error (sixteenths), with a pixel of margin on each side.
+  std::vector<std::array<int, 3>> here(static_cast<std::size_t>(w) + 2, {0, 0, 0});
+  std::vector<std::array<int, 3>> below(here.size(), {0, 0, 0});
+  const auto divide16 = [](int e) { return e >= 0 ? (e + 8) / 16 : -((8 - e) / 16); };
+  for (int y = rect.y0; y < rect.y1; ++y) {
+    const bool forward = (y - rect.y0) % 2 == 0;
+    const int step = forward ? 1 : -1;
+    for (int k = 0; k < w; ++k) {
+      const int cx = forward ? k : w - 1 - k; // column in the rectangle
+      const int x = rect.x0 + cx;
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      std::array<int, 3> c{};
+      for (int ch = 0; ch < 3; ++ch) {
+        c[static_cast<std::size_t>(ch)] =
+            std::clamp(int{values[4 * i + static_cast<std::size_t>(ch)]} +
+                           divide16(here[static_cast<std::size_t>(cx + 1)][static_cast<std::size_t>(ch)]),
+                       0, 255);
+      }
+      const GifPixelType index = nearest(static_cast<std::uint8_t>(c[0]), static_cast<std::uint8_t>(c[1]),
+                                         static_cast<std::uint8_t>(c[2]));
+      indices[i] = index;
+      const GifColorType& p = palette[index];
+      const std::array<int, 3> e{c[0] - p.Red, c[1] - p.Green, c[2] - p.Blue};
+      const auto add = [&](std::vector<std::array<int, 3>>& row, int column, int weight) {
+        for (int ch = 0; ch < 3; ++ch) {
+          row[static_cast<std::size_t>(column + 1)][static_cast<std::size_t>(ch)] +=
+              weight * e[static_cast<std::size_t>(ch)];
+        }
+      };
+      add(here, cx + step, 7);
+      add(below, cx - step, 3);
+      add(below, cx, 5);
+      add(below, cx + step, 1);
+    }
+    std::swap(here, below);
+    std::fill(below.begin(), below.end(), std::array<int, 3>{0, 0, 0});
+  }
+}
+
 /** The last non-empty line of a text file, trimmed ("" when there is none). */
 std::string lastLine(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -203,7 +276,8 @@ struct Fd {
 
 } // namespace
 
-void writeGif(const std::filesystem::path& path, std::span<const Image> frames, int delayCs, bool loop) {
+void writeGif(const std::filesystem::path& path, std::span<const Image> frames, int delayCs, bool loop,
+              bool dither) {
   checkFrames(path, frames);
   if (delayCs < 1 || delayCs > 65535) {
     fail("{}: frame delay {} cs is outside 1..65535", path.string(), delayCs);
@@ -259,8 +333,18 @@ void writeGif(const std::filesystem::path& path, std::span<const Image> frames, 
     std::vector<GifPixelType> current(pixels);
     for (std::size_t f = 0; f < frames.size(); ++f) {
       const auto values = frames[f].values<std::uint8_t>();
-      for (std::size_t i = 0; i < pixels; ++i) {
-        current[i] = nearest(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
+      if (dither) {
+        // Only the pixels that changed since the previous frame are diffused again; the rest keep their
+        // indices (diffusing the whole frame would let each change ripple noise over still parts).
+        const Rect changed = f == 0
+                                 ? Rect{0, 0, width, height}
+                                 : changedRect(frames[f - 1].values<std::uint8_t>(), values, width, height);
+        current = previous;
+        diffuse(values, width, changed, palette, nearest, current);
+      } else {
+        for (std::size_t i = 0; i < pixels; ++i) {
+          current[i] = nearest(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
+        }
       }
       int x0 = 0;
       int y0 = 0;
