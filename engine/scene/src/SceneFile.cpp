@@ -664,7 +664,8 @@ SceneDesc parseSceneCollecting(std::string_view text, const std::filesystem::pat
     if (cams.value().size() > 1000) {
       cams.error(fmt::format("{} cameras is more than 1000", cams.value().size()));
     }
-    for (const auto& [name, value] : cams.value().items()) {
+    for (const auto& item : cams.value().items()) {
+      const std::string name = item.key(); // a copy: clang before 16 cannot capture a structured binding
       attempt([&] {
         if (name.empty()) {
           cams.child(name).error("a camera name must not be empty");

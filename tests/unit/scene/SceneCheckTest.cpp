@@ -2,6 +2,7 @@
 // blade file, a bad count, a missing folding project, an out-of-range sun, a malformed camera, two simulated
 // layers, an unknown splat layer, unknown species) gives one line per mistake, none for the good items, and
 // the shipped scenes check clean.
+#include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/scene/SceneCheck.hpp>
 #include <sylva/scene/SceneFile.hpp>
