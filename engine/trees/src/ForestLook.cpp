@@ -87,7 +87,7 @@ std::vector<FarTree> farFieldTrees(const ForestLook& look, const ForestSettings&
   const float floor = ground.floor.value_or(-1e30f);
   // The placement's height band (drawn metres); without a top, no higher than the forest's highest tree: the
   // far field continues the forest and does not climb past its tree line onto snow and rock.
-  float bandLow = std::isnan(placement.minHeight) ? -1e30f : placement.minHeight;
+  const float bandLow = std::isnan(placement.minHeight) ? -1e30f : placement.minHeight;
   float bandHigh = placement.maxHeight;
   if (std::isnan(bandHigh)) {
     bandHigh = 1e30f;

@@ -313,9 +313,6 @@ TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, co
       childScale[i] = n.has("scale") ? static_cast<float>(n["scale"].number(0.02, 100)) : 1.0f;
     } else if (n.has("parent")) {
       n["parent"].error("the root node has no parent");
-    } else if (pieces[static_cast<std::size_t>(node.piece)].name != "Foot") {
-      n["piece"].error(fmt::format("the root is always a Foot (the trunk's base), not '{}'",
-                                   pieces[static_cast<std::size_t>(node.piece)].name));
     }
     tree.nodes.push_back(node);
   }
