@@ -27,8 +27,9 @@ using test::runSylva;
 const std::string kScene = "--size 129 --spacing 4 --width 320 --height 180 ";
 
 /**
- * Bark pixels in columns [x0, width): red clearly above blue and not bright. The small terrain is snow where
- * the forest camera looks, the sky is blue and the ImGui panel grey-blue, so nothing else is this colour.
+ * Bark pixels in columns [x0, width): red clearly above blue, at least green, and not bright (brown). Where
+ * the forest camera looks the small terrain is grass (green above red) below its snow (white; the forest
+ * stops at the snow line), the sky is blue and the ImGui panel grey-blue, so nothing else is this colour.
  */
 std::size_t barkPixels(const Image& image, int x0 = 0) {
   std::size_t count = 0;
@@ -37,7 +38,7 @@ std::size_t barkPixels(const Image& image, int x0 = 0) {
       const float r = image.get(x, y, 0);
       const float g = image.get(x, y, 1);
       const float b = image.get(x, y, 2);
-      count += r > b + 0.05f && r + g + b < 2.35f ? 1 : 0;
+      count += r > b + 0.05f && r >= g && r + g + b < 2.35f ? 1 : 0;
     }
   }
   return count;

@@ -13,6 +13,7 @@
 #include <sylva/scene/SceneTerrain.hpp>
 #include <sylva/scene/gpu/ShoreWater.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/terrain/TerrainMaps.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/Species.hpp>
 
@@ -98,7 +99,8 @@ std::unique_ptr<trees::ForestScene> SceneWorld::makeForest(std::size_t i, const 
                                                            trees::ForestSettings& placement) const {
   const FieldName name = sceneFieldName(mDesc, "/forests/" + std::to_string(i));
   placement = forestSettings(f, mTerrain->exaggeration(), mTerrain->seaLevel(), name,
-                             glm::vec2(mTerrain->field().extentX(), mTerrain->field().extentZ()));
+                             glm::vec2(mTerrain->field().extentX(), mTerrain->field().extentZ()),
+                             terrain::snowLine(grassGround(*mTerrain).layers));
   const trees::ForestLook look = forestLook(f, name);
   auto forest = std::make_shared<trees::Forest>(trees::placeForest(mTerrain->field(), placement));
   auto scene = std::make_unique<trees::ForestScene>(mLibrary, forest, f.wind);

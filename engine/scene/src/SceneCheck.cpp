@@ -92,7 +92,8 @@ SceneCheck checkScene(const std::filesystem::path& file) {
     const glm::vec2 footprint =
         terrain ? glm::vec2(terrain->heights.extentX(), terrain->heights.extentZ()) : glm::vec2(0.0f);
     attempt(result.errors, [&] {
-      (void)forestSettings(forest, exaggeration, terrain ? terrain->seaLevel : std::nullopt, name, footprint);
+      (void)forestSettings(forest, exaggeration, terrain ? terrain->seaLevel : std::nullopt, name, footprint,
+                           terrain::snowLine(layers));
     });
     attempt(result.errors, [&] { (void)forestLook(forest, name); });
   }

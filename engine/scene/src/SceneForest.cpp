@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace sylva::scene {
 
 FieldName sceneForestFieldName(const std::filesystem::path& file, std::size_t index) {
@@ -15,7 +17,8 @@ FieldName sceneForestFieldName(const std::filesystem::path& file, std::size_t in
 }
 
 trees::ForestSettings forestSettings(const ForestDesc& f, float exaggeration, std::optional<float> seaLevel,
-                                     const FieldName& name, glm::vec2 footprint) {
+                                     const FieldName& name, glm::vec2 footprint,
+                                     std::optional<float> treeLine) {
   trees::ForestSettings s;
   s.species.clear();
   for (const auto& [species, weight] : f.species) {
@@ -41,6 +44,8 @@ trees::ForestSettings forestSettings(const ForestDesc& f, float exaggeration, st
   }
   if (f.maxHeight) {
     s.maxHeight = *f.maxHeight;
+  } else if (treeLine && (std::isnan(s.minHeight) || *treeLine * exaggeration > s.minHeight)) {
+    s.maxHeight = *treeLine * exaggeration; // no trees on snow
   }
   if (f.regionCentre) {
     s.regionCentre = *f.regionCentre;

@@ -225,6 +225,18 @@ std::vector<SplatLayer> defaultSplatLayers(float minHeight, float maxHeight, std
   };
 }
 
+std::optional<float> snowLine(std::span<const SplatLayer> layers) {
+  std::optional<float> line;
+  for (const SplatLayer& layer : layers) {
+    if (layer.name != "snow" || layer.minSlope > 0.0f || !(layer.minHeight > -1.0e8f)) {
+      continue;
+    }
+    const float start = layer.minHeight - 0.5f * layer.heightBlend;
+    line = line ? std::min(*line, start) : start;
+  }
+  return line;
+}
+
 nlohmann::json splatLayersToJson(std::span<const SplatLayer> layers) {
   nlohmann::json list = nlohmann::json::array();
   for (const SplatLayer& layer : layers) {

@@ -4,11 +4,14 @@
 // field.
 #include <sylva/core/Error.hpp>
 #include <sylva/scene/SceneForest.hpp>
+#include <sylva/terrain/HeightField.hpp>
+#include <sylva/terrain/TerrainMaps.hpp>
 
 #include "TestUtil.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -66,6 +69,59 @@ TEST(SceneForest, NoRegionIsTheWholeTerrainAndTheSeaSetsTheFloor) {
   EXPECT_FLOAT_EQ(s.regionRadius, 0.0f);
   EXPECT_FLOAT_EQ(s.minHeight, (10.0f + 0.5f) * 2.0f); // drawn metres
   EXPECT_TRUE(std::isnan(forestSettings(f, 2.0f, std::nullopt, kName).minHeight));
+}
+
+// Without a max_height the forest stops where the terrain's snow starts (issue 30: the forest of `render
+// --trees` stood on snow): the tree line is read from the splat rules, in true metres, drawn × exaggeration.
+TEST(SceneForest, WithoutATopTheForestStopsBelowTheSnow) {
+  const std::vector<terrain::SplatLayer> layers = terrain::defaultSplatLayers(0.0f, 100.0f);
+  const std::optional<float> line = terrain::snowLine(layers);
+  ASSERT_TRUE(line.has_value());
+  EXPECT_FLOAT_EQ(*line, 70.0f - 0.5f * 4.0f); // snow from 70 m with a 4 m soft edge
+  EXPECT_FALSE(terrain::snowLine(std::vector<terrain::SplatLayer>{{"grass", 0.0f, 50.0f}}).has_value());
+  // With a sea: the snow line of the land above it.
+  const std::optional<float> coast = terrain::snowLine(terrain::defaultSplatLayers(-20.0f, 100.0f, 0.0f));
+  ASSERT_TRUE(coast.has_value());
+  EXPECT_NEAR(*coast, 70.0f - 2.0f, 1e-4f);
+
+  ForestDesc f;
+  f.species = {{"almond", 1.0f}};
+  f.count = 400;
+  f.spacing = 3.0f;
+  f.bare = 0.0f;
+  const float exaggeration = 1.5f;
+  EXPECT_FLOAT_EQ(forestSettings(f, exaggeration, std::nullopt, kName, {}, line).maxHeight,
+                  *line * exaggeration);
+  EXPECT_TRUE(std::isnan(forestSettings(f, exaggeration, std::nullopt, kName).maxHeight));
+  // A tree line below the floor is no band: the file's floor stays, no empty band.
+  f.minHeight = 200.0f;
+  EXPECT_TRUE(std::isnan(forestSettings(f, exaggeration, std::nullopt, kName, {}, line).maxHeight));
+  f.minHeight.reset();
+  f.maxHeight = 140.0f; // the file's top wins
+  EXPECT_FLOAT_EQ(forestSettings(f, exaggeration, std::nullopt, kName, {}, line).maxHeight, 140.0f);
+  f.maxHeight.reset();
+
+  // Placed on a slope rising 0 → 150 drawn metres (true 0 → 100): no tree on the snow, some without the line.
+  terrain::HeightField field(65, 65, 8.0f, 8.0f); // 512 m: a 16° slope
+  for (int j = 0; j < field.height(); ++j) {
+    for (int i = 0; i < field.width(); ++i) {
+      field.at(i, j) = 150.0f * static_cast<float>(i) / 64.0f;
+    }
+  }
+  auto highest = [&](const trees::Forest& forest) {
+    float top = -1.0f;
+    for (const trees::ForestTree& t : forest.trees) {
+      top = std::max(top, t.base[3].y);
+    }
+    return top;
+  };
+  const trees::Forest bounded =
+      trees::placeForest(field, forestSettings(f, exaggeration, std::nullopt, kName, {}, line));
+  const trees::Forest unbounded =
+      trees::placeForest(field, forestSettings(f, exaggeration, std::nullopt, kName));
+  ASSERT_GT(bounded.trees.size(), 20u);
+  EXPECT_LE(highest(bounded), *line * exaggeration);
+  EXPECT_GT(highest(unbounded), *line * exaggeration);
 }
 
 TEST(SceneForest, ErrorsNameTheFileAndField) {

@@ -21,13 +21,15 @@ FieldName sceneForestFieldName(const std::filesystem::path& file, std::size_t in
  * Where the trees of `forest` stand on a terrain drawn `exaggeration` × its true heights (the field placement
  * reads holds drawn heights): species and weights (each resolved, or an error naming "species/<name>"),
  * count, seed, spacing, max slope, clustering, bare fraction, height band (default floor: half a metre above
- * `seaLevel`, true metres), the region (none: the whole terrain; regionAroundCentre: centred on the
- * `footprint`, world metres x × z) and the density map (loaded here). Throws
- * sylva::Error naming the field through `name` before any tree is placed.
+ * `seaLevel`, true metres; default top: `treeLine`, true metres, the terrain's terrain::snowLine, when it
+ * lies above the floor), the region (none: the whole terrain; regionAroundCentre: centred on the `footprint`,
+ * world metres x × z) and the density map (loaded here). Throws sylva::Error naming the field through `name`
+ * before any tree is placed.
  */
 trees::ForestSettings forestSettings(const ForestDesc& forest, float exaggeration,
                                      std::optional<float> seaLevel, const FieldName& name,
-                                     glm::vec2 footprint = glm::vec2(0.0f));
+                                     glm::vec2 footprint = glm::vec2(0.0f),
+                                     std::optional<float> treeLine = std::nullopt);
 
 /** How the trees of `forest` look: its `look` when given, else bark, foliage and far field (leaves "auto").
  * Checked (trees::check). */

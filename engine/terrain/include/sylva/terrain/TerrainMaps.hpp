@@ -117,6 +117,14 @@ std::vector<SplatLayer> defaultSplatLayers(float minHeight, float maxHeight,
                                            std::optional<float> seaLevel = std::nullopt);
 
 /**
+ * The tree line of splat rules: the lowest height, true metres, at which a layer named "snow" that covers
+ * flat ground (minSlope 0) starts to show, minHeight − heightBlend / 2 (where its soft edge begins). nullopt
+ * when no such layer has a lower limit (the rules have no snow, or snow from the bottom of the world).
+ * Forests without a height band's top stop here (scene::forestSettings), so trees do not stand on snow.
+ */
+std::optional<float> snowLine(std::span<const SplatLayer> layers);
+
+/**
  * JSON {"version": 1, "layers": [{"name", "minHeight", "maxHeight", "minSlope", "maxSlope",
  * "heightBlend", "slopeBlend"}, ...]}.
  */
