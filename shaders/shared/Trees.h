@@ -3,6 +3,7 @@
 #define SYLVA_SHARED_TREES_H
 
 #include "Prelude.h"
+#include "Wind.h"
 
 SYLVA_GPU_BEGIN
 
@@ -181,8 +182,10 @@ struct ImpostorUniforms {
   uvec4 info; // x: instances, y: species, zw: unused
   vec4 sphere[SYLVA_TREE_MAX_SPECIES];
   vec4 frustum[6]; // world-space planes (xyz normal pointing inwards, w offset)
+  WindUniforms wind; // the wind at the frame's time; flow.z 0: no sway (ImpostorRenderer::setWind)
+  vec4 sway[SYLVA_TREE_MAX_SPECIES]; // per species: x lean per squared wind speed (1/(m/s)²), y largest lean
 };
-SYLVA_ASSERT_SIZE(ImpostorUniforms, 272);
+SYLVA_ASSERT_SIZE(ImpostorUniforms, 464);
 
 SYLVA_GPU_END
 

@@ -3,7 +3,8 @@
 // planes of the three baked views nearest to the viewing direction (parallax-correct: each view is sampled
 // where the ray crosses its own plane, then once more where it crosses the baked depth), their coverage,
 // albedo, normal and depth blended by barycentric weight; alpha-tested, lit like the pieces, its depth written
-// from the baked depth, and dissolved with the complement of the pieces' mask in the far range's band.
+// from the baked depth, and dissolved with the complement of the pieces' mask in the far range's band. A tree
+// leaning in the wind is looked up along the un-sheared ray (impostorLean).
 #include "impostor.glsl"
 #include "fade.glsl"
 #include "../common/frame.glsl"
@@ -20,6 +21,8 @@ flat in vec3 vWeights;
 flat in vec3 vForward[3];
 flat in vec3 vRight[3];
 flat in vec3 vUp[3];
+flat in vec2 vLean;
+flat in float vBaseY;
 
 layout(location = 0) out vec4 outColour;
 layout(depth_greater) out float gl_FragDepth;
@@ -32,10 +35,10 @@ void main() {
   uint tree = t.info.x;
   bool farOnly = (t.info.w & SYLVA_TREE_IMPOSTOR_FAR_ONLY) != 0u;
   float h = t.placement.w;
-  vec3 eye = frame.cameraPos.xyz;
+  vec3 eyeWorld = frame.cameraPos.xyz;
   if (!farOnly) {
     // The complement of piece.frag's mask, same distance, same tree index.
-    float d = distance(eye, t.placement.xyz + vec3(0.0, 0.5 * h, 0.0));
+    float d = distance(eyeWorld, t.placement.xyz + vec3(0.0, 0.5 * h, 0.0));
     if (!impostorKeeps(farBlend(d, impostor.far.xy), uvec2(gl_FragCoord.xy), tree)) {
       discard;
     }
@@ -46,7 +49,12 @@ void main() {
   float radius = vSphere.w;
   float views = impostor.atlas.x;
   float layer = float(species);
-  vec3 ray = normalize(vWorld - eye);
+  // The leaning tree is the upright one sheared about its base (p + lean · (p.y − base)): rays stay straight
+  // under a shear, so the pixel's ray is un-sheared and met with the upright tree's views.
+  vec3 shear = vec3(vLean.x, 0.0, vLean.y);
+  vec3 eye = eyeWorld - shear * (eyeWorld.y - vBaseY);
+  vec3 rayWorld = vWorld - eyeWorld;
+  vec3 ray = normalize(rayWorld - shear * rayWorld.y);
   // Texels of a cell per pixel at the sphere's centre (the billboard stands a radius nearer).
   float distanceToCentre = distance(eye, centre);
   float footprint = pixelSize * distanceToCentre / max(distanceToCentre - radius, 1e-3);
@@ -109,6 +117,7 @@ void main() {
   vec3 v = normalize(eye - centre);
   float along = dot(centre + v * depthOffset - eye, v) / dot(ray, v);
   vec3 world = eye + ray * along;
+  world += shear * (world.y - vBaseY); // back onto the pixel's ray
   vec4 clip = frame.viewProj * vec4(world, 1.0);
   float depth = clip.z / clip.w * 0.5 + 0.5;
   gl_FragDepth = clamp(max(depth, gl_FragCoord.z), 0.0, 1.0);

@@ -3,6 +3,7 @@
 #pragma once
 #include "../shared/Trees.h"
 #include "fade.glsl"
+#include "../common/wind.glsl"
 
 layout(std430, binding = SYLVA_TREE_IMPOSTOR_BINDING) readonly buffer ImpostorInstances {
   ImpostorInstanceGpu impostors[];
@@ -28,6 +29,34 @@ bool impostorVisible(ImpostorInstanceGpu t, vec3 eye, vec3 centre, float radius)
     }
   }
   return true;
+}
+
+/** Seconds added to the wind's clock for far tree `id` (impostorWindOffset in C++). */
+float impostorWindOffset(uint id) {
+  return float(lowbias32(id) >> 8u) * (600.0 / 16777216.0);
+}
+
+/** Far tree `t`'s lean in the wind, world (x, z) metres per metre above its base (impostorLean in C++,
+ * sylva/trees/FarField.hpp ImpostorSway): k · |u| u at the base, at most the species' longest lean. */
+vec2 impostorLean(ImpostorInstanceGpu t) {
+  uint species = min(t.info.y, uint(SYLVA_TREE_MAX_SPECIES - 1));
+  vec4 sway = impostor.sway[species];
+  if (!(sway.x > 0.0) || !(impostor.wind.flow.z > 0.0)) {
+    return vec2(0.0);
+  }
+  WindUniforms w = impostor.wind;
+  w.flow.w = w.flow.w + impostorWindOffset(t.info.x);
+  vec2 u = windVelocity(w, t.placement.xz);
+  vec2 lean = sway.x * length(u) * u;
+  float len = length(lean);
+  return len > sway.y ? lean * (sway.y / len) : lean;
+}
+
+/** The bounding sphere of a tree sheared by `lean` about its base at height `baseY` (impostorLeanedSphere in
+ * C++): centre + lean · (centre.y − baseY), radius · (1 + |lean|). */
+vec4 impostorLeanedSphere(vec4 sphere, float baseY, vec2 lean) {
+  float up = sphere.y - baseY;
+  return vec4(sphere.x + lean.x * up, sphere.y, sphere.z + lean.y * up, sphere.w * (1.0 + length(lean)));
 }
 
 /** Unit direction (y up; below the horizon clamped onto it) to hemi-octahedral coordinates in [0, 1]^2. */

@@ -1,6 +1,7 @@
 #version 450
 // Far trees as camera-facing billboards (docs/trees.md "Far field"): one instance per tree the cull kept
-// (impostor_cull.comp), four vertices, a quad in front of the tree's bounding sphere covering its silhouette.
+// (impostor_cull.comp), four vertices, a quad in front of the tree's bounding sphere covering its silhouette
+// (the sphere sheared by the tree's lean in the wind).
 #include "impostor.glsl"
 #include "../common/frame.glsl"
 
@@ -18,6 +19,10 @@ flat out vec3 vWeights;
 flat out vec3 vForward[3];
 flat out vec3 vRight[3];
 flat out vec3 vUp[3];
+// The tree's lean in the wind (world x, z per metre above its base) and its base height: the fragments
+// un-shear their rays with them.
+flat out vec2 vLean;
+flat out float vBaseY;
 
 void main() {
   uint index = visible[gl_InstanceID];
@@ -29,11 +34,20 @@ void main() {
   float yaw = uintBitsToFloat(t.info.z);
   vec3 centre = t.placement.xyz + yawRotate(s.xyz * h, yaw);
   float radius = s.w * h;
+  vec2 lean = impostorLean(t);
+  vLean = lean;
+  vBaseY = t.placement.y;
+  vSphere = vec4(centre, radius);
   vec3 eye = frame.cameraPos.xyz;
+  // The views are chosen for the eye as the upright tree sees it (the eye un-sheared), the quad covers the
+  // leaning tree's sphere.
+  vec3 eyeUpright = eye - vec3(lean.x, 0.0, lean.y) * (eye.y - vBaseY);
+  vec3 v = normalize(eyeUpright - centre);
+  vec4 leaned = impostorLeanedSphere(vec4(centre, radius), vBaseY, lean);
+  centre = leaned.xyz;
+  radius = leaned.w;
   vec3 toEye = eye - centre;
   float dist = length(toEye);
-  vec3 v = toEye / dist;
-  vSphere = vec4(centre, radius);
   int views = int(impostor.atlas.x);
   ivec2 cells[3];
   vec3 weights;
@@ -49,6 +63,7 @@ void main() {
     vRight[k] = yawRotate(r, yaw);
     vUp[k] = yawRotate(u, yaw);
   }
+  v = toEye / dist;
   vec3 right;
   vec3 up;
   impostorBasis(v, right, up);

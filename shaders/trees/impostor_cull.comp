@@ -1,6 +1,6 @@
 #version 450
 // Culls the far trees (docs/trees.md "Far field"): keeps those dissolving in or beyond the far range's start
-// (far-only trees always), not too near and within the frustum, appending them to the visible list and
+// (far-only trees always), not too near and within the frustum (its sphere sheared by its lean in the wind), appending them to the visible list and
 // counting them into the instanced draw's command.
 #include "impostor.glsl"
 #include "../common/frame.glsl"
@@ -24,7 +24,8 @@ void main() {
   vec4 s = impostor.sphere[species];
   float h = t.placement.w;
   vec3 centre = t.placement.xyz + yawRotate(s.xyz * h, uintBitsToFloat(t.info.z));
-  if (impostorVisible(t, frame.cameraPos.xyz, centre, s.w * h)) {
+  vec4 leaned = impostorLeanedSphere(vec4(centre, s.w * h), t.placement.y, impostorLean(t));
+  if (impostorVisible(t, frame.cameraPos.xyz, leaned.xyz, leaned.w)) {
     visible[atomicAdd(command[1], 1u)] = i;
   }
 }

@@ -92,6 +92,21 @@ TEST(CliTreesRender, SameTimeGivesTheSameImage) {
   EXPECT_GT(differentPixels(loadImage(a), loadImage(still1)), 10u) << "the wind bent nothing";
 }
 
+// Far trees sway too (issue 30): with every tree an impostor (far field from 1 m; one species, one bake), the
+// wind moves the image between two times; without wind the impostors stand still.
+TEST(CliTreesRender, ImpostorsSwayInTheWind) {
+  const test::TempDir dir;
+  const std::string far = "--trees --trees-species almond --trees-far 1 --trees-far-band 1 --wind-speed 10 ";
+  const Image a = loadImage(render(dir, far + "--time 2.5", "far-a.png"));
+  const Image b = loadImage(render(dir, far + "--time 4", "far-b.png"));
+  const std::size_t moved = differentPixels(a, b);
+  std::printf("impostor pixels moved by the wind from 2.5 s to 4 s: %zu\n", moved);
+  EXPECT_GT(moved, 10u) << "the far trees stood still in a 10 m/s wind";
+  const Image still1 = loadImage(render(dir, far + "--no-trees-wind --time 2.5", "far-still1.png"));
+  const Image still2 = loadImage(render(dir, far + "--no-trees-wind --time 4", "far-still2.png"));
+  EXPECT_EQ(differentPixels(still1, still2), 0u) << "no wind: no time dependence";
+}
+
 // The forest camera looks at a tree near the terrain's centre: bark pixels fill part of the image, and the
 // image differs from the same render without --trees and from the same camera with no piece in range.
 TEST(CliTreesRender, TreesAreVisible) {

@@ -125,6 +125,10 @@ void ForestScene::resetWind() {
 void ForestScene::advance(double time, const wind::WindSettings& wind, int maxSteps,
                           render::GpuTimers* timers) {
   mSteps = 0;
+  if (mImpostors) {
+    // Far trees lean in the wind the near ones bend in (none: upright, as the rest pose).
+    mImpostors->setWind(mWindOn ? wind::toUniforms(wind, static_cast<float>(time)) : gpu::WindUniforms{});
+  }
   if (!mWindOn) {
     return;
   }

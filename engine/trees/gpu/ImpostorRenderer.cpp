@@ -69,6 +69,12 @@ void ImpostorRenderer::reloadShaders(const shader::Library& library) {
   mLibrary = &library;
 }
 
+ImpostorSway ImpostorRenderer::speciesSway(int species) const {
+  return species >= 0 && static_cast<std::size_t>(species) < mSway.size()
+             ? mSway[static_cast<std::size_t>(species)]
+             : ImpostorSway{};
+}
+
 glm::vec4 ImpostorRenderer::speciesSphere(int species) const {
   return species >= 0 && static_cast<std::size_t>(species) < mSpheres.size()
              ? mSpheres[static_cast<std::size_t>(species)]
@@ -140,6 +146,7 @@ void ImpostorRenderer::bake(const Forest& forest, const ImpostorBakeOptions& opt
   gl::setLabel(GL_TEXTURE, mNormal.id(), "impostor normal atlas");
   mSpecies = species;
   mSpheres.assign(SYLVA_TREE_MAX_SPECIES, glm::vec4(0.0f, 0.5f, 0.0f, 0.6f));
+  mSway.assign(SYLVA_TREE_MAX_SPECIES, ImpostorSway{});
   for (int s = 0; s < species; ++s) {
     bakeSpecies(forest, s, options);
   }
@@ -171,6 +178,8 @@ void ImpostorRenderer::bakeSpecies(const Forest& forest, int s, const ImpostorBa
   tree.base = baseFrame(glm::vec3(0.0f), 0.0f, scale);
   one->trees = {tree};
   one->index();
+  // Far trees of this species lean as much as this one bends in a steady wind.
+  mSway[static_cast<std::size_t>(s)] = calibrateImpostorSway(*one, 0);
   TreeRenderer renderer(*mLibrary, one);
   if (options.prepare) {
     options.prepare(renderer);
@@ -331,7 +340,9 @@ void ImpostorRenderer::draw(const render::Camera& camera, int width, int height,
     u.info = glm::uvec4(static_cast<unsigned>(mTreeCount), static_cast<unsigned>(mSpecies), 0u, 0u);
     for (std::size_t s = 0; s < SYLVA_TREE_MAX_SPECIES; ++s) {
       u.sphere[s] = mSpheres[s];
+      u.sway[s] = glm::vec4(mSway[s].perSpeedSquared, mSway[s].maxLean, 0.0f, 0.0f);
     }
+    u.wind = mWind;
     const Frustum frustum =
         camera.frustum(static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
     for (std::size_t p = 0; p < 6; ++p) {

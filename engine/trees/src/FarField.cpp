@@ -3,10 +3,13 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/trees/Forest.hpp>
+#include <sylva/trees/JointWind.hpp>
+#include <sylva/wind/Wind.hpp>
 #include <sylva/trees/Tree.hpp>
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -69,13 +72,82 @@ glm::vec3 yawRotate(glm::vec3 v, float yaw) {
   return {c * v.x + s * v.z, v.y, -s * v.x + c * v.z};
 }
 
+glm::vec4 impostorLeanedSphere(glm::vec4 sphere, float baseY, glm::vec2 lean) {
+  const float up = sphere.y - baseY;
+  return {sphere.x + lean.x * up, sphere.y, sphere.z + lean.y * up, sphere.w * (1.0f + glm::length(lean))};
+}
+
+float impostorWindOffset(std::uint32_t id) {
+  return static_cast<float>(lowbias32(id) >> 8) * (600.0f / 16777216.0f);
+}
+
+glm::vec2 impostorLean(const FarTree& tree, const ImpostorSway& sway, const gpu::WindUniforms& wind) {
+  if (!(sway.perSpeedSquared > 0.0f) || !(wind.flow.z > 0.0f)) {
+    return glm::vec2(0.0f);
+  }
+  gpu::WindUniforms w = wind;
+  w.flow.w = w.flow.w + impostorWindOffset(tree.id);
+  const glm::vec2 u = wind::windVelocity(w, glm::vec2(tree.position.x, tree.position.z));
+  const glm::vec2 lean = sway.perSpeedSquared * glm::length(u) * u;
+  const float length = glm::length(lean);
+  return length > sway.maxLean ? lean * (sway.maxLean / length) : lean;
+}
+
+ImpostorSway calibrateImpostorSway(const Forest& forest, std::size_t tree, float speed, float seconds) {
+  if (tree >= forest.trees.size()) {
+    fail("impostor sway: tree {} of a forest of {}", tree, forest.trees.size());
+  }
+  if (!(speed > 0.0f) || !(seconds > 0.0f) || !std::isfinite(speed) || !std::isfinite(seconds)) {
+    fail("impostor sway: wind {} m/s for {} s (both must be positive)", speed, seconds);
+  }
+  const ForestTree& t = forest.trees[tree];
+  JointWindTree one;
+  one.topology = &t.topology;
+  one.species = &forest.species.at(static_cast<std::size_t>(t.species));
+  one.base = t.base;
+  one.pose = t.pose;
+  const JointWindRest rest = buildJointWindRest(forest.pieces, std::span<const JointWindTree>(&one, 1));
+  wind::WindSettings steady;
+  steady.direction = glm::vec2(1.0f, 0.0f);
+  steady.speed = speed;
+  steady.gustStrength = 0.0f;
+  steady.turbulence = 0.0f;
+  JointWindState state(rest.jointCount());
+  constexpr float kStep = 1.0f / 60.0f;
+  const int steps = static_cast<int>(std::ceil(seconds / kStep));
+  for (int i = 0; i < steps; ++i) {
+    stepJointWindRange(rest, state, wind::toUniforms(steady, static_cast<float>(i) * kStep), kStep, 0,
+                       rest.jointCount());
+  }
+  std::vector<glm::mat4> bent;
+  std::vector<glm::mat4> still;
+  forestJointFrames(rest, state, bent);
+  forestJointFrames(rest, JointWindState(rest.jointCount()), still);
+  const float baseY = still.front()[3].y;
+  double dy = 0.0;
+  double yy = 0.0;
+  for (std::size_t j = 1; j < still.size(); ++j) {
+    const double y = static_cast<double>(still[j][3].y - baseY);
+    dy += static_cast<double>(bent[j][3].x - still[j][3].x) * y;
+    yy += y * y;
+  }
+  ImpostorSway sway;
+  if (yy > 0.0) {
+    sway.perSpeedSquared = std::max(static_cast<float>(dy / yy), 0.0f) / (speed * speed);
+  }
+  return sway;
+}
+
 bool impostorVisible(const FarTree& tree, glm::vec4 sphere, const std::array<glm::vec4, 6>& planes,
-                     glm::vec3 eye, glm::vec2 farRange) {
+                     glm::vec3 eye, glm::vec2 farRange, glm::vec2 lean) {
   const float h = tree.height;
   const float d = glm::distance(eye, tree.position + glm::vec3(0.0f, 0.5f * h, 0.0f));
   const float blend = tree.farOnly ? 1.0f : farBlend(d, farRange);
-  const glm::vec3 centre = tree.position + yawRotate(glm::vec3(sphere) * h, tree.yaw);
-  const float radius = sphere.w * h;
+  const glm::vec4 leaned = impostorLeanedSphere(
+      glm::vec4(tree.position + yawRotate(glm::vec3(sphere) * h, tree.yaw), sphere.w * h), tree.position.y,
+      lean);
+  const glm::vec3 centre(leaned);
+  const float radius = leaned.w;
   if (blend <= 0.0f || glm::distance(eye, centre) < 2.0f * radius) {
     return false;
   }

@@ -7,6 +7,7 @@
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/trees/gpu/ImpostorRenderer.hpp>
 #include <sylva/trees/gpu/TreeRenderer.hpp>
+#include <sylva/wind/Wind.hpp>
 
 #include "GlTest.hpp"
 
@@ -436,6 +437,76 @@ TEST_F(ImpostorRendererTest, BakedDepthSortsAgainstOpaqueSurfaces) {
       EXPECT_EQ(treeInQuad, aloneInQuad);
     }
   }
+}
+
+// Far trees lean in the wind (issue 30: impostors did not sway): the impostor is sheared about its base, so,
+// seen side-on, each row of the crown moves downwind by the lean times its height above the base, the lean
+// the CPU's impostorLean gives; in still air the image is the upright tree's, bit for bit.
+TEST_F(ImpostorRendererTest, FarTreesLeanInTheWind) {
+  Scene scene(shaders());
+  render::RenderTarget target(kImpostorSize, kImpostorSize);
+  const glm::vec2 impostorOnly(0.5f, 1.0f);
+  // Seen along −z: world +x is screen right, the wind blows along +x.
+  const float distance = 25.0f;
+  const render::Camera camera = scene.camera(glm::vec3(0.0f, 0.0f, 1.0f), distance);
+  const Image upright = scene.drawImpostor(target, camera, impostorOnly);
+  wind::WindSettings still;
+  still.speed = 0.0f;
+  scene.impostors->setWind(wind::toUniforms(still, 3.0f));
+  EXPECT_TRUE(scene.drawImpostor(target, camera, impostorOnly) == upright) << "still air leans nothing";
+
+  wind::WindSettings steady;
+  steady.speed = 8.0f;
+  steady.gustStrength = 0.0f;
+  steady.turbulence = 0.0f;
+  const gpu::WindUniforms w = wind::toUniforms(steady, 3.0f);
+  scene.impostors->setWind(w);
+  const Image leaning = scene.drawImpostor(target, camera, impostorOnly);
+  keep(upright, "impostor-upright");
+  keep(leaning, "impostor-leaning");
+  const glm::vec2 lean = impostorLean(scene.far[0], scene.impostors->speciesSway(0), w);
+  ASSERT_GT(lean.x, 0.02f) << "an 8 m/s wind leans the tree";
+  EXPECT_NEAR(lean.y, 0.0f, 1e-6f);
+  // Metres per pixel on the plane through the sphere's centre (Scene::camera: the sphere fills 0.8 of it).
+  const float metresPerPixel = 2.0f * scene.radius / 0.8f / static_cast<float>(kImpostorSize);
+  double measured = 0.0;
+  double expected = 0.0;
+  double lowShift = 0.0;
+  double highShift = 0.0;
+  int rows = 0;
+  for (int y = 0; y < kImpostorSize; ++y) {
+    double a = 0.0;
+    double b = 0.0;
+    int na = 0;
+    int nb = 0;
+    for (int x = 0; x < kImpostorSize; ++x) {
+      if (covered(upright, x, y)) {
+        a += x;
+        ++na;
+      }
+      if (covered(leaning, x, y)) {
+        b += x;
+        ++nb;
+      }
+    }
+    if (na < 4 || nb < 4) {
+      continue;
+    }
+    // Image rows run top down (readColor: file order).
+    const float worldY =
+        scene.centre.y + (0.5f * kImpostorSize - (static_cast<float>(y) + 0.5f)) * metresPerPixel;
+    const double shift = b / nb - a / na;
+    measured += shift;
+    expected += lean.x * (worldY - scene.far[0].position.y) / metresPerPixel;
+    (worldY > scene.centre.y ? highShift : lowShift) += shift;
+    ++rows;
+  }
+  ASSERT_GT(rows, 40);
+  std::printf("lean %.4f: mean row shift %.2f px, expected %.2f px\n", lean.x, measured / rows,
+              expected / rows);
+  EXPECT_GT(measured / rows, 1.0) << "the crown moves downwind";
+  EXPECT_NEAR(measured / expected, 1.0, 0.3) << "by the lean times the height above the base";
+  EXPECT_GT(highShift, lowShift) << "the top moves more than the trunk";
 }
 
 } // namespace

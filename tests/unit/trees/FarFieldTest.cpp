@@ -5,12 +5,14 @@
 #include <sylva/trees/ForestLook.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/Tree.hpp>
+#include <sylva/wind/Wind.hpp>
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace sylva::trees {
@@ -243,6 +245,80 @@ TEST(FarFieldTest, FarFieldTreesKeepToTheForestsHeightBand) {
   EXPECT_GE(bandLo, 20.0f);
   EXPECT_LE(bandHi, 100.0f);
   EXPECT_GT(bandHi, 90.0f) << "a given top replaces the forest's highest tree";
+}
+
+// Far trees sway (issue 30: impostors stood still while the pieces they replace bent): a species' lean per
+// squared wind speed is calibrated on its joint springs in a steady wind, so a far tree leans about as much
+// as its near twin bends; the lean grows as the square of the speed while the bends stay small, follows the
+// wind's direction, is capped, and no two trees lean in unison in gusty wind.
+TEST(FarFieldTest, FarTreesLeanAsMuchAsTheirNearTwinsBend) {
+  for (const char* species : {"almond", "california-black-oak"}) {
+    const Forest forest = gridForest({species}, 1, 5.0f, 3);
+    const ImpostorSway gentle = calibrateImpostorSway(forest, 0, 3.0f);
+    const ImpostorSway fresh = calibrateImpostorSway(forest, 0, 5.0f);
+    const float lean3 = gentle.perSpeedSquared * 9.0f;
+    const float lean5 = fresh.perSpeedSquared * 25.0f;
+    std::printf("%s: lean %.4f at 3 m/s, %.4f at 5 m/s (k %.5f, %.5f per (m/s)^2)\n", species, lean3, lean5,
+                gentle.perSpeedSquared, fresh.perSpeedSquared);
+    // docs/trees.md: the springs bend a tree's top by about 2 % of its height at 3 m/s.
+    EXPECT_GT(lean3, 0.004f) << species;
+    EXPECT_LT(lean3, 0.08f) << species;
+    // Small bends: the response is quadratic in the speed, k is nearly the same at both speeds.
+    EXPECT_NEAR(fresh.perSpeedSquared / gentle.perSpeedSquared, 1.0f, 0.2f) << species;
+    EXPECT_EQ(calibrateImpostorSway(forest, 0, 3.0f).perSpeedSquared, gentle.perSpeedSquared)
+        << "deterministic";
+  }
+  EXPECT_THROW((void)calibrateImpostorSway(gridForest({"almond"}, 1, 5.0f, 3), 1), Error);
+
+  ImpostorSway sway;
+  sway.perSpeedSquared = 0.002f;
+  FarTree tree;
+  tree.position = glm::vec3(40.0f, 3.0f, -25.0f);
+  tree.id = 17;
+  wind::WindSettings steady;
+  steady.direction = glm::vec2(0.0f, 1.0f);
+  steady.speed = 5.0f;
+  steady.gustStrength = 0.0f;
+  steady.turbulence = 0.0f;
+  const glm::vec2 lean = impostorLean(tree, sway, wind::toUniforms(steady, 2.0f));
+  EXPECT_NEAR(lean.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(lean.y, 0.002f * 25.0f, 1e-5f) << "k |u| u downwind";
+  steady.speed = 0.0f;
+  EXPECT_EQ(impostorLean(tree, sway, wind::toUniforms(steady, 2.0f)), glm::vec2(0.0f)) << "still air";
+  EXPECT_EQ(impostorLean(tree, ImpostorSway{}, wind::toUniforms(wind::WindSettings{}, 2.0f)),
+            glm::vec2(0.0f));
+  steady.speed = 40.0f;
+  EXPECT_NEAR(glm::length(impostorLean(tree, sway, wind::toUniforms(steady, 2.0f))), sway.maxLean, 1e-5f)
+      << "capped";
+
+  // Gusty wind: trees side by side lean differently at one moment, and a tree's lean changes over time.
+  wind::WindSettings gusty;
+  gusty.speed = 6.0f;
+  FarTree neighbour = tree;
+  neighbour.id = 18;
+  neighbour.position.x += 1.0f;
+  const gpu::WindUniforms now = wind::toUniforms(gusty, 10.0f);
+  EXPECT_GT(glm::length(impostorLean(tree, sway, now) - impostorLean(neighbour, sway, now)), 1e-3f);
+  EXPECT_GT(
+      glm::length(impostorLean(tree, sway, now) - impostorLean(tree, sway, wind::toUniforms(gusty, 11.5f))),
+      1e-3f);
+  EXPECT_NE(impostorWindOffset(17), impostorWindOffset(18));
+  EXPECT_GE(impostorWindOffset(0xffffffffu), 0.0f);
+  EXPECT_LT(impostorWindOffset(0xffffffffu), 600.0f);
+
+  // The sheared sphere holds the sheared tree: a point on the unleaned sphere moved by the shear stays
+  // inside.
+  const glm::vec4 sphere(2.0f, 9.0f, -1.0f, 6.0f);
+  const glm::vec2 l(0.2f, -0.1f);
+  const glm::vec4 leaned = impostorLeanedSphere(sphere, 3.0f, l);
+  for (int i = 0; i < 64; ++i) {
+    const float a = static_cast<float>(i) * 0.7f;
+    const float b = static_cast<float>(i) * 1.3f;
+    const glm::vec3 p = glm::vec3(sphere) + sphere.w * glm::vec3(std::cos(a) * std::cos(b), std::sin(b),
+                                                                 std::sin(a) * std::cos(b));
+    const glm::vec3 q = p + glm::vec3(l.x, 0.0f, l.y) * (p.y - 3.0f);
+    EXPECT_LE(glm::distance(q, glm::vec3(leaned)), leaned.w + 1e-4f);
+  }
 }
 
 } // namespace

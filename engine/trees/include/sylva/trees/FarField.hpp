@@ -6,12 +6,15 @@
 #include <sylva/core/Random.hpp>
 #include <sylva/terrain/HeightField.hpp>
 
+#include <shared/Wind.h>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -118,12 +121,53 @@ struct FarTree {
 /**
  * CPU twin of the impostor cull (shaders/trees/impostor.glsl impostorVisible): whether `tree` is drawn for a
  * camera at `eye` with frustum `planes` (world, normals inwards) and far range `farRange`; `sphere` is its
- * species' bounding sphere in crown heights (ImpostorRenderer::speciesSphere).
+ * species' bounding sphere in crown heights (ImpostorRenderer::speciesSphere); `lean` the tree's lean in the
+ * wind (impostorLean; the sphere is sheared with it, impostorLeanedSphere).
  */
 bool impostorVisible(const FarTree& tree, glm::vec4 sphere, const std::array<glm::vec4, 6>& planes,
-                     glm::vec3 eye, glm::vec2 farRange);
+                     glm::vec3 eye, glm::vec2 farRange, glm::vec2 lean = glm::vec2(0.0f));
 
+/**
+ * How far trees sway (docs/trees.md "Far field"). An impostor cannot bend its branches, so the whole tree
+ * leans: every point p of it moves by lean · (p.y − base.y) along world (x, z), a shear about its base, which
+ * keeps rays straight, so the fragment shader looks the atlas up along the un-sheared ray. The lean follows
+ * the wind at the tree quasi-statically, as a spring's rest bend follows its load: lean = k · |u| u (u: the
+ * wind velocity at the tree's base (x, z) at the wind's time plus the tree's own offset, m/s), at most
+ * `maxLean` long.
+ */
 struct Forest;
+
+struct ImpostorSway {
+  /** k: lean per squared wind speed, 1/(m/s)² (0: the species does not sway). */
+  float perSpeedSquared = 0.0f;
+  /** Longest lean (metres sideways per metre up; 0.35 ≈ 19°). */
+  float maxLean = 0.35f;
+};
+
+/**
+ * Calibrates a species' sway on tree `tree` of `forest` from its joint springs (JointWind), so that far trees
+ * lean as much as their near twins bend: the springs stand `seconds` in a steady wind of `speed` m/s along +x
+ * without gusts or turbulence (from rest, long enough to settle: 30 s is over six decay times of the
+ * slowest trunk joint), then the joints' downwind displacements d_j at heights y_j above the base are fitted
+ * by a lean through the base, lean = Σ d_j y_j / Σ y_j², and k = lean / speed². Deterministic.
+ */
+ImpostorSway calibrateImpostorSway(const Forest& forest, std::size_t tree, float speed = 5.0f,
+                                   float seconds = 30.0f);
+
+/** Seconds added to the wind's clock for far tree `id`, in [0, 600) (impostorWindOffset in impostor.glsl). */
+float impostorWindOffset(std::uint32_t id);
+
+/**
+ * The lean of far tree `tree` (world x, z metres per metre above its base) in `wind` (its clock plus the
+ * tree's impostorWindOffset): sway.perSpeedSquared · |u| u at the tree's base, at most sway.maxLean long
+ * (impostorLean in impostor.glsl, operation for operation).
+ */
+glm::vec2 impostorLean(const FarTree& tree, const ImpostorSway& sway, const gpu::WindUniforms& wind);
+
+/** The bounding sphere (world centre, radius) of a tree whose unleaned sphere is `sphere` (world) and whose
+ * base is at height `baseY`, sheared by `lean`: centre + lean · (centre.y − baseY), radius · (1 + |lean|). */
+glm::vec4 impostorLeanedSphere(glm::vec4 sphere, float baseY, glm::vec2 lean);
+
 /** The far-field twins of a forest's trees (same index, base, crown height and yaw). */
 std::vector<FarTree> farTrees(const Forest& forest);
 

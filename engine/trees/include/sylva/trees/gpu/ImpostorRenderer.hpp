@@ -116,6 +116,14 @@ public:
   void draw(const render::Camera& camera, int width, int height, double time, glm::vec2 farRange,
             render::GpuTimers* timers = nullptr, const render::Environment& environment = {});
 
+  /**
+   * The wind the far trees lean in from the next draw on (its flow.w: the wind's clock, s; flow.z 0: upright,
+   * the default). Each species leans by its ImpostorSway, calibrated at bake() on the tree it bakes.
+   */
+  void setWind(const gpu::WindUniforms& wind) { mWind = wind; }
+  /** Species s's sway (ImpostorSway; zeros before bake()). */
+  ImpostorSway speciesSway(int species) const;
+
   /** Trees the last draw's cull kept (synchronous readback). */
   std::uint32_t readVisibleCount() const;
 
@@ -149,6 +157,8 @@ private:
   int mLevels = 1;
   int mSpecies = 0;
   std::vector<glm::vec4> mSpheres;
+  std::vector<ImpostorSway> mSway;
+  gpu::WindUniforms mWind{};
   gl::Buffer mInstances{gl::NoCreate};
   std::size_t mTreeCount = 0;
   gl::Buffer mUniforms;
