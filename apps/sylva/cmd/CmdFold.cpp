@@ -410,7 +410,8 @@ void registerFoldRender(CLI::App& fold) {
           "--duration", o->duration,
           "Seconds to render (default: one seamless loop, the least common multiple of the profile periods)")
       ->check(finiteRange(1e-3, 3600.0));
-  command->add_option("--gif", o->gif, "Write an animated GIF (a palette per frame, error diffusion, loops forever)");
+  command->add_option("--gif", o->gif,
+                      "Write an animated GIF (a palette per frame, error diffusion, loops forever)");
   command->add_option("--mp4", o->mp4, "Write an H.264 MP4 through ffmpeg");
   command->add_option("--webm", o->webm, "Write a VP9 WebM through ffmpeg");
   command->add_option("--sprites", o->sprites,
