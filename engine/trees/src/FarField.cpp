@@ -4,8 +4,8 @@
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/JointWind.hpp>
-#include <sylva/wind/Wind.hpp>
 #include <sylva/trees/Tree.hpp>
+#include <sylva/wind/Wind.hpp>
 
 #include <glm/geometric.hpp>
 
