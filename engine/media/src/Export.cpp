@@ -117,8 +117,8 @@ struct Rect {
  * quantiser does, the box with the largest squared error and cutting it across its widest-spread channel at
  * the pixel-weighted median) gives 256 boxes whose pixel means are the entries. giflib's GifQuantizeBuffer
  * was used before; it splits the box widest in colour whatever its pixels, and on a cat's portrait gave the
- * whole pupil (26, 19, 11) one entry of (68, 42, 22), 58 levels off. Deterministic: ties go to the lowest
- * colour.
+ * whole pupil (26, 19, 11) one entry of (68, 42, 22), 58 levels off. Deterministic: of boxes with equal
+ * error the first is cut, and colours equal along the cut channel are ordered by their whole RGB value.
  */
 std::vector<GifColorType> quantiseRect(std::span<const std::uint8_t> values, int width, Rect rect) {
   const std::size_t w = static_cast<std::size_t>(rect.x1 - rect.x0);
