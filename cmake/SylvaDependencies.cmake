@@ -24,8 +24,14 @@ if(SYLVA_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
 
-# OpenCV for the folding editor's motion from video (video: DIS and Farneback optical flow; videoio: FFmpeg
-# decoding, image sequences, the MJPEG writer) and for grass capture (imgproc: contours, Canny, morphology,
+# FFmpeg's libraries for reference videos in containers (folding: AVI, MP4, WebM, … through libavformat,
+# libavcodec and libswscale; engine/folding/src/internal/VideoFile.hpp), found through their pkg-config files.
+pkg_check_modules(LIBAV REQUIRED IMPORTED_TARGET libavformat libavcodec libswscale libavutil)
+add_library(sylva_ffmpeg INTERFACE)
+target_link_libraries(sylva_ffmpeg INTERFACE PkgConfig::LIBAV)
+
+# OpenCV for the folding editor's motion from video (video: DIS and Farneback optical flow; videoio: image
+# sequences and the MJPEG writer) and for grass capture (imgproc: contours, Canny, morphology,
 # distance transform). Used as the interface target sylva_opencv, kept out of public headers.
 # Debian installs OpenCVConfig.cmake only with the libopencv-dev meta package, which pulls every OpenCV module
 # (contrib, viz with VTK, Qt); the four per-module -dev packages we install carry the headers and libraries

@@ -2,9 +2,8 @@
 # Fuzzes Sylva's loaders and parsers with libFuzzer (+ ASan/UBSan), built by the `asan` preset (clang: the same
 # objects serve the sanitizer test run and the fuzz targets):
 #   scripts/fuzz.sh [TARGET|all] [SECONDS] [--merge]
-# TARGET: png exr npy npz gdal json shader fold flow cli blade_models depth_png fakenect (default all), or
-# flow_ffmpeg (by name only: it finds a known OpenCV 4.6 over-read, docs/testing.md); SECONDS per target
-# (default 60).
+# TARGET: png exr npy npz gdal json shader fold flow flow_ffmpeg cli blade_models depth_png fakenect … (default
+# all: the list below); SECONDS per target (default 60).
 # Each run starts from the committed seeds (fuzz/corpus/TARGET) and regression inputs (fuzz/regressions/TARGET) and
 # works in build/fuzz-work/TARGET. A crash, leak, sanitizer report, timeout (>10 s) or allocation over the limit
 # writes the input there as crash-*/leak-*/timeout-*/oom-* and makes the script fail; copy it into
@@ -16,10 +15,10 @@ cd "$(dirname "$0")/.."
 target="${1:-all}"
 seconds="${2:-60}"
 merge="${3:-}"
-all=(png exr npy npz gdal json shader fold flow cli blade_models depth_png fakenect tree_json piece_import leaf_model texsynth_tileset scene_file)
+all=(png exr npy npz gdal json shader fold flow flow_ffmpeg cli blade_models depth_png fakenect tree_json piece_import leaf_model texsynth_tileset scene_file)
 if [ "$target" = all ]; then targets=("${all[@]}"); else targets=("$target"); fi
 for t in "${targets[@]}"; do
-  [[ " ${all[*]} flow_ffmpeg " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (targets: ${all[*]})" >&2; exit 2; }
+  [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (targets: ${all[*]})" >&2; exit 2; }
 done
 [[ "$seconds" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2; }
 

@@ -11,6 +11,8 @@ packages=(
   libfmt-dev libpng-dev libopenexr-dev libgdal-dev libzip-dev libgif-dev
   # optical flow from reference videos (folding editor) and grass capture: OpenCV
   libopencv-video-dev libopencv-videoio-dev libopencv-imgproc-dev
+  # reference videos in containers (AVI, MP4, WebM, …): FFmpeg's own libraries
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   # grass capture: Kinect v1 through libfreenect, and its fakenect replay library and tools
   libfreenect-dev libfreenect-bin
   # grass simulation: rigid bodies and the terrain collider (Bullet); the constraint solver's SIMD lanes (Highway)

@@ -11,6 +11,8 @@
 #include <sylva/folding/Edit.hpp>
 #include <sylva/folding/Field.hpp>
 
+#include "internal/VideoFile.hpp"
+
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgproc.hpp>
@@ -45,10 +47,6 @@ std::string oneLine(std::string text) {
 void quietOpenCv() {
   static const bool once = [] {
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
-    // FFmpeg prints its own complaints ("moov atom not found") unless OpenCV installs its log filter, which
-    // it does when this variable is set before the first capture: -8 is AV_LOG_QUIET. A value the user set
-    // (to debug a file) is kept.
-    ::setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
     return true;
   }();
   (void)once;
@@ -295,80 +293,84 @@ VideoClip loadVideo(const std::filesystem::path& path, int maxFrames, Progress* 
   if (pattern) {
     checkSequenceHeaders(name, maxFrames);
   }
-  quietOpenCv();
-  const int api = pattern ? cv::CAP_IMAGES : cv::CAP_FFMPEG;
-  if (!cv::videoio_registry::hasBackend(static_cast<cv::VideoCaptureAPIs>(api))) {
-    fail("{}: this OpenCV has no {} backend to read it", name, pattern ? "image-sequence" : "FFmpeg");
-  }
 
   VideoClip clip;
-  try {
-    cv::VideoCapture capture;
-    if (!capture.open(name, api) || !capture.isOpened()) {
-      if (pattern) {
+  // Takes one decoded frame: constant size, the memory cap, its presentation time, progress.
+  const auto add = [&](Image rgba, double timeS) {
+    const int index = static_cast<int>(clip.frames.size());
+    if (index == 0) {
+      clip.size = {rgba.width(), rgba.height()};
+    } else if (rgba.width() != clip.size.x || rgba.height() != clip.size.y) {
+      fail("{}: frame {} is {}×{} pixels, frame 0 is {}×{}", name, index, rgba.width(), rgba.height(),
+           clip.size.x, clip.size.y);
+    }
+    if ((clip.frames.size() + 1) * rgba.byteSize() > kMaxVideoBytes) {
+      fail("{}: {} frames of {}×{} pixels need more than {} GiB; read fewer frames", name, index + 1,
+           rgba.width(), rgba.height(), kMaxVideoBytes >> 30);
+    }
+    clip.frames.push_back(std::move(rgba));
+    // The container's presentation time when it has one that increases, else a step of the nominal rate.
+    const double step = clip.fps > 0.0 ? 1.0 / clip.fps : 1.0;
+    double t = finite(timeS) && timeS >= 0.0 ? timeS : 0.0;
+    if (index > 0 && !(t > clip.timesS.back())) {
+      t = clip.timesS.back() + step;
+    }
+    clip.timesS.push_back(t);
+    if (progress) {
+      progress->advance();
+      if (progress->cancelled()) {
+        fail("{}: loading cancelled", name);
+      }
+    }
+  };
+  const auto wanted = [&] { return static_cast<int>(clip.frames.size()) < maxFrames; };
+
+  if (pattern) {
+    // Image sequences: OpenCV's image readers (libpng, libjpeg, …), one file per frame.
+    quietOpenCv();
+    if (!cv::videoio_registry::hasBackend(cv::CAP_IMAGES)) {
+      fail("{}: this OpenCV has no image-sequence backend to read it", name);
+    }
+    try {
+      cv::VideoCapture capture;
+      if (!capture.open(name, cv::CAP_IMAGES) || !capture.isOpened()) {
         fail("{}: no image matches the pattern (frames are numbered from 0 or 1)", name);
       }
-      fail("{}: cannot decode: not a video FFmpeg can read", name);
-    }
-    const double fps = capture.get(cv::CAP_PROP_FPS);
-    clip.fps = finite(fps) && fps > 0.0 && fps < 1e4 ? fps : 0.0;
-    const double width = capture.get(cv::CAP_PROP_FRAME_WIDTH);
-    const double height = capture.get(cv::CAP_PROP_FRAME_HEIGHT);
-    if (width > kMaxVideoSide || height > kMaxVideoSide) {
-      fail("{}: frames of {}×{} pixels exceed the {} per side this loader accepts", name, width, height,
-           kMaxVideoSide);
-    }
-    cv::Mat frame;
-    while (static_cast<int>(clip.frames.size()) < maxFrames && capture.read(frame)) {
-      if (frame.empty()) {
-        break;
-      }
-      const int index = static_cast<int>(clip.frames.size());
-      if (frame.cols > kMaxVideoSide || frame.rows > kMaxVideoSide || frame.cols < 1 || frame.rows < 1) {
-        fail("{}: frames of {}×{} pixels exceed the {} per side this loader accepts", name, frame.cols,
-             frame.rows, kMaxVideoSide);
-      }
-      if (index == 0) {
-        clip.size = {frame.cols, frame.rows};
-      } else if (frame.cols != clip.size.x || frame.rows != clip.size.y) {
-        fail("{}: frame {} is {}×{} pixels, frame 0 is {}×{}", name, index, frame.cols, frame.rows,
-             clip.size.x, clip.size.y);
-      }
-      const std::size_t bytes = (clip.frames.size() + 1) * static_cast<std::size_t>(frame.cols) *
-                                static_cast<std::size_t>(frame.rows) * 4;
-      if (bytes > kMaxVideoBytes) {
-        fail("{}: {} frames of {}×{} pixels need more than {} GiB; read fewer frames", name, index + 1,
-             frame.cols, frame.rows, kMaxVideoBytes >> 30);
-      }
-      Image rgba = [&] {
-        try {
-          return toRgba(frame);
-        } catch (const Error& e) {
-          fail("{}: frame {} has {}", name, index, e.what());
+      const double fps = capture.get(cv::CAP_PROP_FPS);
+      clip.fps = finite(fps) && fps > 0.0 && fps < 1e4 ? fps : 0.0;
+      cv::Mat frame;
+      while (wanted() && capture.read(frame) && !frame.empty()) {
+        const int index = static_cast<int>(clip.frames.size());
+        if (frame.cols > kMaxVideoSide || frame.rows > kMaxVideoSide || frame.cols < 1 || frame.rows < 1) {
+          fail("{}: frames of {}×{} pixels exceed the {} per side this loader accepts", name, frame.cols,
+               frame.rows, kMaxVideoSide);
         }
-      }();
-      clip.frames.push_back(std::move(rgba));
-      // The container's presentation time when it has one that increases, else a step of the nominal rate.
-      const double ms = capture.get(cv::CAP_PROP_POS_MSEC);
-      const double step = clip.fps > 0.0 ? 1.0 / clip.fps : 1.0;
-      double t = finite(ms) && ms >= 0.0 ? ms / 1000.0 : 0.0;
-      if (index > 0 && !(t > clip.timesS.back())) {
-        t = clip.timesS.back() + step;
+        Image rgba = [&] {
+          try {
+            return toRgba(frame);
+          } catch (const Error& e) {
+            fail("{}: frame {} has {}", name, index, e.what());
+          }
+        }();
+        add(std::move(rgba), capture.get(cv::CAP_PROP_POS_MSEC) / 1000.0);
       }
-      clip.timesS.push_back(t);
-      if (progress) {
-        progress->advance();
-        if (progress->cancelled()) {
-          fail("{}: loading cancelled", name);
-        }
-      }
+      clip.truncated = !wanted() && capture.grab();
+    } catch (const cv::Exception& e) {
+      fail("{}: cannot decode: {}", name, oneLine(e.err));
     }
-    if (clip.frames.empty()) {
-      fail("{}: no frame could be decoded", name);
+  } else {
+    // Containers: FFmpeg's libraries directly (internal/VideoFile.hpp says why not OpenCV's capture).
+    internal::VideoFile video(name, kMaxVideoSide);
+    clip.fps = video.fps();
+    Image rgba;
+    double timeS = 0.0;
+    while (wanted() && video.read(rgba, timeS)) {
+      add(std::move(rgba), timeS);
     }
-    clip.truncated = static_cast<int>(clip.frames.size()) == maxFrames && capture.grab();
-  } catch (const cv::Exception& e) {
-    fail("{}: cannot decode: {}", name, oneLine(e.err));
+    clip.truncated = !wanted() && video.read(rgba, timeS);
+  }
+  if (clip.frames.empty()) {
+    fail("{}: no frame could be decoded", name);
   }
   return clip;
 }

@@ -197,6 +197,104 @@ TEST(FoldFlow, ASequenceFrameClaimingAHugeSizeIsRefusedBeforeDecoding) {
   EXPECT_THROW((void)loadVideo(dir / "one/%s.jpg", 1), Error);
 }
 
+/** A file's bytes. */
+std::string readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+/** Writes a little-endian 32-bit value at `offset`. */
+void putU32(std::string& bytes, std::size_t offset, std::uint32_t value) {
+  for (int i = 0; i < 4; ++i) {
+    bytes.at(offset + static_cast<std::size_t>(i)) = static_cast<char>((value >> (8 * i)) & 0xFFu);
+  }
+}
+
+/** The JPEG pictures of a Motion-JPEG AVI: the payloads of its '00dc' chunks that start with a JPEG SOI. */
+std::vector<std::string> jpegFrames(const std::string& avi) {
+  std::vector<std::string> frames;
+  for (std::size_t at = avi.find("00dc"); at != std::string::npos && at + 10 <= avi.size();
+       at = avi.find("00dc", at + 4)) {
+    std::uint32_t size = 0;
+    for (int i = 3; i >= 0; --i) {
+      size = (size << 8) | static_cast<unsigned char>(avi[at + 4 + static_cast<std::size_t>(i)]);
+    }
+    if (at + 8 + size <= avi.size() && avi.compare(at + 8, 2, "\xFF\xD8") == 0) {
+      frames.push_back(avi.substr(at + 8, size));
+    }
+  }
+  return frames;
+}
+
+TEST(FoldFlow, AContainerWhoseHeaderAndFramesDisagreeDecodesWhatTheFramesHold) {
+  // OpenCV 4.6's FFmpeg capture sized its output from the stream header and its input from the decoder, so a
+  // file whose header and frames disagree made it read past a heap buffer (the flow_ffmpeg fuzz target's
+  // finding). Containers now decode through FFmpeg's libraries, each frame converted at the size its decoder
+  // reports. The class: headers claiming larger and smaller frames than they carry, and a stream whose frames
+  // change size (refused, naming the frame). Under AddressSanitizer any over-read fails the test.
+  SYLVA_SKIP_UNDER_TSAN();
+  const test::TempDir dir;
+  saveVideo(dir / "big.avi", syntheticVideo({64, 48}, 3, knownMotion(), 5));
+  saveVideo(dir / "small.avi", syntheticVideo({32, 24}, 3, knownMotion(), 6));
+  const VideoClip truth = loadVideo(dir / "big.avi");
+  ASSERT_EQ(truth.frames.size(), 3u);
+  ASSERT_EQ(truth.size, glm::ivec2(64, 48));
+  const std::string avi = readBytes(dir / "big.avi");
+  const std::size_t avih = avi.find("avih");
+  const std::size_t strf = avi.find("strf");
+  ASSERT_NE(avih, std::string::npos);
+  ASSERT_NE(strf, std::string::npos);
+  // Headers claiming wider, taller, smaller and degenerate frames: the pictures (64×48) come out unchanged.
+  // A header over 4/3 as tall as the pictures is FFmpeg's sign of interlaced Motion-JPEG (one field per
+  // picture, woven in pairs), a reading of its own: the pictures' width survives and nothing is read out of
+  // bounds.
+  for (const glm::ivec2 claim : {glm::ivec2(640, 60), glm::ivec2(16, 8), glm::ivec2(1, 1), glm::ivec2(64, 4),
+                                 glm::ivec2(0, 0), glm::ivec2(640, 480)}) {
+    std::string lying = avi;
+    putU32(lying, avih + 8 + 32, static_cast<std::uint32_t>(claim.x)); // MainAVIHeader dwWidth, dwHeight
+    putU32(lying, avih + 8 + 36, static_cast<std::uint32_t>(claim.y));
+    putU32(lying, strf + 8 + 4, static_cast<std::uint32_t>(claim.x)); // BITMAPINFOHEADER biWidth, biHeight
+    putU32(lying, strf + 8 + 8, static_cast<std::uint32_t>(claim.y));
+    const fs::path file = dir / "lying.avi";
+    writeBytes(file, lying);
+    const VideoClip clip = loadVideo(file);
+    const std::string label = std::to_string(claim.x) + "×" + std::to_string(claim.y);
+    if (claim.y * 3 > 48 * 4) {
+      EXPECT_EQ(clip.size.x, 64) << label;
+      continue;
+    }
+    ASSERT_EQ(clip.frames.size(), 3u) << label;
+    EXPECT_EQ(clip.size, glm::ivec2(64, 48)) << label;
+    for (std::size_t i = 0; i < clip.frames.size(); ++i) {
+      EXPECT_TRUE(clip.frames[i] == truth.frames[i]) << "header " << label << ", frame " << i;
+    }
+  }
+
+  // Raw Motion-JPEG (concatenated JPEGs, which FFmpeg reads as a stream) whose pictures change size.
+  const std::vector<std::string> big = jpegFrames(avi);
+  const std::vector<std::string> small = jpegFrames(readBytes(dir / "small.avi"));
+  ASSERT_EQ(big.size(), 3u);
+  ASSERT_EQ(small.size(), 3u);
+  writeBytes(dir / "shrinks.mjpeg", big[0] + big[1] + small[2]);
+  writeBytes(dir / "grows.mjpeg", small[0] + big[1] + big[2]);
+  const std::string shrinks = (dir / "shrinks.mjpeg").string();
+  try {
+    (void)loadVideo(shrinks);
+    ADD_FAILURE() << "the third picture is 32×24";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), shrinks + ": frame 2 is 32×24 pixels, frame 0 is 64×48");
+  }
+  EXPECT_THROW((void)loadVideo(dir / "grows.mjpeg"), Error);
+  const VideoClip firstTwo = loadVideo(shrinks, 2);
+  ASSERT_EQ(firstTwo.frames.size(), 2u);
+  EXPECT_TRUE(firstTwo.truncated);
+  EXPECT_TRUE(firstTwo.frames[1] == truth.frames[1]);
+}
+
 TEST(FoldFlow, SyntheticClipIsDeterministicAndMovesExactly) {
   // A whole-pixel translation makes the next frame an exact shift of this one (same texture coordinates).
   SyntheticMotion shift;
