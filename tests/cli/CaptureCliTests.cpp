@@ -122,6 +122,30 @@ TEST(CaptureCli, SyntheticEvaluatePrintsEveryFrame) {
   }
 }
 
+TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
+  // The classes of the capture sweep from the command line: an occluded cluster draws its extra blade (the
+  // truth lists all six), a rolled crossing cluster writes its frame, and --sweep tallies every layout.
+  const test::TempDir dir;
+  const test::RunResult occluded =
+      runSylva(dir, "capture synth --layout occluded --count 6 --roll 0.3 --pitch 0.2 --dropout 0.3 -o " +
+                        at(dir, "o.png") + " --truth " + at(dir, "o.json"));
+  ASSERT_EQ(occluded.status, 0) << occluded.err;
+  EXPECT_EQ(countOf(test::readAll(dir / "o.json"), "\"shape\""), 6u);
+  const test::RunResult crossing = runSylva(
+      dir, "capture synth --layout crossing --count 6 --roll -0.3 --evaluate -o " + at(dir, "c.png"));
+  ASSERT_EQ(crossing.status, 0) << crossing.err;
+  EXPECT_THAT(crossing.out, testing::HasSubstr("/6, silhouette IoU"));
+  const test::RunResult sweep = runSylva(dir, "capture synth --sweep 12 --seed 5");
+  ASSERT_EQ(sweep.status, 0) << sweep.err;
+  EXPECT_THAT(sweep.out, testing::HasSubstr("all          12 clusters  count exact"));
+  EXPECT_EQ(countOf(sweep.out, " clusters  count exact"), 5u) << sweep.out;
+  const test::RunResult one =
+      runSylva(dir, "capture synth --layout occluded --count 1 -o " + at(dir, "x.png"));
+  EXPECT_NE(one.status, 0);
+  EXPECT_THAT(one.err, testing::HasSubstr("the occluded layout needs at least 2 blades"));
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 TEST(CaptureCli, RecordingIsTrackedAndReplaysThroughLibfreenect) {
   const test::TempDir dir;
   const test::RunResult synth = runSylva(dir, "capture synth --frames 8 -o " + at(dir, "rec"));

@@ -453,6 +453,11 @@ void runCapture(const CaptureOptions& o) {
 struct SynthOptions {
   std::string shape = "slim";
   int count = 5;
+  std::string layout = "fan";
+  double roll = 0.0;
+  double pitch = 0.0;
+  double dropout = 0.15;
+  int sweep = 0;
   double bend = 0.3;
   double orientation = 0.0;
   double spread = 1.4;
@@ -498,17 +503,50 @@ nlohmann::json truthJson(const SyntheticScene& scene, const std::vector<Syntheti
   return j;
 }
 
+/** `--sweep N`: N random clusters of every class captured and tallied, as the capture sweep test does. */
+void runSweep(int clusters, std::uint64_t seed) {
+  SweepReport report;
+  {
+    Progress progress("capturing random clusters", static_cast<std::size_t>(clusters));
+    report = captureSweep(clusters, seed, &progress);
+  }
+  const auto line = [](const char* name, const SweepTally& t) {
+    std::printf(
+        "%-9s %5d clusters  count exact %5.1f %%  (%d with blades missing)  width within 10 %% on %5.1f %% "
+        "of %d blades\n",
+        name, t.clusters, 100.0 * t.exactShare(), t.fewer, 100.0 * t.widthShare(), t.blades);
+  };
+  for (std::size_t i = 0; i < report.byLayout.size(); ++i) {
+    if (report.byLayout[i].clusters > 0) {
+      line(clusterLayoutName(kClusterLayouts[i]), report.byLayout[i]);
+    }
+  }
+  line("all", report.all);
+}
+
 void runSynth(const SynthOptions& o) {
   const std::optional<BladeShape> shape = parseBladeShape(o.shape);
   if (!shape) {
     fail("--shape: unknown shape '{}' (slim, quadratic, slender, bamboo, sharp)", o.shape);
   }
-  SyntheticScene scene = makeCluster(*shape, o.count, static_cast<float>(o.bend),
-                                     static_cast<float>(o.orientation), o.seed, static_cast<float>(o.spread));
+  const std::optional<ClusterLayout> layout = parseClusterLayout(o.layout);
+  if (!layout) {
+    fail("--layout: unknown layout '{}' (fan, occluded, crossing, dense)", o.layout);
+  }
+  if (o.sweep > 0) {
+    runSweep(o.sweep, o.seed);
+    return;
+  }
+  SyntheticScene scene =
+      makeLayoutCluster(*layout, *shape, o.count, static_cast<float>(o.bend),
+                        static_cast<float>(o.orientation), o.seed, static_cast<float>(o.spread));
   for (SyntheticBlade& b : scene.blades) {
     b.lobe = static_cast<float>(o.lobe);
   }
   scene.rootMetres = {0.0f, 0.2f * static_cast<float>(o.distance) / 0.65f, static_cast<float>(o.distance)};
+  scene.rollRadians = static_cast<float>(o.roll);
+  scene.pitchRadians = static_cast<float>(o.pitch);
+  scene.edgeDropout = static_cast<float>(o.dropout);
   scene.noise = !o.noNoise;
   scene.colour = !o.noColour;
   std::string out = o.out;
@@ -579,6 +617,27 @@ void registerCaptureSynth(CLI::App& capture) {
   command->add_option("--count", o->count, "Blades in the cluster")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  command
+      ->add_option(
+          "--layout", o->layout,
+          "fan (one root), occluded (one blade in front of a neighbour, inside its outline), crossing "
+          "(two roots, fans crossing), dense (the blades within 60 degrees)")
+      ->check(CLI::IsMember({"fan", "occluded", "crossing", "dense"}))
+      ->capture_default_str();
+  command->add_option("--roll", o->roll, "Camera roll about its optical axis, radians (positive: clockwise)")
+      ->check(finiteRange(-3.2, 3.2))
+      ->capture_default_str();
+  command->add_option("--pitch", o->pitch, "Camera pitch, radians (positive: looking down on the cluster)")
+      ->check(finiteRange(-1.2, 1.2))
+      ->capture_default_str();
+  command->add_option("--dropout", o->dropout, "Fraction of depth-edge pixels that lose their depth")
+      ->check(finiteRange(0.0, 1.0))
+      ->capture_default_str();
+  command
+      ->add_option("--sweep", o->sweep,
+                   "Instead of drawing one cluster: capture N random clusters of every layout (seeds from "
+                   "--seed) and print how many came out exact")
+      ->check(CLI::Range(1, 100000));
   command
       ->add_option("--bend", o->bend, "Turn of each blade from root to tip, radians (away from the centre)")
       ->check(finiteRange(-3.0, 3.0))

@@ -7,6 +7,7 @@
 #include <sylva/capture/Synthetic.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Progress.hpp>
 #include <sylva/core/Random.hpp>
 
 #include <glm/geometric.hpp>
@@ -88,6 +89,28 @@ BladeGeometry sweep(const SyntheticBlade& blade, const glm::vec3& root, float ex
   return g;
 }
 
+/** The camera's roll and pitch applied to a blade: every point turned about the scene's root. */
+void turnCamera(const SyntheticScene& scene, BladeGeometry& g) {
+  if (scene.rollRadians == 0.0f && scene.pitchRadians == 0.0f) {
+    return;
+  }
+  const float cr = std::cos(scene.rollRadians);
+  const float sr = std::sin(scene.rollRadians);
+  const float cp = std::cos(scene.pitchRadians);
+  const float sp = std::sin(scene.pitchRadians);
+  const auto turn = [&](glm::vec3& p) {
+    glm::vec3 d = p - scene.rootMetres;
+    // Pitch about x (an upright blade's tip comes towards the camera), then roll about the optical axis (x
+    // right, y down: a positive angle turns the picture clockwise).
+    d = {d.x, cp * d.y - sp * d.z, sp * d.y + cp * d.z};
+    d = {cr * d.x - sr * d.y, sr * d.x + cr * d.y, d.z};
+    p = scene.rootMetres + d;
+  };
+  for (std::vector<glm::vec3>* line : {&g.centre, &g.left, &g.right}) {
+    std::for_each(line->begin(), line->end(), turn);
+  }
+}
+
 glm::vec3 project(const CameraIntrinsics& k, const glm::vec3& p) {
   return {static_cast<float>(k.fx * p.x / p.z + k.cx), static_cast<float>(k.fy * p.y / p.z + k.cy), p.z};
 }
@@ -146,7 +169,19 @@ SyntheticFrame renderWithBends(const SyntheticScene& scene, const std::vector<fl
   SyntheticTruth& truth = out.truth;
   for (std::size_t b = 0; b < scene.blades.size(); ++b) {
     const SyntheticBlade& blade = scene.blades[b];
-    const BladeGeometry g = sweep(blade, scene.rootMetres, b < extraBends.size() ? extraBends[b] : 0.0f);
+    const glm::vec3 root =
+        scene.rootMetres * (1.0f - blade.nearerMetres / scene.rootMetres.z) + blade.rootOffsetMetres;
+    BladeGeometry g = sweep(blade, root, b < extraBends.size() ? extraBends[b] : 0.0f);
+    turnCamera(scene, g);
+    for (const std::vector<glm::vec3>* line : {&g.centre, &g.left, &g.right}) {
+      for (const glm::vec3& p : *line) {
+        if (!(p.z > 0.05f)) {
+          fail("synthetic scene: blade {} comes within 5 cm of the camera plane (move it farther or turn the "
+               "camera less)",
+               b);
+        }
+      }
+    }
     std::vector<glm::vec2> linePx(kSamples);
     std::vector<float> widthPx(kSamples);
     for (int i = 0; i < kSamples; ++i) {
@@ -307,6 +342,111 @@ SyntheticScene makeCluster(BladeShape shape, int count, float bendRadians, float
   return scene;
 }
 
+const char* clusterLayoutName(ClusterLayout layout) {
+  switch (layout) {
+  case ClusterLayout::Fan:
+    return "fan";
+  case ClusterLayout::Occluded:
+    return "occluded";
+  case ClusterLayout::Crossing:
+    return "crossing";
+  case ClusterLayout::Dense:
+    return "dense";
+  }
+  return "fan";
+}
+
+std::optional<ClusterLayout> parseClusterLayout(const std::string& name) {
+  for (const ClusterLayout layout : kClusterLayouts) {
+    if (name == clusterLayoutName(layout)) {
+      return layout;
+    }
+  }
+  return std::nullopt;
+}
+
+SyntheticScene makeLayoutCluster(ClusterLayout layout, BladeShape shape, int count, float bendRadians,
+                                 float orientationRadians, std::uint64_t seed, float spreadRadians) {
+  if ((layout == ClusterLayout::Occluded || layout == ClusterLayout::Crossing) && count < 2) {
+    fail("synthetic cluster: the {} layout needs at least 2 blades, not {}", clusterLayoutName(layout),
+         count);
+  }
+  switch (layout) {
+  case ClusterLayout::Fan:
+    return makeCluster(shape, count, bendRadians, orientationRadians, seed, spreadRadians);
+  case ClusterLayout::Dense:
+    return makeCluster(shape, count, bendRadians, orientationRadians, seed, std::numbers::pi_v<float> / 3.0f);
+  case ClusterLayout::Occluded: {
+    SyntheticScene scene =
+        makeCluster(shape, count - 1, bendRadians, orientationRadians, seed, spreadRadians);
+    Rng rng(hash64(seed ^ 0x6f63636c75646564ULL));
+    const std::size_t k = rng.below(static_cast<std::uint32_t>(scene.blades.size()));
+    // The extra blade follows its neighbour's centreline 3 cm nearer along the ray through the root (so the
+    // roots meet in the picture), narrower and shorter: its outline lies inside the neighbour's.
+    SyntheticBlade front = scene.blades[k];
+    front.widthMetres *= rng.uniform(0.45f, 0.6f);
+    const float shorter = rng.uniform(0.65f, 0.8f);
+    front.lengthMetres *= shorter;
+    front.bendRadians *= shorter; // the same turn per metre: it runs along the neighbour's centreline
+    front.nearerMetres = 0.03f;
+    scene.blades.insert(scene.blades.begin() + static_cast<std::ptrdiff_t>(k) + 1, front);
+    return scene;
+  }
+  case ClusterLayout::Crossing: {
+    // Two fans 5 cm apart and 3 cm apart in depth, each leaning 0.35 rad towards the other over 0.8 rad.
+    const int left = (count + 1) / 2;
+    SyntheticScene scene = makeCluster(shape, left, bendRadians, orientationRadians + 0.35f, seed, 0.8f);
+    for (SyntheticBlade& b : scene.blades) {
+      b.rootOffsetMetres = {-0.025f, 0.0f, 0.015f};
+    }
+    if (count - left > 0) {
+      SyntheticScene other =
+          makeCluster(shape, count - left, -bendRadians, orientationRadians - 0.35f, seed + 1, 0.8f);
+      for (SyntheticBlade& b : other.blades) {
+        b.rootOffsetMetres = {0.025f, 0.0f, -0.015f};
+        scene.blades.push_back(b);
+      }
+    }
+    return scene;
+  }
+  }
+  return makeCluster(shape, count, bendRadians, orientationRadians, seed, spreadRadians);
+}
+
+SyntheticScene makeSweepCluster(std::uint64_t seed, ClusterLayout* layoutOut) {
+  Rng rng(hash64(seed * 0x9e3779b97f4a7c15ULL + 0x5377656570ULL));
+  const ClusterLayout layout = kClusterLayouts[rng.below(4)];
+  const BladeShape shape = kBladeShapes[rng.below(5)];
+  int count = 0;
+  switch (layout) {
+  case ClusterLayout::Fan:
+    count = 3 + static_cast<int>(rng.below(5));
+    break;
+  case ClusterLayout::Occluded:
+    count = 4 + static_cast<int>(rng.below(4));
+    break;
+  case ClusterLayout::Crossing:
+    count = 4 + static_cast<int>(rng.below(5));
+    break;
+  case ClusterLayout::Dense:
+    count = 11 + static_cast<int>(rng.below(4));
+    break;
+  }
+  const float bend = rng.uniform(-0.2f, 0.5f);
+  const float lean = rng.uniform(-0.3f, 0.3f);
+  const float spread = rng.uniform(1.0f, 1.6f);
+  SyntheticScene scene = makeLayoutCluster(layout, shape, count, bend, lean, seed, spread);
+  scene.rollRadians = rng.uniform(-0.5f, 0.5f);
+  scene.pitchRadians = rng.uniform(-0.3f, 0.3f);
+  const float distance = rng.uniform(0.55f, 0.9f);
+  scene.rootMetres = {0.0f, 0.2f * distance / 0.65f, distance};
+  scene.edgeDropout = rng.uniform(0.05f, 0.3f);
+  if (layoutOut != nullptr) {
+    *layoutOut = layout;
+  }
+  return scene;
+}
+
 SyntheticFrame renderScene(const SyntheticScene& scene, float extraBendRadians, int frameIndex) {
   return renderWithBends(scene, std::vector<float>(scene.blades.size(), extraBendRadians), frameIndex);
 }
@@ -448,6 +588,7 @@ AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult&
       trueLength += glm::length(line[i] - line[i - 1]);
     }
     widthSum += bladeW;
+    report.bladeWidthErrors.push_back(bladeW);
     skelSum += bladeS;
     lengthSum += blade.lengthPx / std::max(trueLength, 1e-3f);
     report.widthErrorMax = std::max(report.widthErrorMax, bladeW);
@@ -460,6 +601,36 @@ AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult&
     report.widthError = widthSum / matched;
     report.skeletonErrorPx = skelSum / matched;
     report.lengthRatio = lengthSum / matched;
+  }
+  return report;
+}
+
+SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progress) {
+  if (clusters < 1 || clusters > 1000000) {
+    fail("capture sweep: {} clusters; give 1..1000000", clusters);
+  }
+  SweepReport report;
+  for (int i = 0; i < clusters; ++i) {
+    ClusterLayout layout = ClusterLayout::Fan;
+    SyntheticScene scene = makeSweepCluster(firstSeed + static_cast<std::uint64_t>(i), &layout);
+    scene.colour = false;
+    const SyntheticFrame frame = renderScene(scene);
+    const AccuracyReport accuracy = evaluateCapture(frame.truth, extractBlades(frame.frame));
+    const std::size_t slot =
+        static_cast<std::size_t>(std::find(std::begin(kClusterLayouts), std::end(kClusterLayouts), layout) -
+                                 std::begin(kClusterLayouts));
+    for (SweepTally* t : {&report.byLayout[slot], &report.all}) {
+      ++t->clusters;
+      t->exact += accuracy.bladesFound == accuracy.bladesExpected ? 1 : 0;
+      t->fewer += accuracy.bladesFound < accuracy.bladesExpected ? 1 : 0;
+      t->blades += accuracy.bladesExpected;
+      t->widthWithin10 +=
+          static_cast<int>(std::count_if(accuracy.bladeWidthErrors.begin(), accuracy.bladeWidthErrors.end(),
+                                         [](double e) { return e <= 0.10; }));
+    }
+    if (progress != nullptr) {
+      progress->advance();
+    }
   }
   return report;
 }

@@ -8,10 +8,15 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace sylva {
+class Progress;
+}
 
 namespace sylva::capture {
 
@@ -48,6 +53,13 @@ struct SyntheticBlade {
    * length), the kind of damage or side growth that breaks symmetric matching.
    */
   float lobe = 0.0f;
+  /** Where this blade's root sits relative to the scene's root, camera space, metres (+z: farther away). */
+  glm::vec3 rootOffsetMetres{0.0f};
+  /**
+   * The root moved this much nearer to the camera along the ray through the scene's root, metres: it stays
+   * on the same pixel wherever the scene's root is (a blade just in front of another from the same tuft).
+   */
+  float nearerMetres = 0.0f;
 };
 
 /** A cluster scene. */
@@ -58,6 +70,12 @@ struct SyntheticScene {
   /** The root of every blade in camera space, metres. */
   glm::vec3 rootMetres{0.0f, 0.2f, 0.65f};
   std::vector<SyntheticBlade> blades;
+  /**
+   * The camera turned about the cluster's root: roll about its optical axis (positive: the picture turns
+   * clockwise), pitch about its horizontal axis (positive: looking further down on the cluster), radians.
+   */
+  float rollRadians = 0.0f;
+  float pitchRadians = 0.0f;
   /** Background wall depth, metres (0: none, no data). */
   float backgroundMetres = 1.8f;
   /** Kinect-like noise: axial Gaussian σ(z) = 1.2 mm + 1.9 mm·(z − 0.4 m)², lateral edge jitter, dropouts,
@@ -78,6 +96,41 @@ struct SyntheticScene {
  */
 SyntheticScene makeCluster(BladeShape shape, int count, float bendRadians, float orientationRadians,
                            std::uint64_t seed, float spreadRadians = 1.4f);
+
+/** How the blades of a synthetic cluster are arranged (the classes of input capture must separate). */
+enum class ClusterLayout {
+  /** One root, leans spread evenly (makeCluster). */
+  Fan,
+  /** A fan with one extra blade just in front of a neighbour, narrower and shorter, so that from the camera
+   * it lies inside the neighbour's outline: only the depth step tells them apart. */
+  Occluded,
+  /** Two fans from roots a few centimetres apart (sideways and in depth) leaning towards each other, so
+   * blades of one cross blades of the other. */
+  Crossing,
+  /** Many blades (count ≥ 11 in the sweep) over a narrow fan of 60°. */
+  Dense,
+};
+inline constexpr ClusterLayout kClusterLayouts[] = {ClusterLayout::Fan, ClusterLayout::Occluded,
+                                                    ClusterLayout::Crossing, ClusterLayout::Dense};
+/** "fan", "occluded", "crossing", "dense". */
+const char* clusterLayoutName(ClusterLayout layout);
+std::optional<ClusterLayout> parseClusterLayout(const std::string& name);
+
+/**
+ * A cluster of `count` blades (Occluded and Crossing need ≥ 2) of one shape in `layout`, with the fan's
+ * parameters as in makeCluster (Dense ignores `spreadRadians` and fans over 60°). Deterministic for its
+ * arguments; throws sylva::Error for a count outside the layout's range.
+ */
+SyntheticScene makeLayoutCluster(ClusterLayout layout, BladeShape shape, int count, float bendRadians,
+                                 float orientationRadians, std::uint64_t seed, float spreadRadians = 1.4f);
+
+/**
+ * One random cluster of the capture sweep, drawn from `seed`: a layout (fans, occlusion, crossing, dense
+ * fans in equal shares), a shape, a count that suits the layout (fan 3–7, occluded 4–7, crossing 4–8,
+ * dense 11–14), bend, lean, camera roll (±0.5 rad) and pitch (±0.3 rad), distance (0.55–0.9 m) and edge
+ * dropouts (5–30 %). Deterministic.
+ */
+SyntheticScene makeSweepCluster(std::uint64_t seed, ClusterLayout* layoutOut = nullptr);
 
 /** Ground truth of a rendered scene. */
 struct SyntheticTruth {
@@ -131,9 +184,36 @@ struct AccuracyReport {
   double skeletonErrorRelative = 0.0;
   /** Captured length / true length beyond the junctions, mean over matched blades. */
   double lengthRatio = 0.0;
+  /** Each matched blade's width error (the measure of widthError), in matching order. */
+  std::vector<double> bladeWidthErrors;
 };
 
 /** Matches captured blades to true blades by their tips and measures. */
 AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult& result);
+
+/** Counts of a capture sweep over one class of clusters (or all). */
+struct SweepTally {
+  int clusters = 0;
+  int exact = 0;         ///< clusters whose blade count came out exact
+  int fewer = 0;         ///< clusters with blades missing (merged or dropped)
+  int blades = 0;        ///< true blades
+  int widthWithin10 = 0; ///< matched blades whose width error is ≤ 10 %
+
+  double exactShare() const { return clusters > 0 ? static_cast<double>(exact) / clusters : 0.0; }
+  double widthShare() const { return blades > 0 ? static_cast<double>(widthWithin10) / blades : 0.0; }
+};
+
+/** A capture sweep's result: per layout (index = the layout's place in kClusterLayouts) and over all. */
+struct SweepReport {
+  std::array<SweepTally, 4> byLayout{};
+  SweepTally all;
+};
+
+/**
+ * Captures `clusters` random clusters (makeSweepCluster with seeds firstSeed, firstSeed + 1, …) from depth
+ * alone (no colour frame, the paper's setting) and tallies them against their truth. `progress` (optional)
+ * advances once per cluster. Deterministic.
+ */
+SweepReport captureSweep(int clusters, std::uint64_t firstSeed = 1, Progress* progress = nullptr);
 
 } // namespace sylva::capture
