@@ -13,7 +13,8 @@ extern "C" {
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
+#include <cstdarg>
+#include <cstdint>
 #include <limits>
 #include <string_view>
 
