@@ -139,6 +139,21 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   ASSERT_EQ(sweep.status, 0) << sweep.err;
   EXPECT_THAT(sweep.out, testing::HasSubstr("all          12 clusters  count exact"));
   EXPECT_EQ(countOf(sweep.out, " clusters  count exact"), 5u) << sweep.out;
+  // Seed 5 is a crossing cluster whose count comes out wrong: the sweep names it.
+  EXPECT_THAT(sweep.out, testing::HasSubstr("wrong counts at seeds 5"));
+  // A cluster the sweep drew, redrawn on its own and captured with --explain: its front blade is partitioned
+  // on its own depth layer. Seed 8 is an occluded cluster of seven blades.
+  const test::RunResult drawn = runSylva(dir, "capture synth --sweep-cluster 8 -o " + at(dir, "s8.png"));
+  ASSERT_EQ(drawn.status, 0) << drawn.err;
+  EXPECT_THAT(drawn.out, testing::HasSubstr("7 slender blades, occluded layout"));
+  const test::RunResult explained =
+      runSylva(dir, "capture " + at(dir, "s8.png") + " --explain -o " + at(dir, "s8.json"));
+  ASSERT_EQ(explained.status, 0) << explained.err;
+  EXPECT_THAT(explained.out, testing::HasSubstr("7 blades in 2 clusters"));
+  EXPECT_THAT(explained.out, testing::HasSubstr("depth layer 0 of 2"));
+  EXPECT_THAT(explained.out, testing::HasSubstr("depth layer 1 of 2"));
+  const test::RunResult both = runSylva(dir, "capture synth --sweep 4 --sweep-cluster 8");
+  EXPECT_NE(both.status, 0);
   const test::RunResult one =
       runSylva(dir, "capture synth --layout occluded --count 1 -o " + at(dir, "x.png"));
   EXPECT_NE(one.status, 0);

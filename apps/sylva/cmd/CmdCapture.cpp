@@ -411,6 +411,10 @@ void runCapture(const CaptureOptions& o) {
         for (int b : cluster.blades) {
           std::printf(" %d", b);
         }
+        if (cluster.layer >= 0) {
+          std::printf("; depth layer %d of %d (%.3f m) of its blob", cluster.layer, cluster.layerCount,
+                      cluster.layerDepthMetres);
+        }
         std::printf("\n");
         for (const Junction& j : cluster.junctions) {
           std::printf("    junction at contour %d (%.0f, %.0f): %.0f px from the centre, prominence %.3f\n",
@@ -419,6 +423,9 @@ void runCapture(const CaptureOptions& o) {
         for (const std::string& r : cluster.rejected) {
           std::printf("    not a blade: %s\n", r.c_str());
         }
+      }
+      for (const std::string& d : first.droppedParts) {
+        std::printf("  dropped: %s\n", d.c_str());
       }
     }
     if (run.results.size() > 1) {
@@ -458,6 +465,7 @@ struct SynthOptions {
   double pitch = 0.0;
   double dropout = 0.15;
   int sweep = 0;
+  std::optional<std::uint64_t> sweepCluster;
   double bend = 0.3;
   double orientation = 0.0;
   double spread = 1.4;
@@ -522,6 +530,15 @@ void runSweep(int clusters, std::uint64_t seed) {
     }
   }
   line("all", report.all);
+  if (!report.wrongSeeds.empty()) {
+    std::string seeds;
+    for (std::size_t i = 0; i < std::min<std::size_t>(report.wrongSeeds.size(), 12); ++i) {
+      seeds += fmt::format("{}{}", i > 0 ? ", " : "", report.wrongSeeds[i]);
+    }
+    std::printf(
+        "wrong counts at seeds %s%s (draw one with --sweep-cluster SEED, capture it with --explain)\n",
+        seeds.c_str(), report.wrongSeeds.size() > 12 ? ", …" : "");
+  }
 }
 
 void runSynth(const SynthOptions& o) {
@@ -537,21 +554,29 @@ void runSynth(const SynthOptions& o) {
     runSweep(o.sweep, o.seed);
     return;
   }
-  SyntheticScene scene =
-      makeLayoutCluster(*layout, *shape, o.count, static_cast<float>(o.bend),
-                        static_cast<float>(o.orientation), o.seed, static_cast<float>(o.spread));
-  for (SyntheticBlade& b : scene.blades) {
-    b.lobe = static_cast<float>(o.lobe);
+  SyntheticScene scene;
+  ClusterLayout drawn = *layout;
+  if (o.sweepCluster) {
+    // Exactly the cluster the sweep draws for this seed, from depth alone as the sweep captures it.
+    scene = makeSweepCluster(*o.sweepCluster, &drawn);
+    scene.colour = false;
+  } else {
+    scene = makeLayoutCluster(*layout, *shape, o.count, static_cast<float>(o.bend),
+                              static_cast<float>(o.orientation), o.seed, static_cast<float>(o.spread));
+    for (SyntheticBlade& b : scene.blades) {
+      b.lobe = static_cast<float>(o.lobe);
+    }
+    scene.rootMetres = {0.0f, 0.2f * static_cast<float>(o.distance) / 0.65f, static_cast<float>(o.distance)};
+    scene.rollRadians = static_cast<float>(o.roll);
+    scene.pitchRadians = static_cast<float>(o.pitch);
+    scene.edgeDropout = static_cast<float>(o.dropout);
+    scene.noise = !o.noNoise;
+    scene.colour = !o.noColour;
   }
-  scene.rootMetres = {0.0f, 0.2f * static_cast<float>(o.distance) / 0.65f, static_cast<float>(o.distance)};
-  scene.rollRadians = static_cast<float>(o.roll);
-  scene.pitchRadians = static_cast<float>(o.pitch);
-  scene.edgeDropout = static_cast<float>(o.dropout);
-  scene.noise = !o.noNoise;
-  scene.colour = !o.noColour;
   std::string out = o.out;
   if (out.empty()) {
-    out = o.frames > 1 ? "out/capture/synth-" + o.shape : "out/capture/synth-" + o.shape + ".png";
+    const std::string stem = o.sweepCluster ? fmt::format("sweep-{}", *o.sweepCluster) : "synth-" + o.shape;
+    out = o.frames > 1 ? "out/capture/" + stem : "out/capture/" + stem + ".png";
   }
   const bool recording = lowerExtension(out) != ".png";
   if (!recording && o.frames > 1) {
@@ -601,8 +626,10 @@ void runSynth(const SynthOptions& o) {
     saveJsonFile(o.truth, truthJson(scene, frames));
     std::printf("wrote %s\n", o.truth.c_str());
   }
-  std::printf("wrote %s (%d frame%s, %d %s blade%s)\n", out.c_str(), o.frames, o.frames == 1 ? "" : "s",
-              o.count, o.shape.c_str(), o.count == 1 ? "" : "s");
+  const std::size_t count = scene.blades.size();
+  std::printf("wrote %s (%d frame%s, %zu %s blade%s, %s layout)\n", out.c_str(), o.frames,
+              o.frames == 1 ? "" : "s", count, bladeShapeName(scene.blades.front().shape),
+              count == 1 ? "" : "s", clusterLayoutName(drawn));
 }
 
 void registerCaptureSynth(CLI::App& capture) {
@@ -638,6 +665,13 @@ void registerCaptureSynth(CLI::App& capture) {
                    "Instead of drawing one cluster: capture N random clusters of every layout (seeds from "
                    "--seed) and print how many came out exact")
       ->check(CLI::Range(1, 100000));
+  command
+      ->add_option(
+          "--sweep-cluster", o->sweepCluster,
+          "Instead of the options above: draw the cluster the sweep draws for this seed (depth only), "
+          "to capture it on its own")
+      ->check(unsignedInteger())
+      ->excludes("--sweep");
   command
       ->add_option("--bend", o->bend, "Turn of each blade from root to tip, radians (away from the centre)")
       ->check(finiteRange(-3.0, 3.0))

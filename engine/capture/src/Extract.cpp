@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <deque>
 #include <limits>
 #include <numeric>
@@ -402,6 +403,12 @@ struct Context {
   cv::Mat depth;       ///< CV_32F metres, possibly colour-refined
   cv::Mat mask;        ///< CV_8U 0/255
   cv::Mat clusterDist; ///< CV_32F distance to the current cluster's border, pixels
+  /** CV_8U: the pixels whose depth and colour belong to the current cluster (its own depth layer). */
+  cv::Mat ownMask;
+  /** The depth layer being partitioned (Cluster::layer, layerCount, layerDepthMetres). */
+  int layer = -1;
+  int layerCount = 1;
+  float layerDepthMetres = 0.0f;
 };
 
 /**
@@ -737,7 +744,7 @@ float depthAround(const Context& c, const glm::vec2& p, int r) {
     for (int dx = -r; dx <= r; ++dx) {
       const int x = cx + dx;
       const int y = cy + dy;
-      if (x < 0 || y < 0 || x >= c.depth.cols || y >= c.depth.rows || !c.mask.at<std::uint8_t>(y, x)) {
+      if (x < 0 || y < 0 || x >= c.depth.cols || y >= c.depth.rows || !c.ownMask.at<std::uint8_t>(y, x)) {
         continue;
       }
       // Only depths in the blades' range: pixels the colour refinement added may still carry the
@@ -818,7 +825,7 @@ void toMetres(const Context& c, CapturedBlade& blade) {
     for (std::size_t i = 0; i < n; ++i) {
       const int x = static_cast<int>(std::lround(blade.skeletonPx[i].x));
       const int y = static_cast<int>(std::lround(blade.skeletonPx[i].y));
-      if (x >= 0 && y >= 0 && x < c.frame.width && y < c.frame.height && c.mask.at<std::uint8_t>(y, x)) {
+      if (x >= 0 && y >= 0 && x < c.frame.width && y < c.frame.height && c.ownMask.at<std::uint8_t>(y, x)) {
         sum += srgbToLinear(
             {c.frame.colour.get(x, y, 0), c.frame.colour.get(x, y, 1), c.frame.colour.get(x, y, 2)});
         ++count;
@@ -1159,11 +1166,279 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
   return out;
 }
 
-void processCluster(Context& c, const std::vector<cv::Point>& contourPts, int clusterIndex) {
-  cv::Mat clusterMask = cv::Mat::zeros(c.mask.size(), CV_8U);
-  cv::drawContours(clusterMask, std::vector<std::vector<cv::Point>>{contourPts}, 0, cv::Scalar(255),
-                   cv::FILLED);
-  clusterMask &= c.mask;
+/** One depth layer of a cluster: a region of continuous depth, and its silhouette as far as nearer ones hide
+ * it. */
+struct DepthLayer {
+  /** CV_8U, frame-sized: the layer's own pixels (its depth is the layer's). */
+  cv::Mat own;
+  /** `own` plus the pixels of nearer layers it runs on under (gaps narrower than the occluder it bridges). */
+  cv::Mat completed;
+  /** Median depth of the layer's pixels, metres. */
+  float depthMetres = 0.0f;
+  int areaPx = 0;
+};
+
+/**
+ * Pixels a depth layer of a blob of `blobArea` pixels needs to be partitioned on its own: a quarter of a
+ * cluster's (a blade in front of another is often narrower than a tuft), and 0.5 % of the blob (in a large
+ * blob, small patches of a leaf's surface that the sensor's depth steps cut off are not blades).
+ */
+int minLayerArea(const ExtractOptions& o, int blobArea) {
+  return std::max({1, o.minClusterAreaPx / 4, blobArea / 200});
+}
+
+/** Offsets (forward half of a radius-2 disc) over which pixels of one depth layer link. */
+constexpr std::array<std::pair<int, int>, 12> kLayerLinks{
+    {{1, 0}, {2, 0}, {-2, 1}, {-1, 1}, {0, 1}, {1, 1}, {2, 1}, {-1, 2}, {0, 2}, {1, 2}, {-2, 2}, {2, 2}}};
+
+/** The widest occluder (pixels) a surface is followed across. */
+constexpr int kMaxOccluderRunPx = 24;
+/** Depth a surface may drift per pixel hidden behind an occluder, metres. */
+constexpr float kOccludedSlopeMetresPerPx = 0.0005f;
+
+/**
+ * Depth step between nearby pixels, metres, above which they lie on different surfaces (at depth z, m): 8 mm
+ * or 1.2 % of the depth, and never under 2.5 depth quanta of the sensor. `quantum` is the sensor's depth
+ * resolution over z² (1/m): structured light and stereo resolve depth in disparity steps, which grow with z²
+ * (a Kinect v1 about 2 mm at 0.8 m, the Middlebury Aloe's integer disparities 4 cm at 5 m).
+ */
+float layerStepMetres(float z, float quantum) {
+  return std::max({0.008f, 0.012f * z, 2.5f * quantum * z * z});
+}
+
+/**
+ * The depth resolution of a cluster's pixels over z² (1/m): the lower quartile of the non-zero depth
+ * differences between horizontal neighbours, each over z² (one disparity step where the sensor quantises).
+ */
+template <typename HasDepth> float depthQuantum(const cv::Mat& depth, const HasDepth& hasDepth) {
+  std::vector<float> ratios;
+  for (int y = 0; y < depth.rows; ++y) {
+    for (int x = 0; x + 1 < depth.cols; ++x) {
+      if (hasDepth(x, y) && hasDepth(x + 1, y)) {
+        const float z = depth.at<float>(y, x);
+        const float d = std::abs(depth.at<float>(y, x + 1) - z);
+        if (d > 0.0f) {
+          ratios.push_back(d / (z * z));
+        }
+      }
+    }
+  }
+  if (ratios.empty()) {
+    return 0.0f;
+  }
+  const auto q = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 4);
+  std::nth_element(ratios.begin(), q, ratios.end());
+  return *q;
+}
+
+/**
+ * Splits one cluster into depth layers. Pixels join when their depths differ by less than layerStepMetres
+ * over a short distance (the same surface), and across a nearer occluder when the depth on its far side
+ * continues the near side's (a blade seen on both sides of one that crosses in front of it). A blade in front
+ * of another steps in depth all along its outline, even where the silhouettes merge, so it forms a layer of
+ * its own; blades of one tuft meet at their root and form one. Layers smaller than minLayerArea, and pixels
+ * with no depth, join the nearest large layer. Each layer's completed silhouette adds the straight runs
+ * across occluders that joined it. Returns the layers nearest first, or nothing when the cluster is one
+ * layer.
+ */
+std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask) {
+  const cv::Rect box = cv::boundingRect(clusterMask);
+  if (box.empty()) {
+    return {};
+  }
+  const cv::Mat mask = clusterMask(box);
+  const cv::Mat depth = c.depth(box);
+  const int w = box.width;
+  const int h = box.height;
+  const auto at = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
+  // Union-find over the pixels with depth in range (-1: no depth).
+  std::vector<int> parent(static_cast<std::size_t>(w) * h, -1);
+  const auto find = [&](std::size_t i) {
+    std::size_t r = i;
+    while (parent[r] != static_cast<int>(r)) {
+      r = static_cast<std::size_t>(parent[r]);
+    }
+    while (parent[i] != static_cast<int>(r)) {
+      const std::size_t next = static_cast<std::size_t>(parent[i]);
+      parent[i] = static_cast<int>(r);
+      i = next;
+    }
+    return r;
+  };
+  const auto unite = [&](std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) {
+      parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
+    }
+  };
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const float z = depth.at<float>(y, x);
+      if (mask.at<std::uint8_t>(y, x) != 0 && z > 0.0f && z >= c.result.nearMetres &&
+          z <= c.result.farMetres) {
+        parent[at(x, y)] = static_cast<int>(at(x, y));
+      }
+    }
+  }
+  const auto hasDepth = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && parent[at(x, y)] >= 0;
+  };
+  const float quantum = depthQuantum(depth, hasDepth);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!hasDepth(x, y)) {
+        continue;
+      }
+      const float z = depth.at<float>(y, x);
+      const float step = layerStepMetres(z, quantum);
+      std::size_t root = find(at(x, y));
+      // Neighbours up to two pixels away: a narrow blade's pixels reach each other across the dropouts and
+      // the lateral jitter that scatter a sensor's depth along its edges.
+      for (const auto& [dx, dy] : kLayerLinks) {
+        if (hasDepth(x + dx, y + dy) && std::abs(depth.at<float>(y + dy, x + dx) - z) <= step) {
+          const std::size_t other = find(at(x + dx, y + dy));
+          if (other != root) {
+            parent[std::max(root, other)] = static_cast<int>(std::min(root, other));
+            root = std::min(root, other);
+          }
+        }
+      }
+    }
+  }
+  // Across occluders: from a pixel whose neighbour is nearer by more than a step, walk straight over nearer
+  // pixels (and dropouts); where the walk lands on depth that continues this pixel's, the surface runs on
+  // behind the occluder.
+  struct Run {
+    cv::Point from;
+    cv::Point to;
+  };
+  std::vector<Run> runs;
+  constexpr std::array<std::pair<int, int>, 8> kDirections{
+      {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}}};
+  const int maxRun = std::clamp(std::max(w, h) / 4, 8, kMaxOccluderRunPx);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!hasDepth(x, y)) {
+        continue;
+      }
+      const float z = depth.at<float>(y, x);
+      const float step = layerStepMetres(z, quantum);
+      for (const auto& [dx, dy] : kDirections) {
+        if (!hasDepth(x + dx, y + dy) || depth.at<float>(y + dy, x + dx) > z - step) {
+          continue;
+        }
+        for (int k = 2; k <= maxRun; ++k) {
+          const int qx = x + k * dx;
+          const int qy = y + k * dy;
+          if (qx < 0 || qy < 0 || qx >= w || qy >= h || mask.at<std::uint8_t>(qy, qx) == 0) {
+            break;
+          }
+          if (!hasDepth(qx, qy)) {
+            continue;
+          }
+          const float zq = depth.at<float>(qy, qx);
+          if (zq < z - step) {
+            continue; // still on the occluder
+          }
+          if (std::abs(zq - z) <= step + kOccludedSlopeMetresPerPx * static_cast<float>(k)) {
+            unite(at(x, y), at(qx, qy));
+            runs.push_back({{x, y}, {qx, qy}});
+          }
+          break;
+        }
+      }
+    }
+  }
+  std::vector<int> size(parent.size(), 0);
+  for (std::size_t i = 0; i < parent.size(); ++i) {
+    if (parent[i] >= 0) {
+      ++size[find(i)];
+    }
+  }
+  std::vector<std::size_t> roots;
+  const int minArea = minLayerArea(c.options, cv::countNonZero(mask));
+  for (std::size_t i = 0; i < parent.size(); ++i) {
+    if (parent[i] == static_cast<int>(i) && size[i] >= minArea) {
+      roots.push_back(i);
+    }
+  }
+  if (roots.size() < 2) {
+    return {};
+  }
+  // Each large layer's pixels, and for every other pixel of the cluster the nearest large layer.
+  std::vector<int> layerOf(parent.size(), -1);
+  for (std::size_t i = 0; i < parent.size(); ++i) {
+    if (parent[i] >= 0) {
+      const auto it = std::find(roots.begin(), roots.end(), find(i));
+      layerOf[i] = it != roots.end() ? static_cast<int>(it - roots.begin()) : -1;
+    }
+  }
+  std::vector<cv::Mat> distance(roots.size());
+  for (std::size_t l = 0; l < roots.size(); ++l) {
+    cv::Mat notLayer(h, w, CV_8U, cv::Scalar(255));
+    for (std::size_t i = 0; i < parent.size(); ++i) {
+      if (layerOf[i] == static_cast<int>(l)) {
+        notLayer.data[i] = 0;
+      }
+    }
+    cv::distanceTransform(notLayer, distance[l], cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  }
+  std::vector<DepthLayer> layers(roots.size());
+  std::vector<std::vector<float>> depths(roots.size());
+  for (std::size_t l = 0; l < roots.size(); ++l) {
+    layers[l].own = cv::Mat::zeros(clusterMask.size(), CV_8U);
+  }
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (mask.at<std::uint8_t>(y, x) == 0) {
+        continue;
+      }
+      int l = layerOf[at(x, y)];
+      if (l >= 0) {
+        depths[static_cast<std::size_t>(l)].push_back(depth.at<float>(y, x));
+      } else {
+        l = 0;
+        for (std::size_t k = 1; k < roots.size(); ++k) {
+          l = distance[k].at<float>(y, x) < distance[static_cast<std::size_t>(l)].at<float>(y, x)
+                  ? static_cast<int>(k)
+                  : l;
+        }
+      }
+      layers[static_cast<std::size_t>(l)].own.at<std::uint8_t>(box.y + y, box.x + x) = 255;
+    }
+  }
+  for (std::size_t l = 0; l < roots.size(); ++l) {
+    std::vector<float>& zs = depths[l];
+    std::nth_element(zs.begin(), zs.begin() + static_cast<std::ptrdiff_t>(zs.size() / 2), zs.end());
+    layers[l].depthMetres = zs[zs.size() / 2];
+    layers[l].areaPx = cv::countNonZero(layers[l].own);
+    layers[l].completed = layers[l].own.clone();
+  }
+  // A layer runs on under the occluders its runs crossed.
+  for (const Run& run : runs) {
+    const int l = layerOf[at(run.from.x, run.from.y)];
+    if (l >= 0) {
+      cv::line(layers[static_cast<std::size_t>(l)].completed, run.from + box.tl(), run.to + box.tl(),
+               cv::Scalar(255), 1, cv::LINE_8);
+    }
+  }
+  std::sort(layers.begin(), layers.end(),
+            [](const DepthLayer& a, const DepthLayer& b) { return a.depthMetres < b.depthMetres; });
+  return layers;
+}
+
+/** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
+constexpr double kCoverageMargin = 0.02;
+
+/**
+ * Partitions one cluster: `clusterMask` is its silhouette (its outer contour is `contourPts`), `ownMask` the
+ * pixels whose depth is its own (the silhouette less what nearer layers hide).
+ */
+void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const cv::Mat& clusterMask,
+                    const cv::Mat& ownMask) {
+  const int clusterIndex = static_cast<int>(c.result.clusters.size());
+  c.ownMask = ownMask;
   cv::distanceTransform(clusterMask, c.clusterDist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   const std::vector<CentreCandidate> candidates = centreCandidates(c, clusterMask, contourPts);
   std::optional<Partition> best;
@@ -1183,7 +1458,14 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, int cl
       }
       p.coverage = uni > 0 ? static_cast<double>(inter) / static_cast<double>(uni) : 0.0;
     }
-    if (!best || p.coverage > best->coverage + 1e-4) {
+    // Within a small margin of coverage the partition with fewer blades wins: a lone blade cut at its middle
+    // into two halves covers it as well as the blade does from its root.
+    double needed = 1e-4;
+    if (best && !p.blades.empty() && p.blades.size() != best->blades.size()) {
+      needed =
+          p.blades.size() < best->blades.size() || best->blades.empty() ? -kCoverageMargin : kCoverageMargin;
+    }
+    if (!best || p.coverage > best->coverage + needed) {
       best = std::move(p);
     }
   }
@@ -1201,6 +1483,9 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, int cl
     return;
   }
   Partition& p = *best;
+  p.cluster.layer = c.layer;
+  p.cluster.layerCount = c.layerCount;
+  p.cluster.layerDepthMetres = c.layerDepthMetres;
   const int offset = static_cast<int>(c.result.blades.size());
   for (int& index : p.cluster.blades) {
     index += offset;
@@ -1210,6 +1495,32 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, int cl
   }
   c.result.warnings.insert(c.result.warnings.end(), p.warnings.begin(), p.warnings.end());
   c.result.clusters.push_back(std::move(p.cluster));
+}
+
+/** Partitions each part of `mask` (its outer contours of at least minArea pixels), largest first. */
+void processParts(Context& c, const cv::Mat& mask, const cv::Mat& own, int minArea) {
+  std::vector<std::vector<cv::Point>> parts;
+  cv::findContours(mask.clone(), parts, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const double area = cv::contourArea(parts[k]);
+    if (area >= minArea && parts[k].size() >= 8) {
+      order.emplace_back(-area, k);
+    } else {
+      const cv::Rect r = cv::boundingRect(parts[k]);
+      c.result.droppedParts.push_back(fmt::format(
+          "depth layer {} of {} ({:.3f} m): a part of {:.0f} px at ({}, {}), below the {} px a part "
+          "needs",
+          c.layer, c.layerCount, c.layerDepthMetres, area, r.x + r.width / 2, r.y + r.height / 2, minArea));
+    }
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [area, k] : order) {
+    cv::Mat partMask = cv::Mat::zeros(mask.size(), CV_8U);
+    cv::drawContours(partMask, parts, static_cast<int>(k), cv::Scalar(255), cv::FILLED);
+    partMask &= mask;
+    processCluster(c, parts[k], partMask, partMask & own);
+  }
 }
 
 } // namespace
@@ -1245,7 +1556,25 @@ ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& optio
     return result;
   }
   for (const auto& [area, i] : order) {
-    processCluster(c, contours[i], static_cast<int>(result.clusters.size()));
+    cv::Mat clusterMask = cv::Mat::zeros(c.mask.size(), CV_8U);
+    cv::drawContours(clusterMask, contours, static_cast<int>(i), cv::Scalar(255), cv::FILLED);
+    clusterMask &= c.mask;
+    const std::vector<DepthLayer> layers = depthLayers(c, clusterMask);
+    if (layers.empty()) {
+      processCluster(c, contours[i], clusterMask, c.mask);
+      continue;
+    }
+    // Each depth layer is partitioned on its own.
+    c.layerCount = static_cast<int>(layers.size());
+    for (std::size_t l = 0; l < layers.size(); ++l) {
+      c.layer = static_cast<int>(l);
+      c.layerDepthMetres = layers[l].depthMetres;
+      processParts(c, layers[l].completed, layers[l].own,
+                   minLayerArea(options, cv::countNonZero(clusterMask)));
+    }
+    c.layer = -1;
+    c.layerCount = 1;
+    c.layerDepthMetres = 0.0f;
   }
   return result;
 }

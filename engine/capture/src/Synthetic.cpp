@@ -619,6 +619,9 @@ SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progre
     const std::size_t slot =
         static_cast<std::size_t>(std::find(std::begin(kClusterLayouts), std::end(kClusterLayouts), layout) -
                                  std::begin(kClusterLayouts));
+    if (accuracy.bladesFound != accuracy.bladesExpected) {
+      report.wrongSeeds.push_back(firstSeed + static_cast<std::uint64_t>(i));
+    }
     for (SweepTally* t : {&report.byLayout[slot], &report.all}) {
       ++t->clusters;
       t->exact += accuracy.bladesFound == accuracy.bladesExpected ? 1 : 0;

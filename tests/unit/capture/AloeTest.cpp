@@ -68,25 +68,24 @@ TEST(Aloe, RosetteLeavesAreBlades) {
   EXPECT_LE(result.blades.size(), 14u);
   ASSERT_FALSE(result.clusters.empty());
 
-  // The main cluster: the one with the most blades (the rosette; the others are leaf ends cut by the roi).
-  const auto main =
-      std::max_element(result.clusters.begin(), result.clusters.end(),
-                       [](const Cluster& a, const Cluster& b) { return a.blades.size() < b.blades.size(); });
-  const int mainIndex = static_cast<int>(main - result.clusters.begin());
-  std::printf("  main cluster %d: %d px, %zu blades, %zu junctions\n", mainIndex, main->areaPx,
-              main->blades.size(), main->junctions.size());
-  EXPECT_GE(main->blades.size(), 4u);
-  for (int b : main->blades) {
-    const CapturedBlade& blade = result.blades[static_cast<std::size_t>(b)];
+  // The rosette's leaves. Leaves in front of others are depth layers of their own (clusters of their own), so
+  // the checks run over every blade: the six long leaves that radiate from the core, none a fragment.
+  int leaves = 0;
+  for (std::size_t b = 0; b < result.blades.size(); ++b) {
+    const CapturedBlade& blade = result.blades[b];
     ASSERT_FALSE(blade.widthsPx.empty());
     const float maxWidth = *std::max_element(blade.widthsPx.begin(), blade.widthsPx.end());
-    EXPECT_EQ(blade.cluster, mainIndex) << "blade " << b;
+    leaves += blade.lengthPx >= 400.0f ? 1 : 0;
     EXPECT_GE(blade.lengthPx, 150.0f) << "blade " << b;
     EXPECT_LE(blade.lengthPx, 1300.0f) << "blade " << b;
     EXPECT_GE(maxWidth, 15.0f) << "blade " << b;
     EXPECT_LE(maxWidth, 220.0f) << "blade " << b;
     EXPECT_GE(blade.lengthPx / maxWidth, 3.0f) << "blade " << b;
   }
+  EXPECT_GE(leaves, 6);
+  const auto layered = std::count_if(result.clusters.begin(), result.clusters.end(),
+                                     [](const Cluster& c) { return c.layer >= 0 && !c.blades.empty(); });
+  EXPECT_GE(layered, 2) << "the rosette's leaves lie at several depths";
 
   int symmetric = 0;
   for (std::size_t b = 0; b < result.blades.size(); ++b) {

@@ -120,6 +120,14 @@ struct Cluster {
   /** Segments between junctions that were not blades, with the reason ("too short", "not elongated"). */
   std::vector<std::string> rejected;
   int areaPx = 0;
+  /**
+   * The depth layer of its blob this cluster was cut from (0: the nearest), -1 when the blob is one layer.
+   * A blade in front of others steps in depth all round its outline, so it is partitioned on its own layer.
+   */
+  int layer = -1;
+  /** Depth layers of the blob (1 when it is one), and this layer's median depth, metres (0 when one). */
+  int layerCount = 1;
+  float layerDepthMetres = 0.0f;
 };
 
 /** One captured blade. */
@@ -168,6 +176,8 @@ struct ExtractResult {
   std::vector<std::uint8_t> edges;
   std::vector<Cluster> clusters;
   std::vector<CapturedBlade> blades;
+  /** Parts of depth layers too small to partition, each with its place and size (for `--explain`). */
+  std::vector<std::string> droppedParts;
   /** Problems worth telling the user, each naming the frame (DepthFrame::label()). */
   std::vector<std::string> warnings;
   /** True when the frame's depth was refined with its colour frame. */

@@ -207,6 +207,8 @@ struct SweepTally {
 struct SweepReport {
   std::array<SweepTally, 4> byLayout{};
   SweepTally all;
+  /** Seeds of the clusters whose count came out wrong, in sweep order (makeSweepCluster redraws one). */
+  std::vector<std::uint64_t> wrongSeeds;
 };
 
 /**
