@@ -16,6 +16,7 @@ entries=(
   "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz|jacksboro_fault_dem.npz"
   "python-matplotlib-data|usr/share/matplotlib/mpl-data/sample_data/topobathy.npz|topobathy.npz"
   "python3-skimage|usr/lib/python3/dist-packages/skimage/data/chelsea.png|chelsea.png"
+  "python3-skimage|usr/lib/python3/dist-packages/skimage/data/astronaut.png|astronaut.png"
   "opencv-doc|usr/share/doc/opencv-doc/examples/data/tree.avi|tree.avi"
   "opencv-doc|usr/share/doc/opencv-doc/examples/data/aloeGT.png|aloeGT.png"
   "opencv-doc|usr/share/doc/opencv-doc/examples/data/aloeL.jpg|aloeL.jpg"

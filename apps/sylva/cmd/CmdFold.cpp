@@ -762,7 +762,10 @@ void registerFoldTemplate(CLI::App& fold) {
     choices.emplace_back(motionTemplateName(m));
   }
   command->add_option("--template", o->name, "Template name")->required()->check(CLI::IsMember(choices));
-  command->add_option("--strength", o->strength, "Largest motion in pixels (0: a fraction of the zone)")
+  command
+      ->add_option(
+          "--strength", o->strength,
+          "Largest motion in pixels (0: a fraction of the zone; blink: 0 and anything larger close the eye)")
       ->check(finiteRange(0.0, 1e4))
       ->capture_default_str();
   command->add_option("--direction", o->direction, "wave_swash: direction the water advances, X Y")

@@ -4,7 +4,9 @@
 #include <sylva/core/Error.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace sylva::folding {
 
@@ -29,6 +31,16 @@ Box boxOf(const Zone& zone) {
 
 std::vector<Vec2> band(const Box& b, double v0, double v1) {
   return {b.at(0.0, v0), b.at(1.0, v0), b.at(1.0, v1), b.at(0.0, v1)};
+}
+
+/** The blink's eye opening within the zone's box (fractions of its height): corners, upper and lower apex. */
+constexpr double kBlinkCorner = 0.68;
+constexpr double kBlinkUpperApex = 0.45;
+constexpr double kBlinkLowerApex = 0.88;
+
+Vec2 bezierPoint(const std::array<Vec2, 4>& c, double t) {
+  const double m = 1.0 - t;
+  return m * m * m * c[0] + 3.0 * m * m * t * c[1] + 3.0 * m * t * t * c[2] + t * t * t * c[3];
 }
 
 PositionFunction piecewise(std::vector<glm::dvec2> knots) {
@@ -66,18 +78,61 @@ Result build(const Zone& zone, MotionTemplate motion, const TemplateParams& para
   r.interp.radius = std::clamp(0.6 * std::max(w, h), 1.0, 4096.0);
   switch (motion) {
   case MotionTemplate::Blink: {
-    const double s = params.strength > 0.0 ? params.strength : 0.3 * h;
-    CurveTool upper;
-    upper.source = {b.at(0.1, 0.45), b.at(0.25, 0.12), b.at(0.75, 0.12), b.at(0.9, 0.45)};
-    upper.vectors = {{0.0, Vec2(0.0, 0.4 * s)}, {0.5, Vec2(0.0, s)}, {1.0, Vec2(0.0, 0.4 * s)}};
-    upper.samples = 12;
-    CurveTool lower;
-    lower.source = {b.at(0.1, 0.55), b.at(0.25, 0.88), b.at(0.75, 0.88), b.at(0.9, 0.55)};
-    lower.vectors = {{0.0, Vec2(0.0, -0.2 * s)}, {0.5, Vec2(0.0, -0.5 * s)}, {1.0, Vec2(0.0, -0.2 * s)}};
-    lower.samples = 12;
-    r.tools = {upper, lower};
+    // The zone frames one eye from the brow down to just below the lower lid, its corners 10 % in from the
+    // sides. The eye opening is fitted to it: cubic Béziers through the corners (68 % down), the upper lid's
+    // apex 45 % down and the lower lid's 88 %; the lid's crease lies halfway between the zone's top and the
+    // upper lid. The upper lid sweeps down onto the lower lid's line, as in a real blink, and stops there (a
+    // larger strength is capped at closed, so the lids never cross): the lid skin between the crease and the
+    // lid stretches over the eye and covers it (it is the folding region). The crease, the brow above it and
+    // the lower lid (still anchors just below it) stay still.
+    const auto lid = [&](double apex) -> std::array<Vec2, 4> {
+      const double control = (apex - 0.25 * kBlinkCorner) / 0.75; // the Bézier's midpoint is its apex
+      return {b.at(0.1, kBlinkCorner), b.at(0.2, control), b.at(0.8, control), b.at(0.9, kBlinkCorner)};
+    };
+    const std::array<Vec2, 4> upperLid = lid(kBlinkUpperApex);
+    const std::array<Vec2, 4> lowerLid = lid(kBlinkLowerApex);
+    const double full = (kBlinkLowerApex - kBlinkUpperApex) * h; // the upper lid's travel at its apex
+    const double closure = params.strength > 0.0 ? std::min(params.strength / full, 1.0) : 1.0;
+    // Anchors over the whole stretched band (so the interpolation keeps the stretch linear, never folding
+    // the skin onto itself): the point a fraction g from the crease to where the lid stops reads the point
+    // the same fraction from the crease to the lid.
+    PointsTool stretch;
+    ZeroTool still;
+    // About one anchor every 2 pixels: Shepard's interpolation is flat around each anchor, so sparser
+    // anchors would stretch the skin in visible blocks.
+    const int kAcross = std::clamp(static_cast<int>(std::lround(0.4 * w)), 8, 96);
+    const int kDown = std::clamp(static_cast<int>(std::lround(0.33 * h)), 6, 96);
+    const double below = std::max(1.5, 0.03 * h);
+    for (int i = 0; i <= kAcross; ++i) {
+      const double t = static_cast<double>(i) / kAcross;
+      const Vec2 edge = bezierPoint(upperLid, t);
+      const Vec2 crease(edge.x, 0.5 * (b.lo.y + edge.y));
+      // Closed, the lid's edge comes to rest on the lower lid's lashes, half a still-band past its line.
+      const Vec2 stop = edge + closure * (bezierPoint(lowerLid, t) + Vec2(0.0, 0.5 * below) - edge);
+      for (int k = 1; k <= kDown; ++k) {
+        const double g = static_cast<double>(k) / kDown;
+        stretch.pairs.push_back({crease + g * (edge - crease), crease + g * (stop - crease)});
+      }
+      still.pts.push_back(crease);
+    }
+    // The lower lid stays: still anchors a little below its line (a second polyline, after the crease's).
+    ZeroTool under;
+    for (int i = 0; i <= kAcross; ++i) {
+      under.pts.push_back(bezierPoint(lowerLid, static_cast<double>(i) / kAcross) + Vec2(0.0, 2.0 * below));
+    }
+    r.tools = {stretch, still, under};
+    // Anchors this dense need no far reach: a short radius keeps the stretch exact up to the still anchors.
+    r.interp.radius = std::clamp(0.25 * h, 1.0, 4096.0);
+    // The folding region: the lid skin, from the crease to just past the lid's edge (its lashes), so that
+    // what the stretch reads there counts as skin.
+    const double lash = std::max(1.0, 0.02 * h);
+    std::vector<Vec2> skin = {b.at(0.0, 0.0), b.at(1.0, 0.0), b.at(1.0, kBlinkCorner)};
+    for (int i = kAcross; i >= 0; --i) {
+      skin.push_back(bezierPoint(upperLid, static_cast<double>(i) / kAcross) + Vec2(0.0, lash));
+    }
+    skin.push_back(b.at(0.0, kBlinkCorner));
     r.folding.type = Folding::Type::Polygons;
-    r.folding.polygons = {band(b, 0.0, 0.3), band(b, 0.75, 1.0)};
+    r.folding.polygons = {skin};
     r.zeroBoundary = true;
     r.fn = piecewise({{0, 0}, {0.25, 1}, {0.55, 1}, {0.8, 0}, {1, 0}});
     r.periodS = 4.0;

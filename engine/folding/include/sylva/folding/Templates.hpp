@@ -15,7 +15,7 @@ namespace sylva::folding {
  * size.
  */
 enum class MotionTemplate : std::uint8_t {
-  Blink,        ///< upper lid lowers, lower lid rises over the middle; lid bands fold over the eye
+  Blink,        ///< the upper lid sweeps down onto the lower lid; the lid skin folds over the eye
   WaveSwash,    ///< water advances along `direction` over the rest of the zone and withdraws
   Breathing,    ///< the zone swells and relaxes about its centre (scale), fading to its border
   WoundOpening, ///< skin on both sides of the zone's long axis slides over a central band and back
@@ -30,7 +30,7 @@ std::optional<MotionTemplate> parseMotionTemplate(std::string_view name);
 
 /** Knobs of a template; zero means "a size that suits the zone". */
 struct TemplateParams {
-  double strength = 0.0;    ///< largest motion, pixels (0: a fraction of the zone's size)
+  double strength = 0.0; ///< largest motion, pixels (0: a fraction of the zone's size; blink: at most closed)
   Vec2 direction{0.0, 1.0}; ///< WaveSwash: the way the water advances (normalised here)
   double periodS = 0.0;     ///< profile period, seconds (0: the template's default)
 };
