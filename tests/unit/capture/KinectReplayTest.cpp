@@ -216,8 +216,10 @@ TEST_F(KinectReplay, EveryFrameArrivesIdenticalThroughLibfreenect) {
     }
   }
   EXPECT_EQ(probe.frames.front().timestamp, 0.0);
-  // fakenect sleeps by the recorded walltime differences: 3 frame gaps at 30 Hz.
-  EXPECT_NEAR(probe.frames.back().timestamp, 0.1, 0.05);
+  // fakenect sleeps by the recorded walltime differences: 3 frame gaps at 30 Hz, so the frames arrive at least
+  // 0.1 s apart (less a little for its sleep's granularity). The timestamps are arrival times on the wall
+  // clock: a loaded machine delivers them later, so there is no upper bound (it made this test flaky).
+  EXPECT_GE(probe.frames.back().timestamp, 0.08);
 }
 
 TEST_F(KinectReplay, ColourIsTheLatestRgbBeforeEachFrame) {
