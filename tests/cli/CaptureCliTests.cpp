@@ -152,6 +152,12 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   EXPECT_THAT(explained.out, testing::HasSubstr("7 blades in 2 clusters"));
   EXPECT_THAT(explained.out, testing::HasSubstr("depth layer 0 of 2"));
   EXPECT_THAT(explained.out, testing::HasSubstr("depth layer 1 of 2"));
+  // --layout narrows the sweep to one class, and the hint redraws a cluster of that class.
+  const test::RunResult crossing8 = runSylva(dir, "capture synth --sweep 8 --layout crossing");
+  ASSERT_EQ(crossing8.status, 0) << crossing8.err;
+  EXPECT_THAT(crossing8.out, testing::HasSubstr("crossing      8 clusters"));
+  EXPECT_EQ(countOf(crossing8.out, " clusters  count exact"), 2u) << crossing8.out; // crossing and all
+  EXPECT_THAT(crossing8.out, testing::HasSubstr("--sweep-cluster SEED --layout crossing"));
   const test::RunResult both = runSylva(dir, "capture synth --sweep 4 --sweep-cluster 8");
   EXPECT_NE(both.status, 0);
   const test::RunResult one =

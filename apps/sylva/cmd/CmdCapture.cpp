@@ -466,6 +466,7 @@ struct SynthOptions {
   double dropout = 0.15;
   int sweep = 0;
   std::optional<std::uint64_t> sweepCluster;
+  bool layoutGiven = false; ///< --layout on the command line: --sweep draws only that layout
   double bend = 0.3;
   double orientation = 0.0;
   double spread = 1.4;
@@ -512,11 +513,11 @@ nlohmann::json truthJson(const SyntheticScene& scene, const std::vector<Syntheti
 }
 
 /** `--sweep N`: N random clusters of every class captured and tallied, as the capture sweep test does. */
-void runSweep(int clusters, std::uint64_t seed) {
+void runSweep(int clusters, std::uint64_t seed, std::optional<ClusterLayout> only) {
   SweepReport report;
   {
     Progress progress("capturing random clusters", static_cast<std::size_t>(clusters));
-    report = captureSweep(clusters, seed, &progress);
+    report = captureSweep(clusters, seed, &progress, only);
   }
   const auto line = [](const char* name, const SweepTally& t) {
     std::printf(
@@ -535,9 +536,10 @@ void runSweep(int clusters, std::uint64_t seed) {
     for (std::size_t i = 0; i < std::min<std::size_t>(report.wrongSeeds.size(), 12); ++i) {
       seeds += fmt::format("{}{}", i > 0 ? ", " : "", report.wrongSeeds[i]);
     }
+    const std::string redraw = only ? fmt::format(" --layout {}", clusterLayoutName(*only)) : std::string();
     std::printf(
-        "wrong counts at seeds %s%s (draw one with --sweep-cluster SEED, capture it with --explain)\n",
-        seeds.c_str(), report.wrongSeeds.size() > 12 ? ", …" : "");
+        "wrong counts at seeds %s%s (draw one with --sweep-cluster SEED%s, capture it with --explain)\n",
+        seeds.c_str(), report.wrongSeeds.size() > 12 ? ", …" : "", redraw.c_str());
   }
 }
 
@@ -551,14 +553,14 @@ void runSynth(const SynthOptions& o) {
     fail("--layout: unknown layout '{}' (fan, occluded, crossing, dense)", o.layout);
   }
   if (o.sweep > 0) {
-    runSweep(o.sweep, o.seed);
+    runSweep(o.sweep, o.seed, o.layoutGiven ? layout : std::nullopt);
     return;
   }
   SyntheticScene scene;
   ClusterLayout drawn = *layout;
   if (o.sweepCluster) {
     // Exactly the cluster the sweep draws for this seed, from depth alone as the sweep captures it.
-    scene = makeSweepCluster(*o.sweepCluster, &drawn);
+    scene = makeSweepCluster(*o.sweepCluster, &drawn, o.layoutGiven ? layout : std::nullopt);
     scene.colour = false;
   } else {
     scene = makeLayoutCluster(*layout, *shape, o.count, static_cast<float>(o.bend),
@@ -662,14 +664,14 @@ void registerCaptureSynth(CLI::App& capture) {
       ->capture_default_str();
   command
       ->add_option("--sweep", o->sweep,
-                   "Instead of drawing one cluster: capture N random clusters of every layout (seeds from "
-                   "--seed) and print how many came out exact")
+                   "Instead of drawing one cluster: capture N random clusters (seeds from --seed; of every "
+                   "layout, or of --layout when given) and print how many came out exact")
       ->check(CLI::Range(1, 100000));
   command
       ->add_option(
           "--sweep-cluster", o->sweepCluster,
-          "Instead of the options above: draw the cluster the sweep draws for this seed (depth only), "
-          "to capture it on its own")
+          "Instead of the options above: draw the cluster the sweep draws for this seed (depth only; "
+          "with --layout, of that layout), to capture it on its own")
       ->check(unsignedInteger())
       ->excludes("--sweep");
   command
@@ -710,7 +712,10 @@ void registerCaptureSynth(CLI::App& capture) {
       "A .png (one frame) or a folder (fakenect recording); default out/capture/synth-<shape>[.png]");
   command->add_option("--truth", o->truth, "Also write the ground truth (centrelines and widths) as JSON");
   command->add_flag("--evaluate", o->evaluate, "Capture each frame and print its accuracy against the truth");
-  command->callback([o] { runSynth(*o); });
+  command->callback([o, command] {
+    o->layoutGiven = command->count("--layout") > 0;
+    runSynth(*o);
+  });
 }
 
 } // namespace

@@ -413,9 +413,11 @@ SyntheticScene makeLayoutCluster(ClusterLayout layout, BladeShape shape, int cou
   return makeCluster(shape, count, bendRadians, orientationRadians, seed, spreadRadians);
 }
 
-SyntheticScene makeSweepCluster(std::uint64_t seed, ClusterLayout* layoutOut) {
+SyntheticScene makeSweepCluster(std::uint64_t seed, ClusterLayout* layoutOut,
+                                std::optional<ClusterLayout> only) {
   Rng rng(hash64(seed * 0x9e3779b97f4a7c15ULL + 0x5377656570ULL));
-  const ClusterLayout layout = kClusterLayouts[rng.below(4)];
+  const ClusterLayout drawn = kClusterLayouts[rng.below(4)];
+  const ClusterLayout layout = only.value_or(drawn);
   const BladeShape shape = kBladeShapes[rng.below(5)];
   int count = 0;
   switch (layout) {
@@ -605,14 +607,15 @@ AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult&
   return report;
 }
 
-SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progress) {
+SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progress,
+                         std::optional<ClusterLayout> only) {
   if (clusters < 1 || clusters > 1000000) {
     fail("capture sweep: {} clusters; give 1..1000000", clusters);
   }
   SweepReport report;
   for (int i = 0; i < clusters; ++i) {
     ClusterLayout layout = ClusterLayout::Fan;
-    SyntheticScene scene = makeSweepCluster(firstSeed + static_cast<std::uint64_t>(i), &layout);
+    SyntheticScene scene = makeSweepCluster(firstSeed + static_cast<std::uint64_t>(i), &layout, only);
     scene.colour = false;
     const SyntheticFrame frame = renderScene(scene);
     const AccuracyReport accuracy = evaluateCapture(frame.truth, extractBlades(frame.frame));

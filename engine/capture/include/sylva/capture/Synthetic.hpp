@@ -128,9 +128,11 @@ SyntheticScene makeLayoutCluster(ClusterLayout layout, BladeShape shape, int cou
  * One random cluster of the capture sweep, drawn from `seed`: a layout (fans, occlusion, crossing, dense
  * fans in equal shares), a shape, a count that suits the layout (fan 3–7, occluded 4–7, crossing 4–8,
  * dense 11–14), bend, lean, camera roll (±0.5 rad) and pitch (±0.3 rad), distance (0.55–0.9 m) and edge
- * dropouts (5–30 %). Deterministic.
+ * dropouts (5–30 %). Deterministic. `only` draws that layout instead of the seed's (the rest as the seed
+ * draws it).
  */
-SyntheticScene makeSweepCluster(std::uint64_t seed, ClusterLayout* layoutOut = nullptr);
+SyntheticScene makeSweepCluster(std::uint64_t seed, ClusterLayout* layoutOut = nullptr,
+                                std::optional<ClusterLayout> only = std::nullopt);
 
 /** Ground truth of a rendered scene. */
 struct SyntheticTruth {
@@ -213,9 +215,10 @@ struct SweepReport {
 
 /**
  * Captures `clusters` random clusters (makeSweepCluster with seeds firstSeed, firstSeed + 1, …) from depth
- * alone (no colour frame, the paper's setting) and tallies them against their truth. `progress` (optional)
- * advances once per cluster. Deterministic.
+ * alone (no colour frame, the paper's setting) and tallies them against their truth; `only` sweeps one
+ * layout. `progress` (optional) advances once per cluster. Deterministic.
  */
-SweepReport captureSweep(int clusters, std::uint64_t firstSeed = 1, Progress* progress = nullptr);
+SweepReport captureSweep(int clusters, std::uint64_t firstSeed = 1, Progress* progress = nullptr,
+                         std::optional<ClusterLayout> only = std::nullopt);
 
 } // namespace sylva::capture
