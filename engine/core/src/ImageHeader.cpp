@@ -1,5 +1,6 @@
 // Image sizes from file headers (PNG: ISO/IEC 15948 §11.2.2; JPEG: ITU T.81 §B.1–B.2; WebP: RFC 9649
-// §2.5–2.7).
+// §2.5–2.7; TIFF 6.0 §2 and §8; BMP: the BITMAPCOREHEADER and BITMAPINFOHEADER layouts; OpenEXR: the
+// file layout's header attributes).
 #include <sylva/core/ImageHeader.hpp>
 
 #include <sylva/core/Error.hpp>
@@ -8,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <fstream>
+#include <string>
 
 namespace sylva {
 
@@ -132,6 +134,119 @@ std::optional<ImageHeader> webpHeader(std::ifstream& in) {
   return std::nullopt;
 }
 
+std::optional<ImageHeader> tiffHeader(std::ifstream& in, bool little) {
+  // Header: byte order (2), 42 (2), offset of the first IFD (4). IFD: entry count (2), then 12-byte entries
+  // of tag (2), type (2), count (4), value or offset (4); a SHORT or LONG value sits at the start of its
+  // field. ImageWidth is tag 256, ImageLength 257. Entries are sorted by tag, so the walk stops past 257.
+  const auto number = [little](const std::uint8_t* p, int bytes) {
+    return little ? littleEndian(p, bytes) : bigEndian(p, bytes);
+  };
+  std::array<std::uint8_t, 4> offset{};
+  in.seekg(4);
+  if (!readBytes(in, offset)) {
+    return std::nullopt;
+  }
+  in.seekg(static_cast<std::streamoff>(number(offset.data(), 4)));
+  std::array<std::uint8_t, 2> count{};
+  if (!in || !readBytes(in, count)) {
+    return std::nullopt;
+  }
+  std::optional<std::uint32_t> width;
+  std::optional<std::uint32_t> height;
+  for (std::uint32_t i = 0, n = number(count.data(), 2); i < n && !(width && height); ++i) {
+    std::array<std::uint8_t, 12> entry{};
+    if (!readBytes(in, entry)) {
+      return std::nullopt;
+    }
+    const std::uint32_t tag = number(&entry[0], 2);
+    const std::uint32_t type = number(&entry[2], 2);
+    if (tag > 257) {
+      break;
+    }
+    if ((tag == 256 || tag == 257) && (type == 3 || type == 4)) {
+      (tag == 256 ? width : height) = number(&entry[8], type == 3 ? 2 : 4);
+    }
+  }
+  if (!width || !height) {
+    return std::nullopt;
+  }
+  return ImageHeader{"TIFF", side(*width), side(*height)};
+}
+
+std::optional<ImageHeader> bmpHeader(std::ifstream& in) {
+  // File header (14), then the DIB header's size (4): 12 for the OS/2 core header (16-bit width and height),
+  // 40 or more for the Windows ones (signed 32-bit width and height; a negative height is a top-down bitmap).
+  std::array<std::uint8_t, 12> dib{};
+  in.seekg(14);
+  if (!readBytes(in, dib)) {
+    return std::nullopt;
+  }
+  const std::uint32_t size = littleEndian(&dib[0], 4);
+  if (size == 12) {
+    return ImageHeader{"BMP", side(littleEndian(&dib[4], 2)), side(littleEndian(&dib[6], 2))};
+  }
+  if (size < 40) {
+    return std::nullopt;
+  }
+  const auto magnitude = [](std::uint32_t v) {
+    return v & 0x80000000u ? ~v + 1u : v; // |int32|, without overflow for INT32_MIN
+  };
+  return ImageHeader{"BMP", side(magnitude(littleEndian(&dib[4], 4))),
+                     side(magnitude(littleEndian(&dib[8], 4)))};
+}
+
+std::optional<ImageHeader> exrHeader(std::ifstream& in) {
+  // Magic (4) and version (4), then attributes: name, type name (each NUL-terminated, at most 255 bytes),
+  // size (int32), value; an empty name ends the header. The size is the data window, a box2i: xMin, yMin,
+  // xMax, yMax (int32), inclusive.
+  in.seekg(8);
+  const auto text = [&in](std::string& out) {
+    out.clear();
+    for (char c = 0; in.get(c);) {
+      if (c == '\0') {
+        return true;
+      }
+      if (out.size() == 255) {
+        return false;
+      }
+      out.push_back(c);
+    }
+    return false;
+  };
+  for (int attribute = 0; attribute < 4096; ++attribute) {
+    std::string name;
+    std::string type;
+    if (!text(name) || name.empty() || !text(type)) {
+      return std::nullopt;
+    }
+    std::array<std::uint8_t, 4> size{};
+    if (!readBytes(in, size)) {
+      return std::nullopt;
+    }
+    const std::uint32_t n = littleEndian(size.data(), 4);
+    if (name == "dataWindow" && type == "box2i" && n == 16) {
+      std::array<std::uint8_t, 16> box{};
+      if (!readBytes(in, box)) {
+        return std::nullopt;
+      }
+      const auto at = [&box](int i) {
+        return static_cast<std::int64_t>(static_cast<std::int32_t>(littleEndian(&box[4 * i], 4)));
+      };
+      const std::int64_t w = at(2) - at(0) + 1;
+      const std::int64_t h = at(3) - at(1) + 1;
+      const auto clampSide = [](std::int64_t v) {
+        return static_cast<int>(std::clamp<std::int64_t>(v, 0, 0x7fffffff));
+      };
+      return ImageHeader{"OpenEXR", clampSide(w), clampSide(h)};
+    }
+    in.seekg(static_cast<std::streamoff>(n), std::ios::cur);
+    if (!in) {
+      return std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
 } // namespace
 
 std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path) {
@@ -154,6 +269,16 @@ std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path) {
   }
   if (n == start.size() && hasTag(&start[0], "RIFF") && hasTag(&start[8], "WEBP")) {
     return webpHeader(in);
+  }
+  if (n >= 4 && ((start[0] == 'I' && start[1] == 'I' && start[2] == 42 && start[3] == 0) ||
+                 (start[0] == 'M' && start[1] == 'M' && start[2] == 0 && start[3] == 42))) {
+    return tiffHeader(in, start[0] == 'I');
+  }
+  if (n >= 2 && start[0] == 'B' && start[1] == 'M') {
+    return bmpHeader(in);
+  }
+  if (n >= 4 && start[0] == 0x76 && start[1] == 0x2f && start[2] == 0x31 && start[3] == 0x01) {
+    return exrHeader(in);
   }
   return std::nullopt;
 }

@@ -117,6 +117,14 @@ Image loadPhoto(const fs::path& path) {
     fail("{}: no such file", name);
   }
   const std::string ext = lowerExtension(path);
+  // The size the header states is checked before anything decodes: libjpeg allocates (and for progressive
+  // files zeroes) the whole image's coefficients up front, whatever the file's length, and a PNG or an EXR
+  // of 20000² takes gigabytes before the size could be checked on the decoded image.
+  if (const std::optional<ImageHeader> header = readImageHeader(path);
+      header && (header->width > kMaxTextureSide || header->height > kMaxTextureSide)) {
+    fail("{}: image size {}x{} is out of range (1..{} per side)", name, header->width, header->height,
+         kMaxTextureSide);
+  }
   if (ext == ".png" || ext == ".exr") {
     Image image = loadImage(path);
     checkPicture(image, name);
@@ -124,13 +132,6 @@ Image loadPhoto(const fs::path& path) {
   }
   if (ext != ".jpg" && ext != ".jpeg") {
     fail("{}: unsupported photo format '{}' (expected .jpg, .jpeg, .png or .exr)", name, ext);
-  }
-  // The size the header states is checked before OpenCV decodes: libjpeg allocates (and for progressive
-  // files zeroes) the whole image's coefficients up front, whatever the file's length.
-  if (const std::optional<ImageHeader> header = readImageHeader(path);
-      header && (header->width > kMaxTextureSide || header->height > kMaxTextureSide)) {
-    fail("{}: image size {}x{} is out of range (1..{} per side)", name, header->width, header->height,
-         kMaxTextureSide);
   }
   cv::Mat bgr;
   try {

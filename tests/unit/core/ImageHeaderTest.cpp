@@ -1,7 +1,8 @@
 // Image sizes from file headers: real files (a PNG written by savePng, the JPEG seed of the flow fuzz target,
 // the progressive JPEG that claims 20000×20000 pixels) and hand-built headers for each path through the JPEG
-// marker walk and the three WebP chunk kinds; anything else and any header cut short is "unknown", not a
-// size.
+// marker walk, the three WebP chunk kinds, TIFF in both byte orders, BMP's two header kinds and OpenEXR (a
+// real file from saveImage and a hand-built header); anything else and any header cut short is "unknown", not
+// a size.
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/ImageHeader.hpp>
@@ -10,7 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <fstream>
 #include <vector>
 
@@ -107,6 +110,84 @@ TEST(ImageHeader, ReadsEachWebPChunkKind) {
   // Extended: 24-bit canvas width − 1 and height − 1, beyond what a VP8 frame can hold.
   expectSize(headerOf(dir, webp("VP8X", {0, 0, 0, 0, 0x3F, 0x42, 0x0F, 0x01, 0x00, 0x00})), "WebP", 1000000,
              2);
+}
+
+/** A TIFF header in either byte order and one directory of (tag, type, value) entries, 3 = SHORT, 4 = LONG.
+ */
+Bytes tiff(bool little, const std::vector<std::array<std::uint32_t, 3>>& entries) {
+  const auto put = [little](Bytes& b, std::uint32_t v, int bytes) {
+    for (int i = 0; i < bytes; ++i) {
+      const int shift = 8 * (little ? i : bytes - 1 - i);
+      b.push_back(static_cast<std::uint8_t>(v >> shift));
+    }
+  };
+  Bytes b = little ? Bytes{'I', 'I', 42, 0} : Bytes{'M', 'M', 0, 42};
+  put(b, 8, 4);
+  put(b, static_cast<std::uint32_t>(entries.size()), 2);
+  for (const auto& [tag, type, value] : entries) {
+    put(b, tag, 2);
+    put(b, type, 2);
+    put(b, 1, 4);
+    put(b, value, type == 3 ? 2 : 4); // a SHORT sits at the start of its 4-byte field
+    if (type == 3) {
+      put(b, 0, 2);
+    }
+  }
+  put(b, 0, 4); // no next directory
+  return b;
+}
+
+/** Little-endian bytes of v. */
+Bytes le(std::uint32_t v, int bytes) {
+  Bytes b;
+  for (int i = 0; i < bytes; ++i) {
+    b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  return b;
+}
+
+Bytes operator+(Bytes a, const Bytes& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+Bytes text(const char* s) {
+  Bytes b(s, s + std::char_traits<char>::length(s));
+  b.push_back(0);
+  return b;
+}
+
+TEST(ImageHeader, ReadsTiffBmpAndOpenExrHeaders) {
+  test::TempDir dir;
+  // TIFF, both byte orders, SHORT and LONG sizes, other tags before them.
+  expectSize(headerOf(dir, tiff(true, {{254, 4, 0}, {256, 3, 640}, {257, 4, 480}})), "TIFF", 640, 480);
+  expectSize(headerOf(dir, tiff(false, {{256, 4, 20000}, {257, 3, 3}, {258, 3, 8}})), "TIFF", 20000, 3);
+  // BMP: the OS/2 core header (16-bit sides), and the info header with a top-down (negative) height.
+  const Bytes bmpFile = {'B', 'M', 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  expectSize(headerOf(dir, bmpFile + le(12, 4) + le(300, 2) + le(200, 2) + le(1, 2) + le(24, 2)), "BMP", 300,
+             200);
+  expectSize(headerOf(dir, bmpFile + le(40, 4) + le(20000, 4) + le(static_cast<std::uint32_t>(-20000), 4)),
+             "BMP", 20000, 20000);
+  // OpenEXR: a real file, and a header whose data window starts off the origin after other attributes.
+  Image image(37, 19, 4, PixelType::F32);
+  saveImage(dir / "a.exr", image);
+  expectSize(readImageHeader(dir / "a.exr"), "OpenEXR", 37, 19);
+  const Bytes exr = Bytes{0x76, 0x2f, 0x31, 0x01, 2, 0, 0, 0} + text("compression") + text("compression") +
+                    le(1, 4) + Bytes{0} + text("dataWindow") + text("box2i") + le(16, 4) +
+                    le(static_cast<std::uint32_t>(-10), 4) + le(static_cast<std::uint32_t>(-5), 4) +
+                    le(9, 4) + le(4, 4) + Bytes{0};
+  expectSize(headerOf(dir, exr), "OpenEXR", 20, 10);
+  // Cut short, or without the size: unknown.
+  Bytes cutTiff = tiff(true, {{256, 3, 640}, {257, 4, 480}});
+  cutTiff.resize(20);
+  EXPECT_FALSE(headerOf(dir, cutTiff).has_value());
+  EXPECT_FALSE(headerOf(dir, tiff(true, {{256, 3, 640}})).has_value()); // no ImageLength
+  EXPECT_FALSE(
+      headerOf(dir, {'I', 'I', 42, 0, 0xFF, 0xFF, 0xFF, 0x7F}).has_value()); // directory past the end
+  EXPECT_FALSE(headerOf(dir, bmpFile + le(20, 4) + le(1, 4) + le(1, 4)).has_value()); // no such DIB header
+  Bytes cutExr = exr;
+  cutExr.resize(exr.size() - 10);
+  EXPECT_FALSE(headerOf(dir, cutExr).has_value());
 }
 
 TEST(ImageHeader, OtherFormatsAndCutHeadersAreUnknown) {

@@ -195,6 +195,30 @@ TEST(FoldFlow, ASequenceFrameClaimingAHugeSizeIsRefusedBeforeDecoding) {
   fs::copy_file(huge, dir / "one/1.jpg");
   EXPECT_THROW((void)loadVideo(dir / "one/%d.jpg", 1), Error); // numbered from 1
   EXPECT_THROW((void)loadVideo(dir / "one/%s.jpg", 1), Error);
+  // The same for the other formats OpenCV decodes: a 26-byte BMP and a 26-byte TIFF that claim 20000×20000.
+  fs::create_directories(dir / "bmp");
+  fs::create_directories(dir / "tif");
+  const auto write = [](const fs::path& path, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  };
+  // BMP: file header, then a 40-byte info header's size, width and height (little-endian 20000 = 0x4e20).
+  write(dir / "bmp/0.bmp",
+        {'B', 'M', 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 40, 0, 0, 0, 0x20, 0x4e, 0, 0, 0x20, 0x4e, 0, 0});
+  // TIFF: "II", 42, the directory at 8: two LONG entries, ImageWidth and ImageLength.
+  write(dir / "tif/0.tif", {'I', 'I',  42,   0, 8, 0, 0, 0, 2, 0, 0, 1, 4, 0,    1,    0, 0,
+                            0,   0x20, 0x4e, 0, 0, 1, 1, 4, 0, 1, 0, 0, 0, 0x20, 0x4e, 0, 0});
+  for (const auto& [folder, format] : {std::pair{"bmp", "BMP"}, std::pair{"tif", "TIFF"}}) {
+    const std::string clip = (dir / folder / (std::string("%d.") + folder)).string();
+    try {
+      (void)loadVideo(clip, 1);
+      ADD_FAILURE() << folder << ": the frame claims 20000×20000 pixels";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), clip + ": frame file 0." + folder + " is a " + format +
+                                           " of 20000×20000 pixels, over the " +
+                                           std::to_string(kMaxVideoSide) + " per side this loader accepts");
+    }
+  }
 }
 
 /** A file's bytes. */
