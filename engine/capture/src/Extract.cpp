@@ -1285,27 +1285,6 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
     return x >= 0 && y >= 0 && x < w && y < h && parent[at(x, y)] >= 0;
   };
   const float quantum = depthQuantum(depth, hasDepth);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (!hasDepth(x, y)) {
-        continue;
-      }
-      const float z = depth.at<float>(y, x);
-      const float step = layerStepMetres(z, quantum);
-      std::size_t root = find(at(x, y));
-      // Neighbours up to two pixels away: a narrow blade's pixels reach each other across the dropouts and
-      // the lateral jitter that scatter a sensor's depth along its edges.
-      for (const auto& [dx, dy] : kLayerLinks) {
-        if (hasDepth(x + dx, y + dy) && std::abs(depth.at<float>(y + dy, x + dx) - z) <= step) {
-          const std::size_t other = find(at(x + dx, y + dy));
-          if (other != root) {
-            parent[std::max(root, other)] = static_cast<int>(std::min(root, other));
-            root = std::min(root, other);
-          }
-        }
-      }
-    }
-  }
   // Across occluders: from a pixel whose neighbour is nearer by more than a step, walk straight over nearer
   // pixels (and dropouts); where the walk lands on depth that continues this pixel's, the surface runs on
   // behind the occluder.
@@ -1324,6 +1303,13 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
       }
       const float z = depth.at<float>(y, x);
       const float step = layerStepMetres(z, quantum);
+      // Neighbours up to two pixels away: a narrow blade's pixels reach each other across the dropouts and
+      // the lateral jitter that scatter a sensor's depth along its edges.
+      for (const auto& [dx, dy] : kLayerLinks) {
+        if (hasDepth(x + dx, y + dy) && std::abs(depth.at<float>(y + dy, x + dx) - z) <= step) {
+          unite(at(x, y), at(x + dx, y + dy));
+        }
+      }
       for (const auto& [dx, dy] : kDirections) {
         if (!hasDepth(x + dx, y + dy) || depth.at<float>(y + dy, x + dx) > z - step) {
           continue;

@@ -20,10 +20,10 @@ struct ImageHeader {
 /**
  * Reads the header of a PNG, JPEG, WebP, TIFF, BMP or OpenEXR file, recognised by its content (the extension
  * is only a name): PNG's IHDR, the first JPEG frame header (SOF0–SOF15, skipping every segment before it,
- * however long), WebP's VP8, VP8L or VP8X chunk, the first TIFF directory's ImageWidth and ImageLength (either
- * byte order; not BigTIFF), a BMP's core or info header (|height| for top-down bitmaps), the first OpenEXR
- * header's dataWindow. nullopt for any other format or a header cut short before the size. Reads only the
- * bytes up to the size fields. Throws sylva::Error naming the file when it cannot be opened.
+ * however long), WebP's VP8, VP8L or VP8X chunk, the first TIFF directory's ImageWidth and ImageLength
+ * (either byte order; not BigTIFF), a BMP's core or info header (|height| for top-down bitmaps), the first
+ * OpenEXR header's dataWindow. nullopt for any other format or a header cut short before the size. Reads only
+ * the bytes up to the size fields. Throws sylva::Error naming the file when it cannot be opened.
  */
 std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path);
 
