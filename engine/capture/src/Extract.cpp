@@ -1171,11 +1171,10 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
 struct DepthLayer {
   /** CV_8U, frame-sized: the layer's own pixels (its depth is the layer's). */
   cv::Mat own;
-  /** `own` plus the pixels of nearer layers it runs on under (gaps narrower than the occluder it bridges). */
+  /** `own` plus the straight runs across nearer layers that joined it (the layer seen on both sides). */
   cv::Mat completed;
   /** Median depth of the layer's pixels, metres. */
   float depthMetres = 0.0f;
-  int areaPx = 0;
 };
 
 /**
@@ -1398,7 +1397,6 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
     std::vector<float>& zs = depths[l];
     std::nth_element(zs.begin(), zs.begin() + static_cast<std::ptrdiff_t>(zs.size() / 2), zs.end());
     layers[l].depthMetres = zs[zs.size() / 2];
-    layers[l].areaPx = cv::countNonZero(layers[l].own);
     layers[l].completed = layers[l].own.clone();
   }
   // A layer runs on under the occluders its runs crossed.
