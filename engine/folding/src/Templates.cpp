@@ -172,7 +172,10 @@ Result build(const Zone& zone, MotionTemplate motion, const TemplateParams& para
     // The cut runs along the long axis through the centre; skin on both sides slides over a central band.
     const bool horizontal = w >= h;
     const double across = horizontal ? h : w;
-    const double s = params.strength > 0.0 ? params.strength : 0.12 * across;
+    // The sides' anchors start 20 % of the zone from the axis: a larger strength is capped where they meet on
+    // it, so the two sides close the cut and never cross over each other.
+    const double meet = 0.2 * across;
+    const double s = std::min(params.strength > 0.0 ? params.strength : 0.12 * across, meet);
     PointsTool points;
     for (int i = 1; i <= 7; ++i) {
       const double u = i / 8.0;

@@ -228,5 +228,42 @@ TEST(FoldingSession, MotionTemplatesAnimateTheirZoneOnly) {
   EXPECT_FALSE(parseMotionTemplate("dance").has_value());
 }
 
+TEST(FoldingSession, AStrongerTemplateNeverCrossesWhereItsSidesMeet) {
+  // The class of the blink whose lids crossed when made stronger: the templates that close something (blink,
+  // wound_opening) cap their strength where the two sides meet. Stronger than that gives the same tools.
+  const Project start = parseProject(sessionProject(), "s.json");
+  for (const MotionTemplate motion : {MotionTemplate::Blink, MotionTemplate::WoundOpening}) {
+    SCOPED_TRACE(motionTemplateName(motion));
+    EditHistory meeting(start);
+    TemplateParams capped;
+    capped.strength = 1e4;
+    applyMotionTemplate(meeting, 0, motion, capped);
+    EditHistory stronger(start);
+    TemplateParams more;
+    more.strength = 1e6;
+    applyMotionTemplate(stronger, 0, motion, more);
+    EXPECT_EQ(meeting.project().zones[0].tools, stronger.project().zones[0].tools);
+    // And each side's anchors end on their own side of the meeting line, or on it.
+    const Zone& zone = meeting.project().zones[0];
+    const auto* points = std::get_if<PointsTool>(&zone.tools[0]);
+    ASSERT_NE(points, nullptr);
+    double lo = 1e9;
+    double hi = -1e9;
+    for (const Vec2& p : zone.shape.outline()) {
+      lo = std::min(lo, p.y);
+      hi = std::max(hi, p.y);
+    }
+    for (const auto& [from, to] : points->pairs) {
+      if (motion == MotionTemplate::WoundOpening) {
+        const double axis = 0.5 * (lo + hi);
+        EXPECT_GE((from.y - axis) * (to.y - axis), -1e-9) << "a side crossed the cut's axis";
+      } else {
+        EXPECT_GE(to.y, from.y - 1e-9) << "the upper lid only moves down";
+        EXPECT_LE(to.y, lo + 0.88 * (hi - lo) + 0.05 * (hi - lo)) << "the lid stops on the lower lid";
+      }
+    }
+  }
+}
+
 } // namespace
 } // namespace sylva::folding
