@@ -520,10 +520,7 @@ void runSweep(int clusters, std::uint64_t seed, std::optional<ClusterLayout> onl
     report = captureSweep(clusters, seed, &progress, only);
   }
   const auto line = [](const char* name, const SweepTally& t) {
-    std::printf(
-        "%-9s %5d clusters  count exact %5.1f %%  (%d with blades missing)  width within 10 %% on %5.1f %% "
-        "of %d blades\n",
-        name, t.clusters, 100.0 * t.exactShare(), t.fewer, 100.0 * t.widthShare(), t.blades);
+    std::printf("%s\n", sweepLine(name, t).c_str());
   };
   for (std::size_t i = 0; i < report.byLayout.size(); ++i) {
     if (report.byLayout[i].clusters > 0) {

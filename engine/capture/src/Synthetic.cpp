@@ -10,6 +10,7 @@
 #include <sylva/core/Progress.hpp>
 #include <sylva/core/Random.hpp>
 
+#include <fmt/format.h>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -605,6 +606,13 @@ AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult&
     report.lengthRatio = lengthSum / matched;
   }
   return report;
+}
+
+std::string sweepLine(const char* name, const SweepTally& t) {
+  return fmt::format(
+      "{:<9} {:>5} clusters  count exact {:>5.1f} %  ({} with blades missing)  width within 10 % on "
+      "{:>5.1f} % of {} blades",
+      name, t.clusters, 100.0 * t.exactShare(), t.fewer, 100.0 * t.widthShare(), t.blades);
 }
 
 SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progress,

@@ -30,9 +30,7 @@ namespace sylva::capture {
 namespace {
 
 void print(const char* name, const SweepTally& t) {
-  std::printf("%-9s %4d clusters: count exact %5.1f %% (%d too few), width within 10 %% on %5.1f %% of %d "
-              "blades\n",
-              name, t.clusters, 100.0 * t.exactShare(), t.fewer, 100.0 * t.widthShare(), t.blades);
+  std::printf("%s\n", sweepLine(name, t).c_str());
 }
 
 TEST(CaptureSweep, RandomClustersOfEveryClass) {

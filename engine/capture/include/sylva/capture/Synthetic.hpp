@@ -205,6 +205,12 @@ struct SweepTally {
   double widthShare() const { return blades > 0 ? static_cast<double>(widthWithin10) / blades : 0.0; }
 };
 
+/**
+ * One line of a sweep's table (no newline), as `sylva capture synth --sweep` prints it and the sweep test
+ * logs it: "occluded     45 clusters  count exact  95.6 %  (2 with blades missing)  width within 10 % on …".
+ */
+std::string sweepLine(const char* name, const SweepTally& tally);
+
 /** A capture sweep's result: per layout (index = the layout's place in kClusterLayouts) and over all. */
 struct SweepReport {
   std::array<SweepTally, 4> byLayout{};
