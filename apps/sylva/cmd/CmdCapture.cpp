@@ -423,6 +423,9 @@ void runCapture(const CaptureOptions& o) {
         for (const std::string& r : cluster.rejected) {
           std::printf("    not a blade: %s\n", r.c_str());
         }
+        for (const std::string& m : cluster.merged) {
+          std::printf("    merged? %s\n", m.c_str());
+        }
       }
       for (const std::string& d : first.droppedParts) {
         std::printf("  dropped: %s\n", d.c_str());

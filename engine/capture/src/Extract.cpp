@@ -1415,6 +1415,36 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
 /** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
 constexpr double kCoverageMargin = 0.02;
 
+/** A blade this many times as wide as its cluster's median blade is probably several merged. */
+constexpr float kMergedWidthRatio = 1.6f;
+
+/** Notes the blades of a partition that are probably merged (Cluster::merged). */
+void flagMerges(Partition& p) {
+  if (p.blades.size() < 3) {
+    return;
+  }
+  std::vector<float> widths;
+  for (const CapturedBlade& blade : p.blades) {
+    widths.push_back(*std::max_element(blade.widthsPx.begin(), blade.widthsPx.end()));
+  }
+  std::vector<float> sorted = widths;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const float median = sorted[sorted.size() / 2];
+  for (std::size_t b = 0; b < widths.size(); ++b) {
+    if (median > 0.0f && widths[b] > kMergedWidthRatio * median) {
+      p.cluster.merged.push_back(fmt::format(
+          "the blade with its tip at ({:.0f}, {:.0f}) is {:.1f}× as wide as the cluster's median blade "
+          "({:.0f} "
+          "against {:.0f} px): probably blades merged where the outline shows no junction between them and "
+          "depth no step",
+          p.blades[b].outline[static_cast<std::size_t>(p.blades[b].tip)].x,
+          p.blades[b].outline[static_cast<std::size_t>(p.blades[b].tip)].y, widths[b] / median, widths[b],
+          median));
+    }
+  }
+}
+
 /**
  * Partitions one cluster: `clusterMask` is its silhouette (its outer contour is `contourPts`), `ownMask` the
  * pixels whose depth is its own (the silhouette less what nearer layers hide).
@@ -1467,6 +1497,7 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
     return;
   }
   Partition& p = *best;
+  flagMerges(p);
   p.cluster.layer = c.layer;
   p.cluster.layerCount = c.layerCount;
   p.cluster.layerDepthMetres = c.layerDepthMetres;
