@@ -100,25 +100,25 @@ Result build(const Zone& zone, MotionTemplate motion, const TemplateParams& para
     ZeroTool still;
     // About one anchor every 2 pixels: Shepard's interpolation is flat around each anchor, so sparser
     // anchors would stretch the skin in visible blocks.
-    const int kAcross = std::clamp(static_cast<int>(std::lround(0.4 * w)), 8, 96);
-    const int kDown = std::clamp(static_cast<int>(std::lround(0.33 * h)), 6, 96);
+    const int across = std::clamp(static_cast<int>(std::lround(0.4 * w)), 8, 96);
+    const int down = std::clamp(static_cast<int>(std::lround(0.33 * h)), 6, 96);
     const double below = std::max(1.5, 0.03 * h);
-    for (int i = 0; i <= kAcross; ++i) {
-      const double t = static_cast<double>(i) / kAcross;
+    for (int i = 0; i <= across; ++i) {
+      const double t = static_cast<double>(i) / across;
       const Vec2 edge = bezierPoint(upperLid, t);
       const Vec2 crease(edge.x, 0.5 * (b.lo.y + edge.y));
       // Closed, the lid's edge comes to rest on the lower lid's lashes, half a still-band past its line.
       const Vec2 stop = edge + closure * (bezierPoint(lowerLid, t) + Vec2(0.0, 0.5 * below) - edge);
-      for (int k = 1; k <= kDown; ++k) {
-        const double g = static_cast<double>(k) / kDown;
+      for (int k = 1; k <= down; ++k) {
+        const double g = static_cast<double>(k) / down;
         stretch.pairs.push_back({crease + g * (edge - crease), crease + g * (stop - crease)});
       }
       still.pts.push_back(crease);
     }
     // The lower lid stays: still anchors a little below its line (a second polyline, after the crease's).
     ZeroTool under;
-    for (int i = 0; i <= kAcross; ++i) {
-      under.pts.push_back(bezierPoint(lowerLid, static_cast<double>(i) / kAcross) + Vec2(0.0, 2.0 * below));
+    for (int i = 0; i <= across; ++i) {
+      under.pts.push_back(bezierPoint(lowerLid, static_cast<double>(i) / across) + Vec2(0.0, 2.0 * below));
     }
     r.tools = {stretch, still, under};
     // Anchors this dense need no far reach: a short radius keeps the stretch exact up to the still anchors.
@@ -127,8 +127,8 @@ Result build(const Zone& zone, MotionTemplate motion, const TemplateParams& para
     // what the stretch reads there counts as skin.
     const double lash = std::max(1.0, 0.02 * h);
     std::vector<Vec2> skin = {b.at(0.0, 0.0), b.at(1.0, 0.0), b.at(1.0, kBlinkCorner)};
-    for (int i = kAcross; i >= 0; --i) {
-      skin.push_back(bezierPoint(upperLid, static_cast<double>(i) / kAcross) + Vec2(0.0, lash));
+    for (int i = across; i >= 0; --i) {
+      skin.push_back(bezierPoint(upperLid, static_cast<double>(i) / across) + Vec2(0.0, lash));
     }
     skin.push_back(b.at(0.0, kBlinkCorner));
     r.folding.type = Folding::Type::Polygons;
