@@ -4,7 +4,7 @@
 // below the lower lid, the corners 10 % in from the sides); the eye opening, an iris patch and a patch of
 // skin above the eye are marked by hand. At the closed phase the eye must be covered by skin (its colour
 // statistics those of the skin above it, no iris-coloured pixel left); open, the same measures show the eye,
-// so the checks can fail.
+// so the checks can fail. The other templates on the same photo: none tears it at its zone's border.
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/folding/Edit.hpp>
@@ -234,6 +234,70 @@ TEST(BlinkTemplate, ClosesRealEyesUnderTheSkinAboveThem) {
         EXPECT_LE(after.eyeSpread[c], 2.0 * after.skinSpread[c] + 0.02) << "channel " << c;
       }
     }
+  }
+}
+
+TEST(MotionTemplatesOnAPhoto, LeaveTheirZonesBorderStill) {
+  // The templates that keep their motion inside the zone (zero anchors on its outline, or a feathered edge)
+  // must not tear the photo at the zone's border: at every phase the pixels along the border's inner ring
+  // look as they did. wave_swash is left out: its water comes in across the zone's border by design.
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("astronaut.png"));
+  const test::TempDir dir;
+  struct Case {
+    MotionTemplate motion;
+    glm::dvec2 min;
+    glm::dvec2 max;
+  };
+  const std::vector<Case> cases = {{MotionTemplate::Blink, {189.4, 86.6}, {215.6, 107.5}},
+                                   {MotionTemplate::Breathing, {60, 300}, {330, 500}},
+                                   {MotionTemplate::WoundOpening, {170, 115}, {215, 140}},
+                                   {MotionTemplate::FlagRipple, {0, 0}, {95, 240}}};
+  const Image original = loadImage(test::externalData("astronaut.png"));
+  for (const Case& c : cases) {
+    SCOPED_TRACE(motionTemplateName(c.motion));
+    const nlohmann::json j = {
+        {"format", "sylva-fold"},
+        {"version", 1},
+        {"atlas", {{"images", {{{"id", "face"}, {"file", test::externalData("astronaut.png").string()}}}}}},
+        {"profiles", {{{"id", "p"}}}},
+        {"zones",
+         {{{"id", "z"},
+           {"image", "face"},
+           {"profile", "p"},
+           {"shape", {{"type", "rect"}, {"min", {c.min.x, c.min.y}}, {"max", {c.max.x, c.max.y}}}}}}}};
+    const std::filesystem::path path = dir / "photo.json";
+    saveJsonFile(path, j);
+    EditHistory history(loadProject(path));
+    applyMotionTemplate(history, 0, c.motion);
+    const Project& project = history.project();
+    const Textures textures = synthesize(project, loadProjectImages(project, path.string()));
+    const Profile& profile =
+        project.profiles[static_cast<std::size_t>(project.profileIndex(motionTemplateName(c.motion)))];
+    double worstBorder = 0.0;
+    double interior = 0.0;
+    for (const double phase : {0.2, 0.4, 0.6, 0.8}) {
+      const Image frame =
+          cropToEntry(renderFrame(textures, project.profiles, project.jumpLayers, phase * profile.periodS),
+                      textures.atlas.entries[static_cast<std::size_t>(project.canvasIndex())]);
+      for (int y = static_cast<int>(std::ceil(c.min.y - 0.5));
+           y <= static_cast<int>(std::floor(c.max.y - 0.5)); ++y) {
+        for (int x = static_cast<int>(std::ceil(c.min.x - 0.5));
+             x <= static_cast<int>(std::floor(c.max.x - 0.5)); ++x) {
+          const double edge =
+              std::min({x + 0.5 - c.min.x, c.max.x - x - 0.5, y + 0.5 - c.min.y, c.max.y - y - 0.5});
+          const double change = glm::length(rgbAt(frame, x, y) - rgbAt(original, x, y));
+          if (edge <= 1.0) {
+            worstBorder = std::max(worstBorder, change);
+          } else {
+            interior = std::max(interior, change);
+          }
+        }
+      }
+    }
+    std::printf("%s: largest change on the zone's border ring %.4f, inside %.4f\n",
+                motionTemplateName(c.motion), worstBorder, interior);
+    EXPECT_GT(interior, 0.05) << "the template moves the zone";
+    EXPECT_LE(worstBorder, 0.05) << "the zone's border tears";
   }
 }
 
