@@ -735,6 +735,12 @@ std::vector<CentreCandidate> centreCandidates(Context& c, const cv::Mat& cluster
   return out;
 }
 
+/** Whether z is a valid depth inside the blades' range (pixels the colour refinement added may still carry
+ * the background's). */
+bool inBladeRange(const Context& c, float z) {
+  return z > 0.0f && z >= c.result.nearMetres && z <= c.result.farMetres;
+}
+
 /** Median valid depth around (u, v) within the mask, radius r; 0 when none. */
 float depthAround(const Context& c, const glm::vec2& p, int r) {
   std::vector<float> values;
@@ -750,7 +756,7 @@ float depthAround(const Context& c, const glm::vec2& p, int r) {
       // Only depths in the blades' range: pixels the colour refinement added may still carry the
       // background's.
       const float z = c.depth.at<float>(y, x);
-      if (z > 0.0f && z >= c.result.nearMetres && z <= c.result.farMetres) {
+      if (inBladeRange(c, z)) {
         values.push_back(z);
       }
     }
@@ -1235,12 +1241,12 @@ template <typename HasDepth> float depthQuantum(const cv::Mat& depth, const HasD
  * over a short distance (the same surface), and across a nearer occluder when the depth on its far side
  * continues the near side's (a blade seen on both sides of one that crosses in front of it). A blade in front
  * of another steps in depth all along its outline, even where the silhouettes merge, so it forms a layer of
- * its own; blades of one tuft meet at their root and form one. Layers smaller than minLayerArea, and pixels
+ * its own; blades of one tuft meet at their root and form one. Layers smaller than minArea, and pixels
  * with no depth, join the nearest large layer. Each layer's completed silhouette adds the straight runs
  * across occluders that joined it. Returns the layers nearest first, or nothing when the cluster is one
  * layer.
  */
-std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask) {
+std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask, int minArea) {
   const cv::Rect box = cv::boundingRect(clusterMask);
   if (box.empty()) {
     return {};
@@ -1274,8 +1280,7 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const float z = depth.at<float>(y, x);
-      if (mask.at<std::uint8_t>(y, x) != 0 && z > 0.0f && z >= c.result.nearMetres &&
-          z <= c.result.farMetres) {
+      if (mask.at<std::uint8_t>(y, x) != 0 && inBladeRange(c, z)) {
         parent[at(x, y)] = static_cast<int>(at(x, y));
       }
     }
@@ -1342,7 +1347,6 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
     }
   }
   std::vector<std::size_t> roots;
-  const int minArea = minLayerArea(c.options, cv::countNonZero(mask));
   for (std::size_t i = 0; i < parent.size(); ++i) {
     if (parent[i] == static_cast<int>(i) && size[i] >= minArea) {
       roots.push_back(i);
@@ -1512,25 +1516,44 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
   c.result.clusters.push_back(std::move(p.cluster));
 }
 
+/**
+ * Indices of the contours enclosing at least minArea pixels (and of 8 points or more), largest first, so
+ * that blade order is stable and meaningful; the others go to `small` when given.
+ */
+std::vector<std::size_t> largestFirst(const std::vector<std::vector<cv::Point>>& contours, double minArea,
+                                      std::vector<std::size_t>* small = nullptr) {
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t k = 0; k < contours.size(); ++k) {
+    const double area = cv::contourArea(contours[k]);
+    if (area >= minArea && contours[k].size() >= 8) {
+      order.emplace_back(-area, k);
+    } else if (small != nullptr) {
+      small->push_back(k);
+    }
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<std::size_t> out;
+  for (const auto& entry : order) {
+    out.push_back(entry.second);
+  }
+  return out;
+}
+
 /** Partitions each part of `mask` (its outer contours of at least minArea pixels), largest first. */
 void processParts(Context& c, const cv::Mat& mask, const cv::Mat& own, int minArea) {
   std::vector<std::vector<cv::Point>> parts;
   cv::findContours(mask.clone(), parts, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  std::vector<std::pair<double, std::size_t>> order;
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    const double area = cv::contourArea(parts[k]);
-    if (area >= minArea && parts[k].size() >= 8) {
-      order.emplace_back(-area, k);
-    } else {
-      const cv::Rect r = cv::boundingRect(parts[k]);
-      c.result.droppedParts.push_back(fmt::format(
-          "depth layer {} of {} ({:.3f} m): a part of {:.0f} px at ({}, {}), below the {} px a part "
-          "needs",
-          c.layer, c.layerCount, c.layerDepthMetres, area, r.x + r.width / 2, r.y + r.height / 2, minArea));
-    }
+  std::vector<std::size_t> small;
+  const std::vector<std::size_t> order = largestFirst(parts, minArea, &small);
+  for (const std::size_t k : small) {
+    const cv::Rect r = cv::boundingRect(parts[k]);
+    c.result.droppedParts.push_back(fmt::format(
+        "depth layer {} of {} ({:.3f} m): a part of {:.0f} px at ({}, {}), below the {} px a part "
+        "needs",
+        c.layer, c.layerCount, c.layerDepthMetres, cv::contourArea(parts[k]), r.x + r.width / 2,
+        r.y + r.height / 2, minArea));
   }
-  std::sort(order.begin(), order.end());
-  for (const auto& [area, k] : order) {
+  for (const std::size_t k : order) {
     cv::Mat partMask = cv::Mat::zeros(mask.size(), CV_8U);
     cv::drawContours(partMask, parts, static_cast<int>(k), cv::Scalar(255), cv::FILLED);
     partMask &= mask;
@@ -1556,25 +1579,18 @@ ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& optio
   }
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(c.mask.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  // Largest clusters first, so blade order is stable and meaningful.
-  std::vector<std::pair<double, std::size_t>> order;
-  for (std::size_t i = 0; i < contours.size(); ++i) {
-    const double area = cv::contourArea(contours[i]);
-    if (area >= options.minClusterAreaPx && contours[i].size() >= 8) {
-      order.emplace_back(-area, i);
-    }
-  }
-  std::sort(order.begin(), order.end());
+  const std::vector<std::size_t> order = largestFirst(contours, options.minClusterAreaPx);
   if (order.empty()) {
     result.warnings.push_back(fmt::format("{}: no contour: no blob of at least {} pixels in the mask",
                                           frame.label(), options.minClusterAreaPx));
     return result;
   }
-  for (const auto& [area, i] : order) {
+  for (const std::size_t i : order) {
     cv::Mat clusterMask = cv::Mat::zeros(c.mask.size(), CV_8U);
     cv::drawContours(clusterMask, contours, static_cast<int>(i), cv::Scalar(255), cv::FILLED);
     clusterMask &= c.mask;
-    const std::vector<DepthLayer> layers = depthLayers(c, clusterMask);
+    const int layerArea = minLayerArea(options, cv::countNonZero(clusterMask));
+    const std::vector<DepthLayer> layers = depthLayers(c, clusterMask, layerArea);
     if (layers.empty()) {
       processCluster(c, contours[i], clusterMask, c.mask);
       continue;
@@ -1584,8 +1600,7 @@ ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& optio
     for (std::size_t l = 0; l < layers.size(); ++l) {
       c.layer = static_cast<int>(l);
       c.layerDepthMetres = layers[l].depthMetres;
-      processParts(c, layers[l].completed, layers[l].own,
-                   minLayerArea(options, cv::countNonZero(clusterMask)));
+      processParts(c, layers[l].completed, layers[l].own, layerArea);
     }
     c.layer = -1;
     c.layerCount = 1;
