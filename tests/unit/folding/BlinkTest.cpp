@@ -167,35 +167,59 @@ EyeMeasure measureEye(const Image& original, const Image& frame, const Eye& eye)
           skinSpread};
 }
 
-/** The portrait with a blink on each eye, rendered at time t (seconds), cropped to the portrait. */
-Image blinkAt(const test::TempDir& dir, const Portrait& portrait, double t,
-              const TemplateParams& params = {}) {
-  nlohmann::json zones = nlohmann::json::array();
-  for (const Eye& eye : portrait.eyes) {
-    zones.push_back({{"id", eye.id},
-                     {"image", "face"},
-                     {"profile", "blink"},
-                     {"shape",
-                      {{"type", "rect"},
-                       {"min", {eye.zoneMin.x, eye.zoneMin.y}},
-                       {"max", {eye.zoneMax.x, eye.zoneMax.y}}}}});
+/** A photo with one template applied to each of its rectangular zones, synthesised once. */
+struct TemplatedPhoto {
+  Project project;
+  Textures textures;
+
+  /** The photo at time t (seconds), cropped to its own pixels. */
+  Image at(double t) const {
+    return cropToEntry(renderFrame(textures, project.profiles, project.jumpLayers, t),
+                       textures.atlas.entries[static_cast<std::size_t>(project.canvasIndex())]);
+  }
+  /** The period of the template's profile, seconds. */
+  double period(MotionTemplate motion) const {
+    return project.profiles[static_cast<std::size_t>(project.profileIndex(motionTemplateName(motion)))]
+        .periodS;
+  }
+};
+
+TemplatedPhoto templated(const test::TempDir& dir, const char* file,
+                         const std::vector<std::pair<glm::dvec2, glm::dvec2>>& zones, MotionTemplate motion,
+                         const TemplateParams& params = {}) {
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t z = 0; z < zones.size(); ++z) {
+    const auto& [min, max] = zones[z];
+    list.push_back({{"id", "z" + std::to_string(z)},
+                    {"image", "photo"},
+                    {"profile", "p"},
+                    {"shape", {{"type", "rect"}, {"min", {min.x, min.y}}, {"max", {max.x, max.y}}}}});
   }
   const nlohmann::json j = {
       {"format", "sylva-fold"},
       {"version", 1},
-      {"atlas", {{"images", {{{"id", "face"}, {"file", test::externalData(portrait.file).string()}}}}}},
-      {"profiles", {{{"id", "blink"}}}},
-      {"zones", zones}};
-  const std::filesystem::path path = dir / "portrait.json";
+      {"atlas", {{"images", {{{"id", "photo"}, {"file", test::externalData(file).string()}}}}}},
+      {"profiles", {{{"id", "p"}}}},
+      {"zones", list}};
+  const std::filesystem::path path = dir / "photo.json";
   saveJsonFile(path, j);
   EditHistory history(loadProject(path));
-  for (std::size_t z = 0; z < portrait.eyes.size(); ++z) {
-    applyMotionTemplate(history, static_cast<int>(z), MotionTemplate::Blink, params);
+  for (std::size_t z = 0; z < zones.size(); ++z) {
+    applyMotionTemplate(history, static_cast<int>(z), motion, params);
   }
-  const Project& project = history.project();
-  const Textures textures = synthesize(project, loadProjectImages(project, path.string()));
-  const Image frame = renderFrame(textures, project.profiles, project.jumpLayers, t);
-  return cropToEntry(frame, textures.atlas.entries[static_cast<std::size_t>(project.canvasIndex())]);
+  TemplatedPhoto out{history.project(), {}};
+  out.textures = synthesize(out.project, loadProjectImages(out.project, path.string()));
+  return out;
+}
+
+/** The portrait with a blink on each eye. */
+TemplatedPhoto blinking(const test::TempDir& dir, const Portrait& portrait,
+                        const TemplateParams& params = {}) {
+  std::vector<std::pair<glm::dvec2, glm::dvec2>> zones;
+  for (const Eye& eye : portrait.eyes) {
+    zones.emplace_back(eye.zoneMin, eye.zoneMax);
+  }
+  return templated(dir, portrait.file, zones, MotionTemplate::Blink, params);
 }
 
 TEST(BlinkTemplate, ClosesRealEyesUnderTheSkinAboveThem) {
@@ -204,12 +228,13 @@ TEST(BlinkTemplate, ClosesRealEyesUnderTheSkinAboveThem) {
     SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData(portrait.file));
     const Image original = loadImage(test::externalData(portrait.file));
     // The blink's profile holds the eye closed from 25 % to 55 % of its 4 s period.
-    const Image open = blinkAt(dir, portrait, 0.0);
-    const Image closed = blinkAt(dir, portrait, 1.6);
+    const TemplatedPhoto blink = blinking(dir, portrait);
+    const Image open = blink.at(0.0);
+    const Image closed = blink.at(1.6);
     // Stronger than closed is capped at closed: the lids never cross and the eye never reopens.
     TemplateParams strong;
     strong.strength = 500.0;
-    const Image forced = blinkAt(dir, portrait, 1.6, strong);
+    const Image forced = blinking(dir, portrait, strong).at(1.6);
     for (const Eye& eye : portrait.eyes) {
       SCOPED_TRACE(std::string(portrait.file) + " " + eye.id);
       const EyeMeasure before = measureEye(original, open, eye);
@@ -255,30 +280,11 @@ TEST(MotionTemplatesOnAPhoto, LeaveTheirZonesBorderStill) {
   const Image original = loadImage(test::externalData("astronaut.png"));
   for (const Case& c : cases) {
     SCOPED_TRACE(motionTemplateName(c.motion));
-    const nlohmann::json j = {
-        {"format", "sylva-fold"},
-        {"version", 1},
-        {"atlas", {{"images", {{{"id", "face"}, {"file", test::externalData("astronaut.png").string()}}}}}},
-        {"profiles", {{{"id", "p"}}}},
-        {"zones",
-         {{{"id", "z"},
-           {"image", "face"},
-           {"profile", "p"},
-           {"shape", {{"type", "rect"}, {"min", {c.min.x, c.min.y}}, {"max", {c.max.x, c.max.y}}}}}}}};
-    const std::filesystem::path path = dir / "photo.json";
-    saveJsonFile(path, j);
-    EditHistory history(loadProject(path));
-    applyMotionTemplate(history, 0, c.motion);
-    const Project& project = history.project();
-    const Textures textures = synthesize(project, loadProjectImages(project, path.string()));
-    const Profile& profile =
-        project.profiles[static_cast<std::size_t>(project.profileIndex(motionTemplateName(c.motion)))];
+    const TemplatedPhoto photo = templated(dir, "astronaut.png", {{c.min, c.max}}, c.motion);
     double worstBorder = 0.0;
     double interior = 0.0;
     for (const double phase : {0.2, 0.4, 0.6, 0.8}) {
-      const Image frame =
-          cropToEntry(renderFrame(textures, project.profiles, project.jumpLayers, phase * profile.periodS),
-                      textures.atlas.entries[static_cast<std::size_t>(project.canvasIndex())]);
+      const Image frame = photo.at(phase * photo.period(c.motion));
       for (int y = static_cast<int>(std::ceil(c.min.y - 0.5));
            y <= static_cast<int>(std::floor(c.max.y - 0.5)); ++y) {
         for (int x = static_cast<int>(std::ceil(c.min.x - 0.5));
