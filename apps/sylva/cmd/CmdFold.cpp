@@ -6,18 +6,16 @@
 #include "Commands.hpp"
 #include "flags/SourceOptions.hpp"
 
-#include <imgui.h>
 #include <sylva/core/Error.hpp>
-#include <sylva/ui/ImageCanvas.hpp>
-#include <sylva/ui/WindowShell.hpp>
-#include <sylva/gl/State.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/core/Parallel.hpp>
 #include <sylva/core/Progress.hpp>
+#include <sylva/media/Animation.hpp>
 #include <sylva/media/Export.hpp>
 #include <sylva/folding/Project.hpp>
+#include <sylva/folding/ProjectFile.hpp>
 #include <sylva/folding/Renderer.hpp>
 #include <sylva/folding/Session.hpp>
 #include <sylva/folding/Synthesis.hpp>
@@ -26,15 +24,9 @@
 #ifdef SYLVA_HAVE_FOLDING_GPU
 #include <sylva/folding/gpu/FoldRenderer.hpp>
 #include <sylva/folding/gpu/ShaderExport.hpp>
-#include <sylva/gl/ContextInfo.hpp>
-#include <sylva/gl/Framebuffer.hpp>
-#include <sylva/render/gpu/GpuTimers.hpp>
-#include <sylva/render/gpu/RenderTarget.hpp>
+#include <sylva/folding_ui/Editor.hpp>
+#include <sylva/folding_ui/Viewer.hpp>
 #include <sylva/shader/Library.hpp>
-
-#include "fold/FoldEdit.hpp"
-
-#include <GLFW/glfw3.h>
 #endif
 
 #include <fmt/format.h>
@@ -63,10 +55,6 @@ constexpr const char* kFunctionNames[] = {"linear", "piecewise", "exponential", 
 /** Largest total size of the frames a render keeps in memory before writing, bytes. */
 constexpr double kMaxFrameBytes = 4.0 * 1024.0 * 1024.0 * 1024.0;
 
-const char* functionName(PositionFunction::Type type) {
-  return kFunctionNames[static_cast<int>(type)];
-}
-
 std::optional<PositionFunction::Type> parseFunction(const std::string& name) {
   for (int i = 0; i < 5; ++i) {
     if (name == kFunctionNames[i]) {
@@ -74,91 +62,6 @@ std::optional<PositionFunction::Type> parseFunction(const std::string& name) {
     }
   }
   return std::nullopt;
-}
-
-const char* loopName(LoopMode mode) {
-  return mode == LoopMode::PingPong ? "ping-pong" : mode == LoopMode::Crossfade ? "crossfade" : "none";
-}
-
-const char* interpName(Interpolation::Type type) {
-  return type == Interpolation::Type::Shepard           ? "shepard"
-         : type == Interpolation::Type::ModifiedShepard ? "modified_shepard"
-                                                        : "modified_shepard_random";
-}
-
-const char* foldingName(Folding::Type type) {
-  return type == Folding::Type::Polygons ? "polygons"
-         : type == Folding::Type::Mask   ? "mask"
-         : type == Folding::Type::Object ? "object"
-                                         : "none";
-}
-
-const char* toolName(const Tool& tool) {
-  static constexpr const char* kNames[] = {"translate", "scale", "points",  "curve",
-                                           "lasso",     "zero",  "fly_over"};
-  return kNames[tool.index()];
-}
-
-/** A project with its images, loaded and validated (errors name the file and the field). */
-struct Loaded {
-  std::string where;
-  Project project;
-  ProjectImages images;
-};
-
-Loaded load(const std::string& file) {
-  Loaded l;
-  l.where = file;
-  l.project = loadProject(file);
-  l.images = loadProjectImages(l.project, l.where);
-  return l;
-}
-
-/**
- * Runs `work`, prefixing the project file to errors that do not name it yet (the atlas packer reports
- * "zones[0].tools: ..." without knowing the file).
- */
-template <typename F> auto withFileName(const Loaded& l, F&& work) {
-  try {
-    return work();
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    if (message.rfind(l.where, 0) == 0) {
-      throw;
-    }
-    fail("{}: {}", l.where, message);
-  }
-}
-
-/** Synthesises with a progress line; Ctrl-C cancels with the one-line error. */
-Textures synthesizeWithProgress(const Loaded& l, SynthesisStats* stats = nullptr) {
-  Progress progress("synthesis", std::max<std::size_t>(synthesisRows(l.project, l.images), 1));
-  SynthesisStats own;
-  SynthesisStats& s = stats ? *stats : own;
-  Textures textures = withFileName(l, [&] { return synthesize(l.project, l.images, &progress, &s); });
-  if (progress.cancelled()) {
-    fail("{}: synthesis cancelled", l.where);
-  }
-  for (const std::string& warning : stillZoneWarnings(l.project, s)) {
-    log::warn("{}: {}", l.where, warning);
-  }
-  return textures;
-}
-
-/** Index of image `id` (default: the canvas); throws naming the option and listing the images. */
-int imageOption(const Project& project, const std::string& id) {
-  if (id.empty()) {
-    return project.canvasIndex();
-  }
-  const int index = project.imageIndex(id);
-  if (index < 0) {
-    std::string ids;
-    for (const ImageEntry& e : project.images) {
-      ids += (ids.empty() ? "" : ", ") + e.id;
-    }
-    fail("--image: no image '{}' in the project (images: {})", id, ids);
-  }
-  return index;
 }
 
 void requireExtensionIfGiven(const std::string& option, const std::string& path, const std::string& ext) {
@@ -186,10 +89,10 @@ void registerFoldSynth(CLI::App& fold) {
   command->add_option("--arrow-step", o->arrowStep, "Texels between arrows in vectors.png (0: automatic)")
       ->check(CLI::Range(0, 4096));
   command->callback([o] {
-    const Loaded l = load(o->project);
+    const LoadedProject l = loadProjectFile(o->project);
     const auto start = std::chrono::steady_clock::now();
     SynthesisStats stats;
-    const Textures textures = synthesizeWithProgress(l, &stats);
+    const Textures textures = synthesizeLoaded(l, &stats);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const fs::path dir = o->out;
     saveTextures(dir, l.project, textures);
@@ -198,7 +101,7 @@ void registerFoldSynth(CLI::App& fold) {
     saveImage(dir / "vectors.png", vectorFieldPicture(textures, step));
     saveImage(dir / "t0.png", thresholdHeatMap(textures, 0));
     saveImage(dir / "t1.png", thresholdHeatMap(textures, 1));
-    std::printf("%s: atlas %dx%d, %zu images, %zu zones, %zu jump layer%s%s\n", l.where.c_str(),
+    std::printf("%s: atlas %dx%d, %zu images, %zu zones, %zu jump layer%s%s\n", l.file.c_str(),
                 textures.width(), textures.height(), l.project.images.size(), l.project.zones.size(),
                 textures.jump.size(), textures.jump.size() == 1 ? "" : "s",
                 textures.fold.empty() ? "" : ", extra fold intervals");
@@ -234,41 +137,25 @@ struct RenderOptions {
 };
 
 /** Renders `count` frames at t = i / fps of image `index`, cropped to its atlas entry. */
-std::vector<Image> renderFrames(const RenderOptions& o, const Loaded& l, const Textures& textures,
+std::vector<Image> renderFrames(const RenderOptions& o, const LoadedProject& l, const Textures& textures,
                                 const std::vector<Profile>& profiles, int index, int count) {
   const AtlasEntry& entry = textures.atlas.entries[static_cast<std::size_t>(index)];
-  std::vector<Image> frames;
-  frames.reserve(static_cast<std::size_t>(count));
-  Progress progress("rendering frames", static_cast<std::size_t>(count));
-  const auto check = [&] {
-    if (progress.cancelled()) {
-      fail("{}: rendering cancelled", l.where);
-    }
-  };
   if (o.renderer == "gl") {
 #ifdef SYLVA_HAVE_FOLDING_GPU
     auto context = platform::createHeadlessContext(o.context.options());
     shader::Library library(o.shaderDir);
     folding::gpu::FoldRenderer renderer(library);
     renderer.upload(textures, profiles, l.project.jumpLayers);
-    for (int i = 0; i < count; ++i) {
-      check();
-      frames.push_back(cropToEntry(renderer.render(i / o.fps), entry));
-      progress.advance();
-    }
+    return folding::renderFrames(count, l.file,
+                                 [&](int i) { return cropToEntry(renderer.render(i / o.fps), entry); });
 #else
     fail("--renderer gl: this sylva was built without the folding GPU renderer");
 #endif
-  } else {
-    for (int i = 0; i < count; ++i) {
-      check();
-      frames.push_back(cropToEntry(
-          renderFrame(textures, profiles, l.project.jumpLayers, i / o.fps, workerCount()), entry));
-      progress.advance();
-    }
   }
-  check();
-  return frames;
+  return folding::renderFrames(count, l.file, [&](int i) {
+    return cropToEntry(renderFrame(textures, profiles, l.project.jumpLayers, i / o.fps, workerCount()),
+                       entry);
+  });
 }
 
 void runRender(const RenderOptions& o) {
@@ -285,8 +172,8 @@ void runRender(const RenderOptions& o) {
   if (!o.function.empty()) {
     function = parseFunction(o.function);
   }
-  const Loaded l = load(o.project);
-  const int index = imageOption(l.project, o.image);
+  const LoadedProject l = loadProjectFile(o.project);
+  const int index = imageIndexOption(l.project, "--image", o.image);
   PlaybackOptions playback;
   playback.speed = o.speed;
   playback.shift = o.shift;
@@ -314,7 +201,7 @@ void runRender(const RenderOptions& o) {
   const bool defaultOutput = o.gif.empty() && o.mp4.empty() && o.webm.empty() && o.sprites.empty();
   const std::string pngDir = !o.out.empty() ? o.out : defaultOutput ? std::string("out/fold") : std::string();
 
-  const Textures textures = synthesizeWithProgress(l);
+  const Textures textures = synthesizeLoaded(l);
   const Rect shownRect = textures.atlas.entries[static_cast<std::size_t>(index)].atlasRect();
   const int columns = std::min(
       count, o.columns > 0 ? o.columns : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count)))));
@@ -328,65 +215,15 @@ void runRender(const RenderOptions& o) {
   }
   const std::vector<Image> frames = renderFrames(o, l, textures, profiles, index, count);
 
-  // All outputs or none: a live Progress turns Ctrl-C into a request checked after each file (the handler
-  // otherwise ends the process between two outputs, leaving the first), and a failure or a cancellation part
-  // way removes every file this run wrote. Video first: it is the output most likely to fail (ffmpeg,
-  // codecs), and then nothing else is written.
-  const int digits = std::max(4, static_cast<int>(std::to_string(count - 1).size()));
-  const std::size_t files = (o.mp4.empty() ? 0 : 1) + (o.webm.empty() ? 0 : 1) + (o.sprites.empty() ? 0 : 2) +
-                            (o.gif.empty() ? 0 : 1) + (pngDir.empty() ? 0 : static_cast<std::size_t>(count));
-  Progress writing("writing", std::max<std::size_t>(files, 1));
-  std::vector<fs::path> written;
-  std::error_code ec;
-  const bool pngDirExisted = !pngDir.empty() && fs::exists(pngDir, ec);
-  const auto wrote = [&](const fs::path& path) {
-    written.push_back(path);
-    writing.advance();
-    if (writing.cancelled()) {
-      fail("{}: cancelled; the outputs written so far were removed", o.project);
-    }
-  };
-  std::vector<std::string> report;
-  try {
-    for (const std::string& video : {o.mp4, o.webm}) {
-      if (!video.empty()) {
-        writeVideo(video, frames, o.fps);
-        wrote(video);
-        report.push_back(video);
-      }
-    }
-    if (!o.sprites.empty()) {
-      const fs::path json = fs::path(o.sprites).replace_extension(".json");
-      writeSpriteSheet(o.sprites, json, frames, columns, o.fps);
-      wrote(json);
-      wrote(o.sprites);
-      report.push_back(o.sprites);
-      report.push_back(json.string());
-    }
-    if (!o.gif.empty()) {
-      const int delay = std::max(2, static_cast<int>(std::lround(100.0 / o.fps)));
-      writeGif(o.gif, frames, delay, true);
-      wrote(o.gif);
-      report.push_back(fmt::format("{} ({} frames, {} cs each)", o.gif, count, delay));
-    }
-    if (!pngDir.empty()) {
-      for (int i = 0; i < count; ++i) {
-        const fs::path frame = fs::path(pngDir) / fmt::format("frame_{:0{}}.png", i, digits);
-        saveImage(frame, frames[static_cast<std::size_t>(i)]);
-        wrote(frame);
-      }
-      report.push_back(fmt::format("{} ({} frames)", pngDir, count));
-    }
-  } catch (...) {
-    for (const fs::path& path : written) {
-      fs::remove(path, ec);
-    }
-    if (!pngDir.empty() && !pngDirExisted && fs::is_empty(pngDir, ec)) {
-      fs::remove(pngDir, ec);
-    }
-    throw;
-  }
-  for (const std::string& line : report) {
+  AnimationOutputs outputs;
+  outputs.mp4 = o.mp4;
+  outputs.webm = o.webm;
+  outputs.sprites = o.sprites;
+  outputs.columns = columns;
+  outputs.gif = o.gif;
+  outputs.pngDir = pngDir;
+  outputs.fps = o.fps;
+  for (const std::string& line : writeAnimation(outputs, frames, o.project)) {
     std::printf("%s\n", line.c_str());
   }
 }
@@ -440,146 +277,12 @@ void registerFoldRender(CLI::App& fold) {
 // ---------------------------------------------------------------------------------------------------------
 // view
 
-struct ViewOptions {
-  std::string project;
-  std::string image;
-  std::string shaderDir;
-  int frames = 0;
-  std::string screenshot;
-  double fixedStep = 0.0;
-  bool noUi = false;
-  double zoom = 0.0;
-};
-
-#ifdef SYLVA_HAVE_FOLDING_GPU
-void runFoldViewer(const ViewOptions& o) {
-  const Loaded l = load(o.project);
-  int index = imageOption(l.project, o.image);
-  const Textures textures = synthesizeWithProgress(l);
-  const glm::ivec2 first = textures.atlas.entries[static_cast<std::size_t>(index)].atlasRect().max -
-                           textures.atlas.entries[static_cast<std::size_t>(index)].atlasRect().min;
-  // Open at the image's size: small images zoomed up to about 960×720 (room for the panel), large ones
-  // shrunk to fit a common screen.
-  const double grow = std::max(1.0, std::min(960.0 / first.x, 720.0 / first.y));
-  const double fit = std::min({grow, 1600.0 / first.x, 1000.0 / first.y});
-  ui::ShellOptions shellOptions;
-  shellOptions.width = std::max(480, static_cast<int>(first.x * fit));
-  shellOptions.height = std::max(360, static_cast<int>(first.y * fit));
-  shellOptions.title = "Sylva fold: " + fs::path(o.project).filename().string();
-  shellOptions.frames = o.frames;
-  shellOptions.screenshot = o.screenshot;
-  shellOptions.fixedStep = o.fixedStep;
-  shellOptions.panelShown = !o.noUi;
-  ui::WindowShell shell(shellOptions);
-  shader::Library library(o.shaderDir);
-  folding::gpu::FoldRenderer renderer(library);
-  renderer.upload(textures, l.project.profiles, l.project.jumpLayers);
-
-  float speed = 1.0f;
-  float shift = 0.0f;
-  int function = 0; // 0: as in the project, else kFunctionNames[function - 1]
-  bool paused = false;
-  double t = 0.0;
-  const double period = loopPeriod(l.project.profiles).seconds;
-  const auto updateProfiles = [&] {
-    PlaybackOptions playback;
-    playback.shift = shift; // speed scales the clock below, so changing it never jumps the phase
-    if (function > 0) {
-      playback.function = static_cast<PositionFunction::Type>(function - 1);
-    }
-    renderer.setProfiles(applyPlayback(l.project.profiles, playback));
-  };
-  // The frame is drawn at the image's size and shown on a canvas filling the window (wheel: zoom, right or
-  // middle drag: pan, Home: fit, +/-: zoom, 1: one texel per pixel).
-  ui::ImageCanvas canvas;
-  canvas.fitMargin = 0.0;
-  canvas.fitOnWholePixels = true;
-  canvas.fitZoom = o.zoom;
-  canvas.showGrid = false; // a preview: the panel turns the grid on
-  ui::CanvasImage frameImage;
-  shell.setKeyHandler([&](int key, int) {
-    if (key == GLFW_KEY_SPACE) {
-      paused = !paused;
-    } else if (key == GLFW_KEY_HOME) {
-      canvas.requestFit();
-    } else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) {
-      canvas.zoomAtCentre(2.0);
-    } else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) {
-      canvas.zoomAtCentre(0.5);
-    } else if (key == GLFW_KEY_1) {
-      canvas.actualSize();
-    } else {
-      return false;
-    }
-    return true;
-  });
-  shell.run([&](const ui::ShellFrame& f) {
-    if (!paused) {
-      t += f.dt * speed;
-    }
-    const AtlasEntry& entry = textures.atlas.entries[static_cast<std::size_t>(index)];
-    const Rect region = entry.atlasRect();
-    frameImage.bindForDraw({region.width(), region.height()});
-    renderer.draw(t, region);
-    gl::bindDefaultFramebuffer(f.size.x, f.size.y);
-    gl::clear(glm::vec4(0.12f, 0.12f, 0.13f, 1.0f));
-    shell.beginUi();
-    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
-    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(f.size.x), static_cast<float>(f.size.y)));
-    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
-    ImGui::Begin("##frame", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
-                     ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
-    ImGui::PopStyleVar();
-    // draw() puts the region's first row at the top of the viewport, GL's last row: flipped on the way.
-    canvas.drawPixelGrid(canvas.begin(frameImage.texture(), frameImage.size(), true));
-    canvas.input();
-    frameImage.showAt(canvas.view.zoom); // this frame's zoom: the texture is drawn when the frame ends
-    ImGui::End();
-    if (!shell.panelShown()) {
-      shell.endUi();
-      return;
-    }
-    shell.beginPanel(
-        "Fold", fmt::format(", {}x{} at {:.0f}%", region.width(), region.height(), 100.0 * canvas.view.zoom));
-    bool changed = false;
-    ImGui::SliderFloat("speed", &speed, 0.0f, 4.0f, "%.2fx");
-    changed |= ImGui::SliderFloat("shift (cycles)", &shift, 0.0f, 1.0f, "%.3f");
-    const char* functions[] = {"as in the project", "linear", "piecewise", "exponential", "sigmoid", "sine"};
-    changed |= ImGui::Combo("function", &function, functions, 6);
-    float time = static_cast<float>(std::fmod(t, period));
-    if (ImGui::SliderFloat("time (s)", &time, 0.0f, static_cast<float>(period), "%.3f")) {
-      t = time;
-      paused = true;
-    }
-    ImGui::Checkbox("pause (space)", &paused);
-    ImGui::SameLine();
-    ImGui::Checkbox("pixel grid", &canvas.showGrid);
-    if (l.project.images.size() > 1) {
-      std::vector<const char*> ids;
-      for (const ImageEntry& e : l.project.images) {
-        ids.push_back(e.id.c_str());
-      }
-      if (ImGui::Combo("image", &index, ids.data(), static_cast<int>(ids.size()))) {
-        canvas.requestFit();
-      }
-    }
-    if (changed) {
-      updateProfiles();
-    }
-    ImGui::PopItemWidth();
-    ImGui::End();
-    shell.endUi();
-  });
-}
-#endif
-
 void registerFoldView(CLI::App& fold) {
   auto* command = fold.add_subcommand(
       "view", "Preview a project live in a window with sliders for speed, shift, position function and time "
               "(Space: pause; Tab: hide the panel; wheel or +/-: zoom, right/middle drag: pan, Home: fit, 1: "
               "one texel per pixel)");
-  auto o = std::make_shared<ViewOptions>();
+  auto o = std::make_shared<folding_ui::ViewerOptions>();
   command->add_option("project", o->project, "Project file (.json, format sylva-fold)")->required();
   command->add_option("--image", o->image, "Id of the image to show first (default: the project's canvas)");
   command->add_option("--shader-dir", o->shaderDir, "Read shaders from this directory")
@@ -590,12 +293,48 @@ void registerFoldView(CLI::App& fold) {
       ->check(CLI::Range(0.0, 32.0));
   command->callback([o] {
 #ifdef SYLVA_HAVE_FOLDING_GPU
-    runFoldViewer(*o);
+    folding_ui::runViewer(*o);
 #else
     fail("fold view: this sylva was built without the folding GPU renderer");
 #endif
   });
 }
+
+#ifdef SYLVA_HAVE_FOLDING_GPU
+void registerFoldEdit(CLI::App& fold) {
+  auto* command = fold.add_subcommand(
+      "edit",
+      "The folding-texture editor: draw motion zones and anchors on an image, shape the timing, watch "
+      "the live preview, export (docs/folding-editor.md)");
+  auto o = std::make_shared<folding_ui::EditorOptions>();
+  command->add_option("inputs", o->inputs,
+                      "A project file (.json) to open, or image files to start a new project from (none: the "
+                      "start screen)");
+  command->add_option("--project", o->project,
+                      "Where a new project is saved (default: <first image>.fold.json next to it)");
+  command->add_option("--width", o->width, "Window width")
+      ->check(CLI::Range(640, 16384))
+      ->capture_default_str();
+  command->add_option("--height", o->height, "Window height")
+      ->check(CLI::Range(480, 16384))
+      ->capture_default_str();
+  command->add_option("--zoom", o->zoom, "Canvas zoom at start (0: fit the image)")
+      ->check(CLI::Range(0.0, 32.0));
+  command
+      ->add_option("--autosave", o->autosaveSeconds, "Seconds between autosaves of unsaved work (0: never)")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
+  command->add_option("--paused-at", o->pausedAt, "Start with the preview paused at this time (seconds)")
+      ->check(CLI::Range(0.0, 1e6));
+  command->add_flag("--no-recover", o->noRecover, "Ignore an autosave sidecar newer than the project file");
+  command->add_option("--recent-file", o->recentFile,
+                      "The recent-files list (default: $XDG_CONFIG_HOME/sylva/recent-folding.json)");
+  command->add_option("--shader-dir", o->shaderDir, "Read shaders from this directory")
+      ->check(CLI::ExistingDirectory);
+  addScriptedWindowOptions(*command, o->frames, o->screenshot, o->fixedStep);
+  command->callback([o] { folding_ui::runEditor(*o); });
+}
+#endif
 
 // ---------------------------------------------------------------------------------------------------------
 // export-shader
@@ -614,8 +353,8 @@ void registerExportShader(CLI::App& fold) {
   command->add_option("-o,--out", o->out, "Output directory (created)")->required();
   command->callback([o] {
 #ifdef SYLVA_HAVE_FOLDING_GPU
-    const Loaded l = load(o->project);
-    const Textures textures = synthesizeWithProgress(l);
+    const LoadedProject l = loadProjectFile(o->project);
+    const Textures textures = synthesizeLoaded(l);
     const shader::Library library;
     const EncodedInfo info = folding::gpu::encodedInfo(l.project, textures);
     // The shader text is made (and checked against the project) before any file is written.
@@ -643,8 +382,8 @@ void registerExportWeb(CLI::App& fold) {
   command->add_option("-o,--out", o->out, "Output HTML file")->required();
   command->callback([o] {
 #ifdef SYLVA_HAVE_FOLDING_GPU
-    const Loaded l = load(o->project);
-    const Textures textures = synthesizeWithProgress(l);
+    const LoadedProject l = loadProjectFile(o->project);
+    const Textures textures = synthesizeLoaded(l);
     folding::gpu::writeWebPreview(o->out, shader::Library(), l.project, textures);
     std::printf("%s\n", o->out.c_str());
 #else
@@ -655,10 +394,6 @@ void registerExportWeb(CLI::App& fold) {
 
 // ---------------------------------------------------------------------------------------------------------
 // info
-
-std::string vec(Vec2 v) {
-  return fmt::format("({:g}, {:g})", v.x, v.y);
-}
 
 void registerFoldInfo(CLI::App& fold) {
   auto* command = fold.add_subcommand(
@@ -671,63 +406,12 @@ void registerFoldInfo(CLI::App& fold) {
   command->add_option("project", o->project, "Project file (.json, format sylva-fold)")->required();
   command->add_flag("--json", o->json, "Print JSON: the canonical project plus image sizes and the atlas");
   command->callback([o] {
-    const Loaded l = load(o->project);
-    const Project& p = l.project;
-    const Atlas atlas = withFileName(l, [&] { return packAtlas(p, l.images); });
+    const LoadedProject l = loadProjectFile(o->project);
+    const Atlas atlas = namingFile(l.file, [&] { return packAtlas(l.project, l.images); });
     if (o->json) {
-      nlohmann::json images = nlohmann::json::array();
-      for (std::size_t i = 0; i < p.images.size(); ++i) {
-        const AtlasEntry& e = atlas.entries[i];
-        images.push_back({{"id", e.id},
-                          {"size", {e.imageSize.x, e.imageSize.y}},
-                          {"crop", {e.crop.min.x, e.crop.min.y, e.crop.max.x, e.crop.max.y}},
-                          {"atlas_pos", {e.atlasPos.x, e.atlasPos.y}}});
-      }
-      const nlohmann::json json = {
-          {"file", l.where},
-          {"project", toJson(p)},
-          {"atlas", {{"size", {atlas.color.width(), atlas.color.height()}}, {"images", images}}}};
-      std::cout << json.dump(2) << "\n";
-      return;
-    }
-    std::printf("%s: sylva-fold version %d, seed %llu\n", l.where.c_str(), kProjectVersion,
-                static_cast<unsigned long long>(p.seed));
-    std::printf("atlas: %dx%d, gutter %d px, canvas '%s'\n", atlas.color.width(), atlas.color.height(),
-                p.gutter, p.images[static_cast<std::size_t>(p.canvasIndex())].id.c_str());
-    std::printf("images:\n");
-    for (std::size_t i = 0; i < p.images.size(); ++i) {
-      const AtlasEntry& e = atlas.entries[i];
-      std::printf("  %-12s %s  %dx%d, kept [%d,%d)-[%d,%d) at atlas (%d, %d)\n", e.id.c_str(),
-                  p.images[i].file.string().c_str(), e.imageSize.x, e.imageSize.y, e.crop.min.x, e.crop.min.y,
-                  e.crop.max.x, e.crop.max.y, e.atlasPos.x, e.atlasPos.y);
-    }
-    std::printf("profiles:\n");
-    for (const Profile& pr : p.profiles) {
-      std::printf("  %-12s %s, period %g s, shift %g, loop %s\n", pr.id.c_str(), functionName(pr.fn.type),
-                  pr.periodS, pr.shift, loopName(pr.loop));
-    }
-    std::string layers;
-    for (double b : p.jumpLayers) {
-      layers += (layers.empty() ? "" : ", ") + fmt::format("{:g}", b);
-    }
-    std::printf("jump layers: %zu (breakpoints %s)\n", p.jumpLayers.size() - 1, layers.c_str());
-    std::printf("zones:\n");
-    for (const Zone& z : p.zones) {
-      std::string tools;
-      for (const Tool& t : z.tools) {
-        tools += (tools.empty() ? "" : ", ") + std::string(toolName(t));
-      }
-      const std::vector<Vec2> outline = z.shape.outline();
-      Vec2 lo(1e300);
-      Vec2 hi(-1e300);
-      for (const Vec2& v : outline) {
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-      }
-      std::printf("  %-12s on '%s', %s %s-%s, profile '%s', layer %d, %s (R %g), tools: %s; folding: %s\n",
-                  z.id.c_str(), z.image.c_str(), z.shape.type == Shape::Type::Rect ? "rect" : "polygon",
-                  vec(lo).c_str(), vec(hi).c_str(), z.profile.c_str(), z.layer, interpName(z.interp.type),
-                  z.interp.radius, tools.empty() ? "none" : tools.c_str(), foldingName(z.folding.type));
+      std::cout << describeProjectJson(l, atlas).dump(2) << "\n";
+    } else {
+      std::cout << describeProject(l, atlas);
     }
   });
 }

@@ -2,7 +2,9 @@
 // evaluates the same equations in the same order, in float, so the two agree within rounding.
 #include <sylva/folding/Renderer.hpp>
 
+#include <sylva/core/Error.hpp>
 #include <sylva/core/Parallel.hpp>
+#include <sylva/core/Progress.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -277,6 +279,23 @@ LoopPeriod loopPeriod(const std::vector<Profile>& profiles) {
     }
   }
   return {longest, false};
+}
+
+std::vector<Image> renderFrames(int count, const std::string& label, const std::function<Image(int)>& frame) {
+  std::vector<Image> frames;
+  frames.reserve(static_cast<std::size_t>(std::max(count, 0)));
+  Progress progress("rendering frames", static_cast<std::size_t>(std::max(count, 1)));
+  for (int i = 0; i < count; ++i) {
+    if (progress.cancelled()) {
+      fail("{}: rendering cancelled", label);
+    }
+    frames.push_back(frame(i));
+    progress.advance();
+  }
+  if (progress.cancelled()) {
+    fail("{}: rendering cancelled", label);
+  }
+  return frames;
 }
 
 } // namespace sylva::folding

@@ -4,7 +4,9 @@
 #include <sylva/folding/Project.hpp>
 #include <sylva/folding/Synthesis.hpp>
 
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace sylva::folding {
@@ -61,5 +63,12 @@ LoopPeriod loopPeriod(const std::vector<Profile>& profiles);
 
 /** The part of an atlas-sized frame that shows image `entry` (its crop). */
 Image cropToEntry(const Image& frame, const AtlasEntry& entry);
+
+/**
+ * `count` frames made by `frame(i)` (i = 0 … count − 1) with a "rendering frames" progress line; Ctrl-C
+ * cancels with a sylva::Error "`label`: rendering cancelled". The CPU and GL renders of `sylva fold render`
+ * both run through it.
+ */
+std::vector<Image> renderFrames(int count, const std::string& label, const std::function<Image(int)>& frame);
 
 } // namespace sylva::folding

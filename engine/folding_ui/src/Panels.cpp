@@ -1,7 +1,7 @@
 // `sylva fold edit`: The right-hand panels: zone properties, the jump tree and the profile editor.
-#include "fold/Editor.hpp"
+#include "internal/Editor.hpp"
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 void FoldEditor::drawZonePanel() {
   Project p = mSession->project();
@@ -360,4 +360,4 @@ void FoldEditor::drawPanels(ImVec2 pos, ImVec2 size) {
   ImGui::End();
 }
 
-} // namespace sylva::app::fold
+} // namespace sylva::folding_ui

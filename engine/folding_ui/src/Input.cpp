@@ -1,8 +1,8 @@
 // `sylva fold edit`: Input: keyboard shortcuts, tool selection and the canvas gestures of every tool (clicks,
 // drags, the freeze brush).
-#include "fold/Editor.hpp"
+#include "internal/Editor.hpp"
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 void FoldEditor::onKey(int key, int mods) {
   // F1 from the key event, not by polling its state once a frame: a tap shorter than a frame (most taps on a
@@ -397,4 +397,4 @@ void FoldEditor::canvasInput() {
   }
 }
 
-} // namespace sylva::app::fold
+} // namespace sylva::folding_ui

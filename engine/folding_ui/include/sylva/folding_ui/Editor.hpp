@@ -4,19 +4,17 @@
 // A menu bar, the workflow bar (zones → motion → profiles → synthesise → preview → export), the toolbox and
 // the current tool's properties on the left, the canvas in the middle, the live GPU preview with its timeline
 // and the zone / jump-path / profile panels on the right, and a status bar. One file per screen in
-// apps/sylva/fold/ (Editor.hpp lists them). Every change goes through the GL-free model
+// engine/folding_ui/src/ (internal/Editor.hpp lists them). Every change goes through the GL-free model
 // (sylva::folding::Session, EditHistory, Handles); the window loop and the canvas are engine/ui's
 // (WindowShell, ImageCanvas over render::CanvasView), so these files only map input to edits and draw.
-
-#include <CLI/CLI.hpp>
 
 #include <string>
 #include <vector>
 
-namespace sylva::app {
+namespace sylva::folding_ui {
 
-/** Command-line options of `sylva fold edit`. */
-struct FoldEditOptions {
+/** What the editor opens and how its window runs (the options of `sylva fold edit`). */
+struct EditorOptions {
   /** A project file (.json), or input images to start a new project from. Empty: the start screen. */
   std::vector<std::string> inputs;
   /** Where a new project is saved (default: <first image stem>.fold.json next to the first image). */
@@ -37,10 +35,10 @@ struct FoldEditOptions {
   double pausedAt = -1.0;
 };
 
-/** Opens the editor window and runs until it is closed (or `frames` frames have been shown). */
-void runFoldEditor(const FoldEditOptions& options);
+/**
+ * Opens the editor window and runs until it is closed (or `frames` frames have been shown). Errors opening
+ * the inputs are thrown as sylva::Error naming the file.
+ */
+void runEditor(const EditorOptions& options);
 
-/** Adds `sylva fold edit` to the `fold` command (built only with the folding GPU renderer). */
-void registerFoldEdit(CLI::App& fold);
-
-} // namespace sylva::app
+} // namespace sylva::folding_ui

@@ -1,10 +1,9 @@
 #pragma once
-// `sylva fold edit` internals (apps/sylva/fold/): the FoldEditor class, shared by the screen files
+// `sylva fold edit` internals (engine/folding_ui/src/): the FoldEditor class, shared by the screen files
 // (Editor.cpp, Canvas.cpp, Chrome.cpp, Panels.cpp, Preview.cpp, Input.cpp, Files.cpp), and the helpers they
 // share.
 
-#include "Commands.hpp"
-#include "fold/FoldEdit.hpp"
+#include <sylva/folding_ui/Editor.hpp>
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
@@ -53,7 +52,7 @@
 #include <thread>
 #include <vector>
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 namespace fs = std::filesystem;
 using ui::imageTexture;
@@ -194,7 +193,7 @@ fs::path defaultProjectFile(const fs::path& image);
  */
 class FoldEditor {
 public:
-  explicit FoldEditor(const FoldEditOptions& o);
+  explicit FoldEditor(const EditorOptions& o);
 
   void run();
 
@@ -259,7 +258,7 @@ private:
   void retireImageTextures();
 
   /** The window: at most 60 frames/s while interactive; Esc and Tab are the editor's keys. */
-  static ui::ShellOptions shellOptions(const FoldEditOptions& o);
+  static ui::ShellOptions shellOptions(const EditorOptions& o);
 
   // --- input ------------------------------------------------------------------------------------------
   void onKey(int key, int mods);
@@ -315,7 +314,7 @@ private:
   void paintFreeze(Vec2 centre, bool erase, bool finish);
   int workflowStep() const;
 
-  FoldEditOptions mOptions;
+  EditorOptions mOptions;
   ui::WindowShell mShell;
   shader::Library mLibrary;
   folding::gpu::FoldRenderer mRenderer;
@@ -398,4 +397,4 @@ private:
   bool mStatusError = false;
 };
 
-} // namespace sylva::app::fold
+} // namespace sylva::folding_ui

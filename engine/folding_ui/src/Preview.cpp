@@ -1,7 +1,7 @@
 // `sylva fold edit`: The live GPU preview with its timeline, and the reference-video (optical flow) window.
-#include "fold/Editor.hpp"
+#include "internal/Editor.hpp"
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 void FoldEditor::drawPreview(ImVec2 pos, ImVec2 size) {
   ImGui::SetNextWindowPos(pos);
@@ -135,4 +135,4 @@ void FoldEditor::drawFlowWindow() {
   ImGui::End();
 }
 
-} // namespace sylva::app::fold
+} // namespace sylva::folding_ui

@@ -1,8 +1,8 @@
 // `sylva fold edit`: The editor's lifecycle: opening and creating projects, background synthesis, refreshing
 // the GPU copy, saving, undo and the frame loop.
-#include "fold/Editor.hpp"
+#include "internal/Editor.hpp"
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 const ToolInfo& info(ToolKind kind) {
   return kTools[static_cast<std::size_t>(kind)];
@@ -86,7 +86,7 @@ fs::path defaultProjectFile(const fs::path& image) {
   return image.parent_path() / (image.stem().string() + ".fold.json");
 }
 
-FoldEditor::FoldEditor(const FoldEditOptions& o)
+FoldEditor::FoldEditor(const EditorOptions& o)
     : mOptions(o), mShell(shellOptions(o)), mLibrary(o.shaderDir), mRenderer(mLibrary),
       mRecent(o.recentFile.empty() ? RecentFiles::defaultPath() : fs::path(o.recentFile)) {
   if (o.pausedAt >= 0.0) {
@@ -335,7 +335,7 @@ void FoldEditor::retireImageTextures() {
   mImageTextures.clear();
 }
 
-ui::ShellOptions FoldEditor::shellOptions(const FoldEditOptions& o) {
+ui::ShellOptions FoldEditor::shellOptions(const EditorOptions& o) {
   ui::ShellOptions s;
   s.width = o.width;
   s.height = o.height;
@@ -422,47 +422,9 @@ void FoldEditor::run() {
   }
 }
 
-} // namespace sylva::app::fold
-
-namespace sylva::app {
-
-void runFoldEditor(const FoldEditOptions& options) {
-  fold::FoldEditor editor(options);
+void runEditor(const EditorOptions& options) {
+  FoldEditor editor(options);
   editor.run();
 }
 
-void registerFoldEdit(CLI::App& fold) {
-  auto* command = fold.add_subcommand(
-      "edit",
-      "The folding-texture editor: draw motion zones and anchors on an image, shape the timing, watch "
-      "the live preview, export (docs/folding-editor.md)");
-  auto o = std::make_shared<FoldEditOptions>();
-  command->add_option("inputs", o->inputs,
-                      "A project file (.json) to open, or image files to start a new project from (none: the "
-                      "start screen)");
-  command->add_option("--project", o->project,
-                      "Where a new project is saved (default: <first image>.fold.json next to it)");
-  command->add_option("--width", o->width, "Window width")
-      ->check(CLI::Range(640, 16384))
-      ->capture_default_str();
-  command->add_option("--height", o->height, "Window height")
-      ->check(CLI::Range(480, 16384))
-      ->capture_default_str();
-  command->add_option("--zoom", o->zoom, "Canvas zoom at start (0: fit the image)")
-      ->check(CLI::Range(0.0, 32.0));
-  command
-      ->add_option("--autosave", o->autosaveSeconds, "Seconds between autosaves of unsaved work (0: never)")
-      ->check(CLI::Range(0.0, 3600.0))
-      ->capture_default_str();
-  command->add_option("--paused-at", o->pausedAt, "Start with the preview paused at this time (seconds)")
-      ->check(CLI::Range(0.0, 1e6));
-  command->add_flag("--no-recover", o->noRecover, "Ignore an autosave sidecar newer than the project file");
-  command->add_option("--recent-file", o->recentFile,
-                      "The recent-files list (default: $XDG_CONFIG_HOME/sylva/recent-folding.json)");
-  command->add_option("--shader-dir", o->shaderDir, "Read shaders from this directory")
-      ->check(CLI::ExistingDirectory);
-  addScriptedWindowOptions(*command, o->frames, o->screenshot, o->fixedStep);
-  command->callback([o] { runFoldEditor(*o); });
-}
-
-} // namespace sylva::app
+} // namespace sylva::folding_ui

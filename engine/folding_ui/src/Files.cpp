@@ -1,8 +1,8 @@
 // `sylva fold edit`: Files: the path prompt, exports, editing an image in an external editor, watching files,
 // autosave and motion from a reference video.
-#include "fold/Editor.hpp"
+#include "internal/Editor.hpp"
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 void FoldEditor::prompt(PathPrompt::Action action, const std::string& title) {
   mPrompt.action = action;
@@ -287,4 +287,4 @@ void FoldEditor::computeSuggestions() {
             false);
 }
 
-} // namespace sylva::app::fold
+} // namespace sylva::folding_ui

@@ -1,8 +1,8 @@
 // `sylva fold edit`: The canvas screen: the image on ui::ImageCanvas, its image tabs and the overlays (zones,
 // anchors, vectors, heat maps, freeze masks).
-#include "fold/Editor.hpp"
+#include "internal/Editor.hpp"
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 void FoldEditor::updateOverlays() {
   if (!mOverlaysStale || !mSession || !mSession->textures()) {
@@ -246,4 +246,4 @@ void FoldEditor::drawCanvas(ImVec2 pos, ImVec2 size) {
   ImGui::End();
 }
 
-} // namespace sylva::app::fold
+} // namespace sylva::folding_ui

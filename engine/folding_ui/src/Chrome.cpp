@@ -1,8 +1,8 @@
 // `sylva fold edit`: The window around the canvas: menu bar, workflow bar, toolbox, status bar, start screen
 // and help.
-#include "fold/Editor.hpp"
+#include "internal/Editor.hpp"
 
-namespace sylva::app::fold {
+namespace sylva::folding_ui {
 
 void FoldEditor::drawMenuBar() {
   if (!ImGui::BeginMainMenuBar()) {
@@ -382,4 +382,4 @@ void FoldEditor::drawHelp() {
   ImGui::End();
 }
 
-} // namespace sylva::app::fold
+} // namespace sylva::folding_ui
