@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 namespace sylva::app {
 
@@ -45,16 +46,31 @@ struct Options {
   std::string shaderDir;
 };
 
-/** Writes --gif (all frames) and -o (the last frame), when frames were kept. */
-void writeFrames(const Options& o, const std::vector<Image>& frames) {
+/**
+ * Draws `count` frames (`draw(time)` at --time + i / --fps) into `target`; with several, writes --gif (all
+ * frames) and -o (the last) and returns true. One frame stays in `target` (false).
+ */
+bool renderFrames(const Options& o, int count, render::RenderTarget& target,
+                  const std::function<void(double)>& draw) {
+  std::vector<Image> frames;
+  Progress progress("render", static_cast<std::size_t>(count));
+  for (int f = 0; f < count; ++f) {
+    draw(o.time + f / o.fps);
+    if (count > 1) {
+      frames.push_back(target.readColor());
+    }
+    progress.advance(1);
+  }
+  if (frames.empty()) {
+    return false;
+  }
   if (!o.gif.empty()) {
     media::writeGif(o.gif, frames, std::max(1, static_cast<int>(std::lround(100.0 / o.fps))));
     std::printf("%s\n", o.gif.c_str());
   }
-  if (!frames.empty()) {
-    saveImage(o.out, frames.back());
-    std::printf("%s\n", o.out.c_str());
-  }
+  saveImage(o.out, frames.back());
+  std::printf("%s\n", o.out.c_str());
+  return true;
 }
 
 } // namespace
@@ -67,7 +83,7 @@ void registerRender(CLI::App& app) {
   o->context.add(*command);
   command
       ->add_option(
-          "file", o->sceneFile.file,
+          "file", o->sceneFile.job.file,
           "A scene file (data/scenes/*.json): renders its output camera; with --frames A-B a numbered "
           "PNG sequence into --out DIR (resumable, --shard i/n, --gif/--mp4)")
       ->check(CLI::ExistingFile);
@@ -114,19 +130,20 @@ void registerRender(CLI::App& app) {
                    "Read shaders from this directory instead of the embedded copies")
       ->check(CLI::ExistingDirectory);
   command->callback([o] {
-    if (!o->sceneFile.file.empty()) {
+    if (!o->sceneFile.job.file.empty()) {
       SceneRenderOptions scene = o->sceneFile;
-      scene.frames = o->frames;
-      scene.gif = o->gif;
-      scene.out = o->outOption->count() > 0 ? o->out : std::string();
+      scene.job.frames = o->frames;
+      scene.job.gif = o->gif;
+      scene.job.out = o->outOption->count() > 0 ? o->out : std::string();
       scene.context = o->context.options();
       scene.shaderDir = o->shaderDir;
-      scene.width = o->widthOption->count() > 0 ? o->width : 0;
-      scene.height = o->heightOption->count() > 0 ? o->height : 0;
+      scene.job.width = o->widthOption->count() > 0 ? o->width : 0;
+      scene.job.height = o->heightOption->count() > 0 ? o->height : 0;
       renderSceneFile(scene);
       return;
     }
-    if (!o->sceneFile.mp4.empty() || !o->sceneFile.camera.empty() || o->sceneFile.shard != "0/1") {
+    if (!o->sceneFile.job.mp4.empty() || !o->sceneFile.job.camera.empty() ||
+        o->sceneFile.job.shard != "0/1") {
       fail("--mp4, --camera and --shard need a scene file (sylva render SCENE.json ...)");
     }
     int frameCount = 1;
@@ -158,20 +175,11 @@ void registerRender(CLI::App& app) {
       terrain::TerrainDrawOptions options = scene->drawOptions(camera, o->world.camera.fog);
       options.view = parseTerrainView(o->view);
       options.wireframe = o->wireframe;
-      std::vector<Image> frames;
-      Progress progress("render", static_cast<std::size_t>(frameCount));
-      for (int f = 0; f < frameCount; ++f) {
-        const double time = o->time + f / o->fps;
-        target.begin(glm::vec4(options.environment.fogColor, 1.0f));
-        scene->update(camera, target.aspect());
-        scene->draw(camera, o->width, o->height, time, nullptr, options);
-        if (frameCount > 1) {
-          frames.push_back(target.readColor());
-        }
-        progress.advance(1);
-      }
-      writeFrames(*o, frames);
-      if (!frames.empty()) {
+      if (renderFrames(*o, frameCount, target, [&](double time) {
+            target.begin(glm::vec4(options.environment.fogColor, 1.0f));
+            scene->update(camera, target.aspect());
+            scene->draw(camera, o->width, o->height, time, nullptr, options);
+          })) {
         return;
       }
     } else {
@@ -186,26 +194,18 @@ void registerRender(CLI::App& app) {
       draw.treeView = o->world.trees.treeView();
       draw.treeLod = o->world.trees.lod;
       world.setDrawOptions(draw);
-      std::vector<Image> frames;
-      Progress progress("render", static_cast<std::size_t>(frameCount));
-      for (int f = 0; f < frameCount; ++f) {
-        const double time = o->time + f / o->fps;
+      const bool kept = renderFrames(*o, frameCount, target, [&](double time) {
         world.advanceTo(time);
         target.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         world.draw(camera, o->width, o->height, time, &target.depth(), nullptr);
-        if (frameCount > 1) {
-          frames.push_back(target.readColor());
-        }
-        progress.advance(1);
-      }
+      });
       if (const scene::GrassSimulation* simulation = world.simulation()) {
         const grass::SimStats& s = simulation->stats();
         log::info(
             "grass simulation: {} bodies, {} tiles ({} blades) simulated at the end, {} refused (pool full)",
             simulation->bodies(), s.activeTiles, s.simulatedBlades, s.refusedTiles);
       }
-      writeFrames(*o, frames);
-      if (!frames.empty()) {
+      if (kept) {
         return;
       }
     }

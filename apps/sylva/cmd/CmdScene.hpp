@@ -2,6 +2,7 @@
 // Scene files on the command line (docs/scenes.md): `sylva render SCENE.json` stills and sequences.
 
 #include <sylva/platform/GlContext.hpp>
+#include <sylva/scene/Sequence.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -9,30 +10,19 @@
 
 namespace sylva::app {
 
-/** What `sylva render SCENE.json` was asked for. */
+/** What `sylva render SCENE.json` was asked for: the job, and the GL context and shaders it draws with. */
 struct SceneRenderOptions {
-  std::string file;          ///< the scene file
-  std::string frames;        ///< "A-B[,C-D...]"; empty: a still of the output's first frame
-  std::string shard = "0/1"; ///< i/n
-  std::string camera;        ///< empty: the file's output camera
-  std::string out;           ///< a PNG (still) or a directory (sequence); empty: out/<name>[.png]
-  std::string gif;           ///< also write the sequence as an animated GIF here
-  std::string mp4;           ///< also encode the sequence as MP4 here (ffmpeg)
-  int width = 0;             ///< 0: the file's output width
-  int height = 0;            ///< 0: the file's output height
-  bool overwrite = false;    ///< render complete frames again
+  scene::SequenceJob job;
   platform::ContextOptions context;
-  std::string shaderDir;
+  std::string shaderDir; ///< empty: the embedded shaders
 };
 
 /** Adds --shard, --camera, --mp4, --overwrite (the options only a scene file uses) to `command`. */
 void addSceneRenderOptions(CLI::App& command, SceneRenderOptions& options);
 
 /**
- * Renders a still or a frame sequence of a scene file: frame f is a pure function of (scene, f); frames are
- * written as DIR/frame_NNNNN.png through a temporary file and a rename, frames already complete are skipped,
- * `--shard i/n` renders every n-th frame of the range. Throws sylva::Error with one line naming the
- * file/field.
+ * Renders a still or a frame sequence of a scene file (scene::planSequence, renderPlannedFrames,
+ * finishSequence) and prints the files written. Throws sylva::Error with one line naming the file/field.
  */
 void renderSceneFile(const SceneRenderOptions& options);
 

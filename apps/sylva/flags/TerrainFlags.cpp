@@ -111,29 +111,22 @@ void CameraFlags::check() const {
   }
 }
 
-render::Camera CameraFlags::camera(const terrain::TerrainScene& scene, float aspect) const {
+scene::CameraPlacement CameraFlags::placement() const {
   check();
-  const Aabb box = scene.bounds();
-  const float fov = glm::radians(fovDegrees);
-  const float e = scene.exaggeration();
-  // Y is given in the data's metres; the scene is drawn with heights × exaggeration.
-  const auto toWorld = [e](glm::vec3 p) { return glm::vec3(p.x, p.y * e, p.z); };
-  const glm::vec3 target = lookAt.empty() ? box.center() : toWorld(parseVec3("--look-at", lookAt));
-  render::Camera camera = render::frameBox(box, render::parseViewFrom(viewFrom), fov, aspect, target);
-  if (!lookAt.empty()) {
-    camera.target = target; // frameBox re-aims at the middle of what it sees; a point the user names is kept
-  }
+  scene::CameraPlacement p;
+  p.viewFrom = viewFrom;
+  p.fovDegrees = fovDegrees;
   if (!cameraPos.empty()) {
-    camera.position = toWorld(parseVec3("--camera-pos", cameraPos));
-    camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
-    const glm::vec3 dir = glm::normalize(camera.target - camera.position);
-    if (std::abs(dir.y) > 0.999f) {
-      camera.up = glm::vec3(0.0f, 0.0f, -1.0f); // straight down or up: keep north at the top of the image
-    }
+    p.position = parseVec3("--camera-pos", cameraPos);
   }
-  // A camera inside or beyond the terrain still sees all of it between the clip planes.
-  render::fitClipPlanes(camera, box);
-  return camera;
+  if (!lookAt.empty()) {
+    p.lookAt = parseVec3("--look-at", lookAt);
+  }
+  return p;
+}
+
+render::Camera CameraFlags::camera(const terrain::TerrainScene& scene, float aspect) const {
+  return scene::placedCamera(scene, placement(), aspect);
 }
 
 void TerrainFlags::add(CLI::App& command) {

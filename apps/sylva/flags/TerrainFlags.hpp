@@ -1,5 +1,6 @@
 #pragma once
 
+#include <sylva/scene/gpu/StartView.hpp>
 #include <sylva/terrain/gpu/TerrainScene.hpp>
 
 #include "flags/SourceOptions.hpp"
@@ -69,6 +70,8 @@ struct CameraFlags {
   void add(CLI::App& command);
   /** Throws naming the option when a value is malformed (before any work is done). */
   void check() const;
+  /** The camera the options place (parsed; throws naming the option when malformed). */
+  scene::CameraPlacement placement() const;
   /** The camera for `scene` at `aspect` (width / height), with clip planes fitted to the scene. */
   render::Camera camera(const terrain::TerrainScene& scene, float aspect) const;
 };

@@ -2,6 +2,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/scene/Viewpoints.hpp>
+#include <sylva/scene/gpu/StartView.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/scene/gpu/SceneWorld.hpp>
 #include <sylva/trees/gpu/ForestScene.hpp>
@@ -118,60 +119,33 @@ void logCamera(const render::Camera& view, float exaggeration, float fovDegrees,
 } // namespace
 
 render::Camera WorldFlags::start(scene::SceneWorld& world, float aspect) const {
-  terrain::TerrainScene& ground = world.terrain();
-  render::Camera view = camera.camera(ground, aspect);
-  const float fov = glm::radians(camera.fovDegrees);
-  const bool placed = !camera.cameraPos.empty();
-  std::optional<glm::vec2> dropCentre;
+  scene::StartSettings settings;
+  settings.camera = camera.placement();
+  settings.windDirectionDegrees = grass.windDirection;
+  if (simulation.enabled()) {
+    settings.balls = simulation.balls;
+    settings.ballSeed = simulation.seed;
+    if (!simulation.ballsAt.empty()) {
+      const std::vector<float> at = parseNumbers("--balls-at", simulation.ballsAt, 2, "X,Z in metres");
+      settings.ballsAt = glm::vec2(at[0], at[1]);
+    }
+  }
   if (grass.enabled) {
     const grass::GrassField& field = world.grass(0).field();
     log::info("grass: {} blade types, {} tiles of {} m, about {:.3g} blades in the field, patch {:.2f} MB",
               field.types().size(), static_cast<long long>(field.layout().tilesX) * field.layout().tilesZ,
               field.layout().tileSize, field.estimateBlades(),
               static_cast<double>(grass::patchBytes(field.patch().size(), field.types().size())) / 1e6);
-    if (!placed) {
-      view = scene::grassCamera(ground.field(), ground.bounds(), ground.maxHeight(), field, fov,
-                                grass.windDirection);
-    }
   }
   if (trees.enabled) {
     trees::ForestScene& forest = world.forest(0);
     log::info("trees: {} trees, {} pieces, {} joints, {}", forest.forest().trees.size(),
               forest.renderer().instances().instances.size(), forest.forest().jointCount,
               trees.wind ? "in the wind (--no-trees-wind: rest pose)" : "rest pose");
-    if (!placed && !grass.enabled) {
-      view = scene::forestCamera(ground.field(), ground.exaggeration(), ground.defaultCamera(),
-                                 forest.forest(), fov);
-    }
   }
-  if (simulation.enabled()) {
-    scene::BodyDrop drop;
-    if (simulation.ballsAt.empty()) {
-      drop.centre = scene::ballDropPoint(ground.field(), world.grass(0).field(), view);
-    } else {
-      const std::vector<float> at = parseNumbers("--balls-at", simulation.ballsAt, 2, "X,Z in metres");
-      drop.centre = {at[0], at[1]};
-    }
-    dropCentre = drop.centre;
-    drop.radius = 1.5f;
-    drop.count = simulation.balls;
-    drop.seed = simulation.seed;
-    drop.height = 0.5f;
-    world.addDrop(drop);
-    if (!placed) {
-      view = scene::ballCamera(ground.field(), ground.bounds(), drop.centre, fov);
-    }
-  }
-  // A camera the options place clips as the camera chosen for the same world would, so the logged camera
-  // renders the same bytes again: among blades 5 cm; among trees alone the forest camera's planes.
-  if (grass.enabled) {
-    view.nearPlane = scene::kGrassNearPlane;
-  } else if (placed && trees.enabled) {
-    view.nearPlane = scene::kForestNearPlane;
-    view.farPlane = ground.defaultCamera().farPlane;
-  }
-  logCamera(view, ground.exaggeration(), camera.fovDegrees, dropCentre);
-  return view;
+  const scene::StartView view = scene::startView(world, settings, aspect);
+  logCamera(view.camera, world.terrain().exaggeration(), camera.fovDegrees, view.dropCentre);
+  return view.camera;
 }
 
 } // namespace sylva::app

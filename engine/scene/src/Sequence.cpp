@@ -1,6 +1,11 @@
 #include <sylva/scene/Sequence.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Files.hpp>
+#include <sylva/core/Log.hpp>
+#include <sylva/media/Export.hpp>
+
+#include <fmt/format.h>
 
 #include <signal.h>
 #include <unistd.h>
@@ -8,6 +13,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numeric>
 #include <optional>
 #include <system_error>
@@ -227,6 +235,148 @@ int removeStaleTemporaries(const fs::path& dir, bool all) {
     }
   }
   return removed;
+}
+
+} // namespace sylva::scene
+
+namespace sylva::scene {
+
+namespace {
+
+std::string shellQuote(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) {
+    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return quoted + "'";
+}
+
+/** The range's frames as MP4 through ffmpeg (H.264, yuv420p); the frames must all be there. */
+void encodeMp4(const SequencePlan& plan, double fps, const std::string& out) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) {
+    fail("--mp4 {}: ffmpeg is not installed (apt install ffmpeg; scripts/setup-debian.sh installs it)", out);
+  }
+  // ffmpeg reads numbered files from a start number on; a list file also covers ranges with gaps (--frames
+  // 0-9,20-29) in order.
+  const std::filesystem::path list = plan.out / "frames.ffconcat";
+  {
+    std::FILE* f = std::fopen(list.c_str(), "w");
+    if (f == nullptr) {
+      fail("--mp4: cannot write {}", list.string());
+    }
+    std::fprintf(f, "ffconcat version 1.0\n");
+    for (int frame : plan.range.frames()) {
+      std::fprintf(f, "file '%s'\nduration %.9f\n", frameName(frame).c_str(), 1.0 / fps);
+    }
+    std::fclose(f);
+  }
+  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+  if (!parent.empty()) {
+    std::filesystem::create_directories(parent);
+  }
+  const std::string temporary = out + ".tmp.mp4";
+  const std::string command = fmt::format(
+      "ffmpeg -loglevel error -y -f concat -safe 0 -i {} -r {} -c:v libx264 -pix_fmt yuv420p -crf 20 "
+      "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -movflags +faststart {}",
+      shellQuote(list.string()), fps, shellQuote(temporary));
+  const int rc = std::system(command.c_str());
+  std::filesystem::remove(list);
+  if (rc != 0) {
+    std::filesystem::remove(temporary);
+    fail("--mp4 {}: ffmpeg failed (exit {})", out, rc);
+  }
+  std::filesystem::rename(temporary, out);
+}
+
+} // namespace
+
+std::filesystem::path SequencePlan::framePath(int frame) const {
+  return sequence ? out / frameName(frame) : out;
+}
+
+SequencePlan planSequence(const SequenceJob& job) {
+  SequencePlan p;
+  p.job = job;
+  p.desc = loadScene(job.file);
+  const SceneDesc& desc = p.desc;
+  p.width = job.width > 0 ? job.width : desc.output.width;
+  p.height = job.height > 0 ? job.height : desc.output.height;
+  p.camera = job.camera.empty() ? desc.output.camera : job.camera;
+  if (!desc.cameras.contains(p.camera)) {
+    fail("--camera {}: {} has no such camera", p.camera, job.file);
+  }
+  p.sequence = !job.frames.empty() || !job.gif.empty() || !job.mp4.empty();
+  p.range = job.frames.empty()
+                ? parseFrames(fmt::format("{}-{}", desc.output.firstFrame, desc.output.lastFrame))
+                : parseFrames(job.frames);
+  const Shard shard = parseShard(job.shard);
+  if (!p.sequence && shard.count > 1) {
+    fail("--shard {}: needs a sequence (--frames A-B)", job.shard);
+  }
+  p.frames = p.sequence ? framesOf(p.range, shard) : std::vector<int>{desc.output.firstFrame};
+  p.out = !job.out.empty() ? std::filesystem::path(job.out)
+                           : std::filesystem::path("out") / (p.sequence ? desc.name : desc.name + ".png");
+  // Outputs checked before the scene is built and drawn.
+  if (!p.sequence) {
+    checkOutputFile(p.out, "--out");
+  }
+  if (!job.gif.empty()) {
+    checkOutputFile(job.gif, "--gif", "anim.gif");
+  }
+  if (!job.mp4.empty()) {
+    checkOutputFile(job.mp4, "--mp4", "anim.mp4");
+  }
+  if (p.sequence) {
+    if (std::filesystem::exists(p.out) && !std::filesystem::is_directory(p.out)) {
+      fail("--out {}: a sequence needs a directory, and this is a file", p.out.string());
+    }
+    std::filesystem::create_directories(p.out);
+    const int stale = removeStaleTemporaries(p.out);
+    if (stale > 0) {
+      log::info("removed {} unfinished frame file(s) left by an interrupted run", stale);
+    }
+  }
+  // Frames already complete are skipped (resumable); the simulation still steps through their times.
+  for (int f : p.frames) {
+    if (!p.sequence || job.overwrite || !frameComplete(p.framePath(f), p.width, p.height)) {
+      p.todo.push_back(f);
+    }
+  }
+  return p;
+}
+
+std::vector<std::string> finishSequence(const SequencePlan& plan) {
+  if (!plan.sequence || (plan.job.gif.empty() && plan.job.mp4.empty())) {
+    return {};
+  }
+  // Encoding needs the whole range (every shard done): say what is missing instead of a short video.
+  int missing = 0;
+  for (int f : plan.range.frames()) {
+    if (!frameComplete(plan.framePath(f), plan.width, plan.height)) {
+      ++missing;
+    }
+  }
+  if (missing > 0) {
+    log::warn("{} of {} frames of the range are not rendered yet (other shards?): not encoding; run again "
+              "with the same --gif/--mp4 when they are",
+              missing, plan.range.count());
+    return {};
+  }
+  std::vector<std::string> written;
+  const double fps = plan.desc.output.fps;
+  if (!plan.job.gif.empty()) {
+    std::vector<Image> images;
+    for (int f : plan.range.frames()) {
+      images.push_back(loadImage(plan.framePath(f)));
+    }
+    media::writeGif(plan.job.gif, images, std::max(1, static_cast<int>(std::lround(100.0 / fps))));
+    written.push_back(plan.job.gif);
+  }
+  if (!plan.job.mp4.empty()) {
+    encodeMp4(plan, fps, plan.job.mp4);
+    written.push_back(plan.job.mp4);
+  }
+  return written;
 }
 
 } // namespace sylva::scene

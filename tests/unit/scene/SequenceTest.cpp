@@ -26,8 +26,9 @@ std::string errorOf(auto&& body) {
   return {};
 }
 
-Image testImage(int w, int h) {
-  Image image(w, h, 3, PixelType::U8);
+/** A w × h gradient with `channels` channels (rendered frames are RGBA). */
+Image testImage(int w, int h, int channels = 3) {
+  Image image(w, h, channels, PixelType::U8);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       image.set(x, y, 0, static_cast<float>(x) / static_cast<float>(w));
@@ -176,6 +177,51 @@ TEST(Sequence, TemporaryFromAKilledRunIsIgnoredAndRemoved) {
   // The resumed run writes the frame normally.
   writeFrameAtomically(dir / frameName(7), testImage(4, 4));
   EXPECT_TRUE(frameComplete(dir / frameName(7), 4, 4));
+}
+
+TEST(Sequence, APlanDrawsOnlyTheFramesStillMissingAndEncodesOnceTheRangeIsComplete) {
+  test::TempDir dir;
+  SequenceJob job;
+  job.file = test::sourcePath("data/scenes/meadow.json").string();
+  job.frames = "0-5";
+  job.shard = "1/2";
+  job.out = (dir / "seq").string();
+  job.width = 8;
+  job.height = 6;
+  // Shard 1 of 2 draws every other frame of the range; the one already complete is skipped.
+  writeFrameAtomically(dir / "seq" / frameName(3), testImage(8, 6));
+  SequencePlan plan = planSequence(job);
+  EXPECT_TRUE(plan.sequence);
+  EXPECT_EQ(plan.frames, (std::vector<int>{1, 3, 5}));
+  EXPECT_EQ(plan.todo, (std::vector<int>{1, 5}));
+  EXPECT_EQ(plan.camera, plan.desc.output.camera);
+  EXPECT_EQ(plan.framePath(5), dir / "seq" / frameName(5));
+  job.overwrite = true;
+  EXPECT_EQ(planSequence(job).todo, (std::vector<int>{1, 3, 5}));
+
+  // The GIF waits for every shard's frames, then holds the whole range.
+  job.gif = (dir / "anim.gif").string();
+  plan = planSequence(job);
+  EXPECT_TRUE(finishSequence(plan).empty());
+  EXPECT_FALSE(fs::exists(job.gif));
+  for (int f = 0; f <= 5; ++f) {
+    writeFrameAtomically(plan.framePath(f), testImage(8, 6, 4));
+  }
+  EXPECT_EQ(finishSequence(plan), (std::vector<std::string>{job.gif}));
+  EXPECT_TRUE(fs::exists(job.gif));
+
+  // The job is checked before anything is drawn.
+  SequenceJob still;
+  still.file = job.file;
+  still.shard = "1/2";
+  EXPECT_EQ(errorOf([&] { planSequence(still); }), "--shard 1/2: needs a sequence (--frames A-B)");
+  still.shard = "0/1";
+  still.camera = "nowhere";
+  EXPECT_EQ(errorOf([&] { planSequence(still); }), "--camera nowhere: " + job.file + " has no such camera");
+  SequenceJob onFile = job;
+  onFile.out = (dir / "anim.gif").string();
+  EXPECT_EQ(errorOf([&] { planSequence(onFile); }),
+            "--out " + onFile.out + ": a sequence needs a directory, and this is a file");
 }
 
 } // namespace

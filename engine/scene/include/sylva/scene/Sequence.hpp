@@ -1,6 +1,7 @@
 #pragma once
 
 #include <sylva/core/Image.hpp>
+#include <sylva/scene/SceneFile.hpp>
 
 #include <filesystem>
 #include <string>
@@ -68,5 +69,48 @@ void writeFrameAtomically(const std::filesystem::path& path, const Image& image)
  * running, or any such file when `all`); returns how many were removed. A missing dir removes nothing.
  */
 int removeStaleTemporaries(const std::filesystem::path& dir, bool all = false);
+
+/** What `sylva render SCENE.json` is asked for (docs/scenes.md "Sequences"); empty fields take the file's. */
+struct SequenceJob {
+  std::string file;          ///< the scene file
+  std::string frames;        ///< "A-B[,C-D...]"; empty: a still of the output's first frame
+  std::string shard = "0/1"; ///< i/n
+  std::string camera;        ///< empty: the file's output camera
+  std::string out;           ///< a PNG (still) or a directory (sequence); empty: out/<name>[.png]
+  std::string gif;           ///< also write the sequence as an animated GIF here
+  std::string mp4;           ///< also encode the sequence as MP4 here (the ffmpeg program)
+  int width = 0;             ///< 0: the file's output width, pixels
+  int height = 0;            ///< 0: the file's output height, pixels
+  bool overwrite = false;    ///< render complete frames again
+};
+
+/** A job checked against its scene file, with the frames still to draw. */
+struct SequencePlan {
+  SequenceJob job;
+  SceneDesc desc; ///< the loaded scene
+  int width = 0;  ///< output size, pixels
+  int height = 0;
+  std::string camera;        ///< the camera drawn
+  bool sequence = false;     ///< frames to a directory (else one still to a PNG)
+  FrameRange range;          ///< the whole range (every shard's frames)
+  std::filesystem::path out; ///< the still's PNG or the sequence's directory
+  std::vector<int> frames;   ///< this shard's frames
+  std::vector<int> todo;     ///< of those, the ones not complete yet (all with overwrite)
+  /** Where frame `frame` is written. */
+  std::filesystem::path framePath(int frame) const;
+};
+
+/**
+ * Loads the scene and checks the job before anything is drawn (one-line sylva::Error naming the option or the
+ * file and field): the camera exists, the range and shard parse, a shard needs a sequence, the outputs can be
+ * written. A sequence's directory is created and temporaries of killed runs in it are removed. No GL.
+ */
+SequencePlan planSequence(const SequenceJob& job);
+
+/**
+ * After the frames are drawn: with --gif/--mp4 encodes the whole range when every frame of it is complete
+ * (other shards may still be running: then a warning and nothing is written). Returns the files written.
+ */
+std::vector<std::string> finishSequence(const SequencePlan& plan);
 
 } // namespace sylva::scene
