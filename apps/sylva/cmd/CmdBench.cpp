@@ -56,6 +56,32 @@ struct BenchFlags {
   }
 };
 
+/** The benchmarks that draw: each on one headless context. */
+void runGlBench(const BenchFlags& o, const bench::BenchOptions& options, nlohmann::json& report) {
+  auto context = platform::createHeadlessContext(options.context);
+  if (o.area == "terrain") {
+    bench::benchTerrain(options, *context, report);
+  } else if (o.area == "grass") {
+    bench::benchGrass(options, *context, report);
+  } else if (o.area == "grass-sim") {
+    bench::benchGrassSim(options, *context, report);
+  } else if (o.area == "trees") {
+    report = bench::header(options, "trees", *context);
+    bench::benchTrees(o.frames, o.width, o.height, report);
+  } else if (o.area == "scene") {
+#ifdef SYLVA_HAVE_SCENE
+    report = bench::header(options, "scene", *context);
+    bench::benchScene(o.sceneFile.empty() ? dataPath("scenes/meadow.json").string() : o.sceneFile, o.frames,
+                      o.warmup, o.width, o.height, o.quality, o.targetFps, report);
+#else
+    fail("bench scene: this sylva was built without the scene module");
+#endif
+  } else if (o.area == "soak") {
+    bench::benchSoak(options, *context, report);
+  } else {
+    bench::benchDemo(options, *context, report);
+  }
+}
 } // namespace
 
 void registerBench(CLI::App& app) {
@@ -122,45 +148,15 @@ void registerBench(CLI::App& app) {
 #else
       fail("bench capture: this sylva was built without the capture module");
 #endif
-      const std::string out = o->out.empty() ? "out/bench-capture.json" : o->out;
-      saveJsonFile(out, report);
-      std::printf("%s\n", out.c_str());
-      return;
-    }
-    if (o->area == "fold") {
+    } else if (o->area == "fold") {
 #ifdef SYLVA_HAVE_FOLDING
       // CPU rows need no GL; the GPU row makes its own context (and says why when it cannot).
       bench::benchFold(options, report);
 #else
       fail("bench fold: this sylva was built without the folding module");
 #endif
-      const std::string out = o->out.empty() ? "out/bench-fold.json" : o->out;
-      saveJsonFile(out, report);
-      std::printf("%s\n", out.c_str());
-      return;
-    }
-    auto context = platform::createHeadlessContext(options.context);
-    if (o->area == "terrain") {
-      bench::benchTerrain(options, *context, report);
-    } else if (o->area == "grass") {
-      bench::benchGrass(options, *context, report);
-    } else if (o->area == "grass-sim") {
-      bench::benchGrassSim(options, *context, report);
-    } else if (o->area == "trees") {
-      report = bench::header(options, "trees", *context);
-      bench::benchTrees(o->frames, o->width, o->height, report);
-    } else if (o->area == "scene") {
-#ifdef SYLVA_HAVE_SCENE
-      report = bench::header(options, "scene", *context);
-      bench::benchScene(o->sceneFile.empty() ? dataPath("scenes/meadow.json").string() : o->sceneFile,
-                        o->frames, o->warmup, o->width, o->height, o->quality, o->targetFps, report);
-#else
-      fail("bench scene: this sylva was built without the scene module");
-#endif
-    } else if (o->area == "soak") {
-      bench::benchSoak(options, *context, report);
     } else {
-      bench::benchDemo(options, *context, report);
+      runGlBench(*o, options, report);
     }
     const std::string out = o->out.empty() ? "out/bench-" + o->area + ".json" : o->out;
     saveJsonFile(out, report);

@@ -11,6 +11,7 @@
 #include <sylva/capture/Depth.hpp>
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Fakenect.hpp>
+#include <sylva/capture/Input.hpp>
 #include <sylva/capture/Kinect.hpp>
 #include <sylva/capture/Pipeline.hpp>
 #include <sylva/capture/Synthetic.hpp>
@@ -27,7 +28,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -88,22 +88,6 @@ struct CaptureOptions {
   bool explain = false;
 };
 
-const char* centreModeName(CentreMode mode) {
-  switch (mode) {
-  case CentreMode::Auto:
-    return "auto";
-  case CentreMode::Core:
-    return "core";
-  case CentreMode::Centroid:
-    return "centroid";
-  case CentreMode::Base:
-    return "base";
-  case CentreMode::Manual:
-    return "manual";
-  }
-  return "?";
-}
-
 /** Parses "A-B" (inclusive) or "N" into a frame range; throws naming --frames. */
 std::pair<int, int> parseFrameRange(const std::string& text) {
   int a = 0;
@@ -117,27 +101,6 @@ std::pair<int, int> parseFrameRange(const std::string& text) {
     return {a, a};
   }
   fail("--frames: expected A-B or N (0-based, inclusive), got '{}'", text);
-}
-
-std::vector<int> parseLevels(const std::string& text) {
-  std::vector<int> levels;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = text.find(',', start);
-    const std::string part =
-        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    char* end = nullptr;
-    const long v = std::strtol(part.c_str(), &end, 10);
-    if (part.empty() || *end != '\0' || v < 2 || v > 4096) {
-      fail("--levels: expected comma-separated knot counts in 2..4096, got '{}'", text);
-    }
-    levels.push_back(static_cast<int>(v));
-    if (comma == std::string::npos) {
-      break;
-    }
-    start = comma + 1;
-  }
-  return levels;
 }
 
 ExtractOptions extractOptions(const CaptureOptions& o) {
@@ -188,146 +151,41 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
   return e;
 }
 
-/** What the input is, decided from the file (extension, PNG bit depth) or --format. */
-std::string inputFormat(const CaptureOptions& o) {
-  if (o.format != "auto") {
-    return o.format;
-  }
-  const fs::path path(o.input);
-  if (fs::is_directory(path)) {
-    return "fakenect";
-  }
-  if (!fs::exists(path)) {
-    fail("{}: no such file or folder", o.input);
-  }
-  if (lowerExtension(path) != ".png") {
-    fail("{}: expected a depth PNG, a Middlebury disparity PNG or a fakenect folder (use --format)", o.input);
-  }
-  // 16-bit: depth in millimetres; 8-bit: a disparity map. The bit depth is byte 24 of a PNG (signature, the
-  // IHDR chunk's length and type, width, height, then bit depth); a file too short or not a PNG is left to
-  // the depth loader, whose error names the problem.
-  std::ifstream in(path, std::ios::binary);
-  char header[25] = {};
-  in.read(header, sizeof(header));
-  const bool png = in.gcount() == static_cast<std::streamsize>(sizeof(header)) &&
-                   std::string_view(header + 1, 3) == "PNG" && std::string_view(header + 12, 4) == "IHDR";
-  return png && static_cast<unsigned char>(header[24]) == 8 ? "middlebury" : "png";
-}
-
-/** The frames to process, loaded lazily (recordings can be long). */
-struct Source {
-  std::string label;
-  std::string kind;
-  std::optional<FakenectRecording> recording;
-  std::vector<DepthFrame> frames; ///< single images and Kinect captures
-  int first = 0;
-  int last = 0;
-  int count() const { return last - first + 1; }
-  DepthFrame frame(int i) const {
-    if (recording) {
-      return recording->depthFrame(static_cast<std::size_t>(i));
+/** The input the options name, opened (errors name the option or the file). */
+DepthInput openSource(const CaptureOptions& o) {
+  DepthInputOptions in;
+  in.input = o.input;
+  in.format = o.format;
+  in.kinect = o.kinect;
+  in.kinectFrames = o.kinectFrames;
+  in.kinectColour = !o.noColour;
+  in.png.unitMetres = o.unit;
+  if (!o.intrinsics.empty()) {
+    const std::vector<float> v = parseNumbers("--intrinsics", o.intrinsics, 4, "fx,fy,cx,cy");
+    if (v[0] <= 0.0f || v[1] <= 0.0f) {
+      fail("--intrinsics: focal lengths must be > 0, got '{}'", o.intrinsics);
     }
-    return frames[static_cast<std::size_t>(i)];
+    in.png.intrinsics = {v[0], v[1], v[2], v[3]};
   }
-};
-
-Source openSource(const CaptureOptions& o) {
-  Source s;
-  std::optional<std::pair<int, int>> range;
+  in.colour = o.colour;
+  in.middlebury.focalPx = o.focal;
+  in.middlebury.baselineMetres = o.baseline;
+  in.middlebury.doffsPx = o.doffs;
+  in.middlebury.disparityScale = o.disparityScale;
   if (!o.frames.empty()) {
-    range = parseFrameRange(o.frames);
+    in.frames = parseFrameRange(o.frames);
+    in.framesText = o.frames;
   }
-  if (o.kinect) {
-    if (!o.input.empty()) {
-      fail("--kinect: give either an input or --kinect, not both");
-    }
-    KinectOptions k;
-    k.frames = o.kinectFrames;
-    k.colour = !o.noColour;
-    captureKinect(k, [&](DepthFrame&& frame) {
-      s.frames.push_back(std::move(frame));
-      return true;
-    });
-    s.label = kinectReplayActive() ? s.frames.front().source : "kinect";
-    s.kind = "kinect";
-  } else {
-    if (o.input.empty()) {
-      fail("capture: give an input (depth PNG, Middlebury PNG or fakenect folder) or --kinect");
-    }
-    const std::string format = inputFormat(o);
-    s.label = o.input;
-    s.kind = format;
-    if (format == "fakenect") {
-      s.recording = FakenectRecording::open(o.input);
-      for (const std::string& w : s.recording->warnings()) {
-        std::fprintf(stderr, "warning: %s\n", w.c_str());
-      }
-    } else if (format == "png") {
-      DepthPngOptions d;
-      d.unitMetres = o.unit;
-      if (!o.intrinsics.empty()) {
-        const std::vector<float> v = parseNumbers("--intrinsics", o.intrinsics, 4, "fx,fy,cx,cy");
-        if (v[0] <= 0.0f || v[1] <= 0.0f) {
-          fail("--intrinsics: focal lengths must be > 0, got '{}'", o.intrinsics);
-        }
-        d.intrinsics = {v[0], v[1], v[2], v[3]};
-      }
-      DepthFrame frame = loadDepthPng(o.input, d);
-      if (!o.colour.empty()) {
-        Image colour = loadImage(o.colour);
-        if (colour.width() != frame.width || colour.height() != frame.height || colour.channels() < 3) {
-          fail("--colour {}: expected an RGB image of the depth's size {}x{}, got {}x{} with {} channels",
-               o.colour, frame.width, frame.height, colour.width(), colour.height(), colour.channels());
-        }
-        frame.colour = colour.converted(PixelType::U8);
-      }
-      s.frames.push_back(std::move(frame));
-    } else if (format == "middlebury") {
-      MiddleburyOptions m;
-      m.focalPx = o.focal;
-      m.baselineMetres = o.baseline;
-      m.doffsPx = o.doffs;
-      m.disparityScale = o.disparityScale;
-      s.frames.push_back(loadMiddlebury(o.input, m));
-    } else {
-      fail("--format: unknown format '{}'", format);
-    }
+  DepthInput source = openDepthInput(in);
+  for (const std::string& w : source.warnings) {
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
-  const int available =
-      s.recording ? static_cast<int>(s.recording->depthFrameCount()) : static_cast<int>(s.frames.size());
-  s.first = 0;
-  s.last = available - 1;
-  if (range) {
-    if (range->second >= available) {
-      fail("--frames {}: {} has {} depth frame{} (0..{})", o.frames, s.label, available,
-           available == 1 ? "" : "s", available - 1);
-    }
-    s.first = range->first;
-    s.last = range->second;
-  }
-  return s;
-}
-
-std::string stem(const std::string& label) {
-  std::string s = fs::path(label).filename().string();
-  if (s.empty()) {
-    s = fs::path(label).parent_path().filename().string();
-  }
-  const std::size_t dot = s.rfind('.');
-  if (dot != std::string::npos && dot > 0) {
-    s = s.substr(0, dot);
-  }
-  for (char& c : s) {
-    if (c == ':' || c == '/') {
-      c = '-';
-    }
-  }
-  return s.empty() ? std::string("capture") : s;
+  return source;
 }
 
 void runCapture(const CaptureOptions& o) {
   const ExtractOptions extract = extractOptions(o);
-  const std::vector<int> levels = parseLevels(o.levels);
+  const std::vector<int> levels = parseIntegers("--levels", o.levels, 2, 4096, "a knot count");
   for (std::size_t i = 1; i < levels.size(); ++i) {
     if (levels[i] >= levels[i - 1]) {
       fail("--levels: counts must decrease strictly, got '{}'", o.levels);
@@ -336,8 +194,8 @@ void runCapture(const CaptureOptions& o) {
   if (levels.front() > o.knots) {
     fail("--levels: {} knots is more than --knots {}", levels.front(), o.knots);
   }
-  Source source = openSource(o);
-  const std::string base = o.name.empty() ? stem(source.label) : o.name;
+  DepthInput source = openSource(o);
+  const std::string base = o.name.empty() ? inputStem(source.label) : o.name;
   std::string out = o.out;
   std::string overlay = o.overlay;
   if (out.empty() && overlay.empty()) {
@@ -365,8 +223,6 @@ void runCapture(const CaptureOptions& o) {
   const CaptureRun run = captureBlades(
       source.count(), [&](int i) { return source.frame(source.first + i); }, settings, source.label,
       "capturing " + source.label);
-  const ExtractResult& first = run.results.front();
-  const DepthFrame& reference = run.reference;
   const std::vector<std::string>& warnings = run.warnings;
   const std::size_t shownWarnings = 8;
   for (std::size_t i = 0; i < warnings.size() && i < shownWarnings; ++i) {
@@ -380,73 +236,15 @@ void runCapture(const CaptureOptions& o) {
     file.generator += fmt::format(" (scaled by {:.4g} so the longest blade is {} m)", run.scale, o.scaleTo);
   }
   if (!o.quiet) {
-    std::printf("%s (%s, %dx%d%s): %zu blade%s in %zu cluster%s, depth %.3f-%.3f m%s\n",
-                reference.label().c_str(), source.kind.c_str(), reference.width, reference.height,
-                reference.relativeDepth ? ", relative depth" : "", first.blades.size(),
-                first.blades.size() == 1 ? "" : "s", first.clusters.size(),
-                first.clusters.size() == 1 ? "" : "s", first.nearMetres, first.farMetres,
-                first.colourRefined ? ", colour-refined edges" : "");
-    std::printf("  %-5s %6s %10s %10s %9s  %s\n", "blade", "knots", "length", "max width", "length px",
-                "skeleton");
-    for (std::size_t b = 0; b < first.blades.size(); ++b) {
-      const CapturedBlade& blade = first.blades[b];
-      const float maxWidth = *std::max_element(blade.widths.begin(), blade.widths.end());
-      std::printf("  %-5zu %6zu %8.1f cm %8.2f cm %9.0f  %s%s\n", b, blade.knots.size(),
-                  blade.lengthMetres * 100.0f, maxWidth * 100.0f, blade.lengthPx,
-                  blade.medialAxis ? "medial axis" : "symmetric matching",
-                  blade.touchesBorder ? ", cut by the border" : "");
-    }
-    std::printf("  refined to %s knots over %d frame%s (%s)\n", o.levels.c_str(),
-                file.blades.front().source.motionFrames,
-                file.blades.front().source.motionFrames == 1 ? "" : "s",
-                run.motion == CaptureMotion::Recording ? "tracked through the recording"
-                : run.motion == CaptureMotion::Sway    ? "simulated sway"
-                                                       : "static");
-    if (o.explain) {
-      for (std::size_t c = 0; c < first.clusters.size(); ++c) {
-        const Cluster& cluster = first.clusters[c];
-        std::printf("  cluster %zu: %d px, centre (%.0f, %.0f) by %s, %zu junction%s, blades", c,
-                    cluster.areaPx, cluster.centre.x, cluster.centre.y, centreModeName(cluster.centreMode),
-                    cluster.junctions.size(), cluster.junctions.size() == 1 ? "" : "s");
-        for (int b : cluster.blades) {
-          std::printf(" %d", b);
-        }
-        if (cluster.layer >= 0) {
-          std::printf("; depth layer %d of %d (%.3f m) of its blob", cluster.layer, cluster.layerCount,
-                      cluster.layerDepthMetres);
-        }
-        std::printf("\n");
-        for (const Junction& j : cluster.junctions) {
-          std::printf("    junction at contour %d (%.0f, %.0f): %.0f px from the centre, prominence %.3f\n",
-                      j.index, j.px.x, j.px.y, j.distancePx, j.prominence);
-        }
-        for (const std::string& r : cluster.rejected) {
-          std::printf("    not a blade: %s\n", r.c_str());
-        }
-        for (const std::string& m : cluster.merged) {
-          std::printf("    merged? %s\n", m.c_str());
-        }
-      }
-      for (const std::string& d : first.droppedParts) {
-        std::printf("  dropped: %s\n", d.c_str());
-      }
-    }
-    if (run.results.size() > 1) {
-      int missing = 0;
-      for (const TrackedBlade& t : run.tracks) {
-        missing += t.missingFrames;
-      }
-      std::printf("  %zu frames, %d blade-frame%s not found (held)\n", run.results.size(), missing,
-                  missing == 1 ? "" : "s");
-    }
+    std::fputs(describeCapture(run, source.kind, o.levels, o.explain).c_str(), stdout);
   }
 
   // Outputs last, each written atomically.
   if (!o.stages.empty()) {
-    writeCaptureStages(o.stages, reference, first);
+    writeCaptureStages(o.stages, run.reference, run.results.front());
   }
   if (!overlay.empty()) {
-    saveImage(overlay, overlayImage(reference, first));
+    saveImage(overlay, overlayImage(run.reference, run.results.front()));
   }
   if (!out.empty()) {
     blades::saveBladeModels(out, file);
@@ -487,34 +285,6 @@ struct SynthOptions {
   bool evaluate = false;
 };
 
-nlohmann::json truthJson(const SyntheticScene& scene, const std::vector<SyntheticFrame>& frames) {
-  nlohmann::json j;
-  j["version"] = 1;
-  j["kind"] = "sylva-capture-truth";
-  j["intrinsics"] = {scene.intrinsics.fx, scene.intrinsics.fy, scene.intrinsics.cx, scene.intrinsics.cy};
-  nlohmann::json list = nlohmann::json::array();
-  for (const SyntheticFrame& f : frames) {
-    nlohmann::json blades = nlohmann::json::array();
-    for (std::size_t b = 0; b < f.truth.centrelinePx.size(); ++b) {
-      nlohmann::json blade;
-      blade["shape"] = bladeShapeName(scene.blades[b].shape);
-      nlohmann::json px = nlohmann::json::array();
-      nlohmann::json m = nlohmann::json::array();
-      for (std::size_t i = 0; i < f.truth.centrelinePx[b].size(); ++i) {
-        px.push_back({f.truth.centrelinePx[b][i].x, f.truth.centrelinePx[b][i].y, f.truth.widthsPx[b][i]});
-        const glm::vec3 p = f.truth.centrelineMetres[b][i];
-        m.push_back({p.x, p.y, p.z, f.truth.widthsMetres[b][i]});
-      }
-      blade["centrelinePx"] = std::move(px);
-      blade["centrelineMetres"] = std::move(m);
-      blades.push_back(std::move(blade));
-    }
-    list.push_back({{"frame", f.frame.frame}, {"blades", std::move(blades)}});
-  }
-  j["frames"] = std::move(list);
-  return j;
-}
-
 /** `--sweep N`: N random clusters of every class captured and tallied, as the capture sweep test does. */
 void runSweep(int clusters, std::uint64_t seed, std::optional<ClusterLayout> only) {
   SweepReport report;
@@ -522,25 +292,7 @@ void runSweep(int clusters, std::uint64_t seed, std::optional<ClusterLayout> onl
     Progress progress("capturing random clusters", static_cast<std::size_t>(clusters));
     report = captureSweep(clusters, seed, &progress, only);
   }
-  const auto line = [](const char* name, const SweepTally& t) {
-    std::printf("%s\n", sweepLine(name, t).c_str());
-  };
-  for (std::size_t i = 0; i < report.byLayout.size(); ++i) {
-    if (report.byLayout[i].clusters > 0) {
-      line(clusterLayoutName(kClusterLayouts[i]), report.byLayout[i]);
-    }
-  }
-  line("all", report.all);
-  if (!report.wrongSeeds.empty()) {
-    std::string seeds;
-    for (std::size_t i = 0; i < std::min<std::size_t>(report.wrongSeeds.size(), 12); ++i) {
-      seeds += fmt::format("{}{}", i > 0 ? ", " : "", report.wrongSeeds[i]);
-    }
-    const std::string redraw = only ? fmt::format(" --layout {}", clusterLayoutName(*only)) : std::string();
-    std::printf(
-        "wrong counts at seeds %s%s (draw one with --sweep-cluster SEED%s, capture it with --explain)\n",
-        seeds.c_str(), report.wrongSeeds.size() > 12 ? ", …" : "", redraw.c_str());
-  }
+  std::fputs(describeSweep(report, only).c_str(), stdout);
 }
 
 void runSynth(const SynthOptions& o) {
@@ -605,27 +357,11 @@ void runSynth(const SynthOptions& o) {
           100.0 * r.widthErrorMax, r.skeletonErrorPx, r.skeletonErrorMaxPx);
     }
   }
-  if (recording) {
-    FakenectWriter writer(out);
-    for (const SyntheticFrame& f : frames) {
-      const double t = f.frame.timestamp;
-      if (!f.frame.colour.empty()) {
-        writer.addRgb(f.frame.colour, t);
-      }
-      writer.addDepth(f.frame, t + 1e-3);
-    }
-    writer.finish();
-  } else {
-    saveDepthPng(out, frames.front().frame);
-    if (!frames.front().frame.colour.empty()) {
-      fs::path colour(out);
-      colour.replace_filename(colour.stem().string() + "-colour.png");
-      saveImage(colour, frames.front().frame.colour);
-      std::printf("wrote %s\n", colour.string().c_str());
-    }
+  for (const std::string& file : saveSyntheticFrames(out, frames)) {
+    std::printf("wrote %s\n", file.c_str());
   }
   if (!o.truth.empty()) {
-    saveJsonFile(o.truth, truthJson(scene, frames));
+    saveJsonFile(o.truth, syntheticTruthJson(scene, frames));
     std::printf("wrote %s\n", o.truth.c_str());
   }
   const std::size_t count = scene.blades.size();

@@ -64,12 +64,6 @@ std::optional<PositionFunction::Type> parseFunction(const std::string& name) {
   return std::nullopt;
 }
 
-void requireExtensionIfGiven(const std::string& option, const std::string& path, const std::string& ext) {
-  if (!path.empty() && lowerExtension(path) != ext) {
-    fail("{} {}: expected a {} file", option, path, ext);
-  }
-}
-
 // ---------------------------------------------------------------------------------------------------------
 // synth
 
@@ -160,10 +154,10 @@ std::vector<Image> renderFrames(const RenderOptions& o, const LoadedProject& l, 
 
 void runRender(const RenderOptions& o) {
   // Everything that can be wrong with the options is found before any work.
-  requireExtensionIfGiven("--gif", o.gif, ".gif");
-  requireExtensionIfGiven("--mp4", o.mp4, ".mp4");
-  requireExtensionIfGiven("--webm", o.webm, ".webm");
-  requireExtensionIfGiven("--sprites", o.sprites, ".png");
+  requireExtension("--gif", o.gif, ".gif");
+  requireExtension("--mp4", o.mp4, ".mp4");
+  requireExtension("--webm", o.webm, ".webm");
+  requireExtension("--sprites", o.sprites, ".png");
   if ((!o.mp4.empty() || !o.webm.empty()) && !ffmpegAvailable()) {
     fail("ffmpeg not found on PATH: install it (apt install ffmpeg) or write --gif/--sprites/--frames "
          "instead");
@@ -282,6 +276,7 @@ void registerFoldView(CLI::App& fold) {
       "view", "Preview a project live in a window with sliders for speed, shift, position function and time "
               "(Space: pause; Tab: hide the panel; wheel or +/-: zoom, right/middle drag: pan, Home: fit, 1: "
               "one texel per pixel)");
+#ifdef SYLVA_HAVE_FOLDING_GPU
   auto o = std::make_shared<folding_ui::ViewerOptions>();
   command->add_option("project", o->project, "Project file (.json, format sylva-fold)")->required();
   command->add_option("--image", o->image, "Id of the image to show first (default: the project's canvas)");
@@ -291,13 +286,11 @@ void registerFoldView(CLI::App& fold) {
   command->add_flag("--no-ui", o->noUi, "Start with the panel hidden");
   command->add_option("--zoom", o->zoom, "Zoom at start, screen pixels per image pixel (0: fit the window)")
       ->check(CLI::Range(0.0, 32.0));
-  command->callback([o] {
-#ifdef SYLVA_HAVE_FOLDING_GPU
-    folding_ui::runViewer(*o);
+  command->callback([o] { folding_ui::runViewer(*o); });
 #else
-    fail("fold view: this sylva was built without the folding GPU renderer");
+  command->allow_extras();
+  command->callback([] { fail("fold view: this sylva was built without the folding GPU renderer"); });
 #endif
-  });
 }
 
 #ifdef SYLVA_HAVE_FOLDING_GPU
@@ -461,14 +454,7 @@ void registerFoldTemplate(CLI::App& fold) {
   command->add_option("-o,--out", o->out, "Write the edited project here (default: overwrite the input)");
   command->callback([o] {
     const Project project = loadProject(o->project);
-    const int zone = [&] {
-      for (std::size_t z = 0; z < project.zones.size(); ++z) {
-        if (project.zones[z].id == o->zone) {
-          return static_cast<int>(z);
-        }
-      }
-      fail("--zone: {} has no zone '{}'", o->project, o->zone);
-    }();
+    const int zone = zoneIndexOption(project, o->project, o->zone);
     EditHistory history(project);
     TemplateParams params;
     params.strength = o->strength;

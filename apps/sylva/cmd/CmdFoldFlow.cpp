@@ -13,6 +13,7 @@
 #include <sylva/folding/Edit.hpp>
 #include <sylva/folding/Flow.hpp>
 #include <sylva/folding/Project.hpp>
+#include <sylva/folding/ProjectFile.hpp>
 #include <sylva/folding/Synthesis.hpp>
 
 #include <algorithm>
@@ -43,33 +44,16 @@ struct FlowOptions {
   std::string out;
 };
 
-void checkExtension(const std::string& option, const std::string& path, const std::string& ext) {
-  if (!path.empty() && lowerExtension(path) != ext) {
-    fail("{} {}: expected a {} file", option, path, ext);
-  }
-}
-
-int zoneIndex(const Project& project, const std::string& file, const std::string& id) {
-  std::string ids;
-  for (std::size_t z = 0; z < project.zones.size(); ++z) {
-    if (project.zones[z].id == id) {
-      return static_cast<int>(z);
-    }
-    ids += (ids.empty() ? "" : ", ") + project.zones[z].id;
-  }
-  fail("--zone: {} has no zone '{}' (zones: {})", file, id, ids.empty() ? "none" : ids);
-}
-
 void run(const FlowOptions& o) {
-  checkExtension("--picture", o.picture, ".png");
-  checkExtension("--out", o.out, ".json");
+  requireExtension("--picture", o.picture, ".png");
+  requireExtension("--out", o.out, ".json");
   if (o.frames.size() != 2 || o.frames[0] == o.frames[1]) {
     fail("--frames: expected two different frame indices A,B (from 0), got {}",
          o.frames.size() == 2 ? std::to_string(o.frames[0]) + "," + std::to_string(o.frames[1])
                               : "a wrong count");
   }
   const Project project = loadProject(o.project);
-  const int zone = zoneIndex(project, o.project, o.zone);
+  const int zone = zoneIndexOption(project, o.project, o.zone);
   const Zone& z = project.zones[static_cast<std::size_t>(zone)];
   // Loads and checks every image of the project, as synth would, so --out never writes a project that fails.
   const ProjectImages images = loadProjectImages(project, o.project);
@@ -78,21 +62,11 @@ void run(const FlowOptions& o) {
 
   const int a = o.frames[0];
   const int b = o.frames[1];
-  const int needed = std::max(a, b) + 1;
-  VideoClip clip;
-  {
-    Progress progress("reading video", static_cast<std::size_t>(needed));
-    clip = loadVideo(o.video, needed, &progress);
-  }
-  if (static_cast<int>(clip.frames.size()) < needed) {
-    fail("--frames: {} has {} frame{} (0..{}), no frame {}", o.video, clip.frames.size(),
-         clip.frames.size() == 1 ? "" : "s", clip.frames.size() - 1, needed - 1);
-  }
   const FlowMethod method = o.method == "farneback" ? FlowMethod::Farneback : FlowMethod::Dis;
-  const Image& fa = clip.frames[static_cast<std::size_t>(a)];
-  const Image& fb = clip.frames[static_cast<std::size_t>(b)];
-  const FlowField forward = computeFlow(fa, fb, method);
-  const FlowField backward = computeFlow(fb, fa, method);
+  const VideoFlow flow = videoFlow(o.video, a, b, method);
+  const VideoClip& clip = flow.clip;
+  const FlowField& forward = flow.forward;
+  const FlowField& backward = flow.backward;
 
   FlowSuggestOptions options;
   options.mapping = o.map == "image" ? FlowSuggestOptions::Mapping::Image : FlowSuggestOptions::Mapping::Zone;

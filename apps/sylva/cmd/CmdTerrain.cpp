@@ -8,6 +8,7 @@
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Progress.hpp>
+#include <sylva/terrain/FieldSummary.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
@@ -228,13 +229,6 @@ void registerSplat(CLI::App& terrainCommand) {
   });
 }
 
-std::string bytesText(std::size_t bytes) {
-  if (bytes >= (std::size_t{1} << 20)) {
-    return fmt::format("{:.2f} MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
-  }
-  return fmt::format("{:.1f} KiB", static_cast<double>(bytes) / 1024.0);
-}
-
 void registerTerrainInfo(CLI::App& terrainCommand) {
   auto* command = terrainCommand.add_subcommand(
       "info",
@@ -249,69 +243,12 @@ void registerTerrainInfo(CLI::App& terrainCommand) {
   command->callback([o] {
     terrain::LoadReport report;
     const terrain::HeightField field = o->source.load(&report);
-    const terrain::HeightFieldInfo info = terrain::heightFieldInfo(field);
-    const terrain::QuadtreeConfig config =
-        terrain::QuadtreeConfig::forRootCount(16, field.extentX(), field.extentZ());
-    const terrain::Quadtree tree(config, field);
-    const terrain::QuadtreeConfig& used = tree.config();
-    const std::size_t total = field.samples().size();
-    const float leafSize = tree.nodeSize(used.maxDepth);
     if (o->json) {
-      const nlohmann::json json = {{"source", o->source.describe()},
-                                   {"width", field.width()},
-                                   {"height", field.height()},
-                                   {"spacingX", field.spacingX()},
-                                   {"spacingZ", field.spacingZ()},
-                                   {"extentX", field.extentX()},
-                                   {"extentZ", field.extentZ()},
-                                   {"minHeight", info.minHeight},
-                                   {"maxHeight", info.maxHeight},
-                                   {"validSamples", info.validCount},
-                                   {"absentSamples", info.absentCount},
-                                   {"horizontalUnits", report.units},
-                                   {"horizontalUnitsReason", report.reason},
-                                   {"orientation", report.orientation},
-                                   {"warnings", report.warnings},
-                                   {"quadtree",
-                                    {{"roots", 16},
-                                     {"rootsX", used.rootsX},
-                                     {"rootsZ", used.rootsZ},
-                                     {"rootSize", used.rootSize},
-                                     {"maxDepth", used.maxDepth},
-                                     {"leafSize", leafSize},
-                                     {"minMaxBytes", tree.memoryBytes()}}}};
-      nlohmann::json out = json;
-      if (report.units == "degrees") {
-        out["latitude"] = {{"centre", report.centreLatitude},
-                           {"south", report.southLatitude},
-                           {"north", report.northLatitude},
-                           {"eastWestError", report.eastWestError}};
-      }
-      std::printf("%s\n", out.dump(2).c_str());
-      return;
+      std::printf("%s\n",
+                  terrain::describeHeightFieldJson(field, report, o->source.describe()).dump(2).c_str());
+    } else {
+      std::fputs(terrain::describeHeightField(field, report, o->source.describe()).c_str(), stdout);
     }
-    std::printf("source    %s\n", o->source.describe().c_str());
-    std::printf("size      %d x %d samples\n", field.width(), field.height());
-    std::printf("spacing   %s x %s m\n", fmt::format("{:.6g}", field.spacingX()).c_str(),
-                fmt::format("{:.6g}", field.spacingZ()).c_str());
-    std::printf("units     %s: %s\n", report.units == "none" ? "none (1 m per sample)" : report.units.c_str(),
-                report.reason.c_str());
-    if (report.units == "degrees") {
-      std::printf("latitude  %.4f .. %.4f, converted at %.4f (east-west distances off by up to %.2f%% on the "
-                  "outer rows)\n",
-                  report.southLatitude, report.northLatitude, report.centreLatitude,
-                  100.0 * report.eastWestError);
-    }
-    std::printf("rows      %s\n", report.orientation.c_str());
-    std::printf("extent    %s x %s m\n", fmt::format("{:.6g}", field.extentX()).c_str(),
-                fmt::format("{:.6g}", field.extentZ()).c_str());
-    std::printf("height    %.3f .. %.3f m (range %.3f m)\n", static_cast<double>(info.minHeight),
-                static_cast<double>(info.maxHeight), static_cast<double>(info.maxHeight - info.minHeight));
-    std::printf("absent    %zu of %zu samples (%.2f%%)\n", info.absentCount, total,
-                100.0 * static_cast<double>(info.absentCount) / static_cast<double>(total));
-    std::printf("quadtree  16 roots as %d x %d of %s m, max depth %d (leaves %s m), min/max memory %s\n",
-                used.rootsX, used.rootsZ, fmt::format("{:.6g}", used.rootSize).c_str(), used.maxDepth,
-                fmt::format("{:.6g}", leafSize).c_str(), bytesText(tree.memoryBytes()).c_str());
   });
 }
 

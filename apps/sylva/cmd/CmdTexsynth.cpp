@@ -40,38 +40,8 @@ std::pair<int, int> parseExtent(const std::string& option, const std::string& te
   return {w, h};
 }
 
-/** The photo (and normal map) as one texture; `procedural` (no --in) draws procedural bark instead. */
-Texture loadInput(const std::string& in, const std::string& normal) {
-  if (in == "procedural") {
-    if (!normal.empty()) {
-      fail("--normal: the procedural bark has its own normals; give --normal only with a photo");
-    }
-    return proceduralBark(1024, 1);
-  }
-  return loadPhotoTexture(in, normal);
-}
-
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-void checkOutputDirectory(const std::string& out) {
-  std::error_code ec;
-  if (fs::exists(out, ec) && !fs::is_directory(out, ec)) {
-    fail("--out: {} exists and is not a directory", out);
-  }
-  if (fs::exists(out, ec) && !fs::exists(fs::path(out) / "tileset.json", ec) && !fs::is_empty(out, ec)) {
-    fail("--out: {} is a directory that holds no tile set; refusing to replace it", out);
-  }
-}
-
-std::string summary(const TileSet& set, const std::string& out, double seconds) {
-  const AtlasLayout layout = atlasLayout(static_cast<int>(set.tiles.size()), set.channels == 6);
-  return fmt::format("wrote {}: {} tiles of {}x{} texels in {} classes, {} edge colour{}, atlas {}x{} tiles "
-                     "(color.png{}) in {:.1f} s\n",
-                     out, set.tiles.size(), set.tileSize, set.tileSize, set.classes.size(),
-                     set.colours.size(), set.colours.size() == 1 ? "" : "s", layout.columns, layout.rows,
-                     set.channels == 6 ? ", normal.png" : "", seconds);
 }
 
 struct QuiltOptions {
@@ -96,7 +66,7 @@ void runQuilt(const QuiltOptions& o) {
   settings.overlap = o.overlap;
   settings.tolerance = o.tolerance;
   settings.seed = o.seed;
-  const Texture source = loadInput(o.in, o.normal);
+  const Texture source = loadSourceTexture(o.in, o.normal);
   if (!o.normalOut.empty() && !source.hasNormals()) {
     fail("--normal-out: the input has no normal map (give --normal)");
   }
@@ -140,9 +110,9 @@ TileSettings tileSettings(const TileOptions& o) {
 }
 
 void runTiles(const TileOptions& o) {
-  checkOutputDirectory(o.out);
+  checkTileSetOutput(o.out);
   const TileSettings settings = tileSettings(o);
-  const std::vector<Texture> photos{loadInput(o.in, o.normal)};
+  const std::vector<Texture> photos{loadSourceTexture(o.in, o.normal)};
   validate(settings, photos);
   const auto start = std::chrono::steady_clock::now();
   TileSet set;
@@ -152,14 +122,14 @@ void runTiles(const TileOptions& o) {
     set = barkTileSet(photos, o.variants, settings, &progress, o.colours);
   }
   saveTileSet(o.out, set);
-  std::fputs(summary(set, o.out, secondsSince(start)).c_str(), stdout);
+  std::fputs(describeTileSet(set, o.out, secondsSince(start)).c_str(), stdout);
 }
 
 void runWang(const TileOptions& o) {
-  checkOutputDirectory(o.out);
+  checkTileSetOutput(o.out);
   const auto [pw, ph] = parseExtent("--preview", o.preview, 64);
   const TileSettings settings = tileSettings(o);
-  const Texture photo = loadInput(o.in, o.normal);
+  const Texture photo = loadSourceTexture(o.in, o.normal);
   validate(settings, {photo});
   if (o.colours < 1 || o.colours > 3) {
     fail("--colours: {} is out of range [1, 3]", o.colours);
@@ -174,7 +144,7 @@ void runWang(const TileOptions& o) {
   const std::vector<int> grid = tileGrid(set, pw, ph, o.seed);
   const Texture preview = tilingPreview(set, grid, pw, ph);
   saveTileSet(o.out, set, {{"preview.png", colourImage(preview)}});
-  std::fputs(summary(set, o.out, secondsSince(start)).c_str(), stdout);
+  std::fputs(describeTileSet(set, o.out, secondsSince(start)).c_str(), stdout);
   std::printf("preview: %s/preview.png, a random %dx%d tiling\n", o.out.c_str(), pw, ph);
 }
 

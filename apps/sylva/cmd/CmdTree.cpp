@@ -16,6 +16,7 @@
 #include <sylva/trees/Bark.hpp>
 #include <sylva/trees/Export.hpp>
 #include <sylva/trees/Foliage.hpp>
+#include <sylva/trees/ForestLook.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/gpu/ImpostorRenderer.hpp>
 #include <sylva/trees/Import.hpp>
@@ -23,6 +24,7 @@
 #include <sylva/trees/Skeleton.hpp>
 #include <sylva/trees/Species.hpp>
 #include <sylva/trees/Tree.hpp>
+#include <sylva/trees/TreeSummary.hpp>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -53,29 +55,6 @@ void addSpeciesOption(CLI::App& command, std::string& species) {
 }
 
 namespace fs = std::filesystem;
-
-std::string vec3(const glm::vec3& v) {
-  auto clean = [](float x) { return std::abs(x) < 5e-7f ? 0.0f : x; };
-  return fmt::format("({:.4g}, {:.4g}, {:.4g})", clean(v.x), clean(v.y), clean(v.z));
-}
-
-/** "I 3, Y 2, …" for the pieces used by a tree. */
-std::string countsByType(const trees::PieceSet& pieces, const trees::TreeStats& stats) {
-  std::string out;
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    out += fmt::format("{}{} {}", out.empty() ? "" : ", ", pieces[i].name, stats.piecesByType[i]);
-  }
-  return out;
-}
-
-/** The species a tree file names, when it is a preset (for metres); nullopt otherwise. */
-std::optional<trees::Species> presetOf(const std::string& name) {
-  const std::vector<std::string> names = trees::speciesPresetNames();
-  if (std::find(names.begin(), names.end(), name) == names.end()) {
-    return std::nullopt;
-  }
-  return trees::speciesPreset(name);
-}
 
 void registerGenerate(CLI::App& tree) {
   auto* command = tree.add_subcommand(
@@ -109,8 +88,9 @@ void registerGenerate(CLI::App& tree) {
     const trees::TreeStats stats = trees::treeStats(pieces, tree);
     std::printf("%s\n", o->out.c_str());
     std::printf("%s, seed %llu: %zu pieces (%s), %zu joints, depth %d, height %.2f m\n", species.name.c_str(),
-                static_cast<unsigned long long>(o->seed), stats.pieces, countsByType(pieces, stats).c_str(),
-                stats.joints, stats.maxDepth, static_cast<double>(stats.height * species.trunkRadius));
+                static_cast<unsigned long long>(o->seed), stats.pieces,
+                trees::piecesByTypeText(pieces, stats).c_str(), stats.joints, stats.maxDepth,
+                static_cast<double>(stats.height * species.trunkRadius));
   });
 }
 
@@ -136,47 +116,13 @@ void registerTreeInfo(CLI::App& tree) {
   command->callback([o] {
     const trees::PieceSet pieces = trees::standardPieces();
     const trees::TreeTopology tree = trees::loadTree(o->file, pieces);
-    const std::optional<trees::Species> species =
-        o->species.empty() ? presetOf(tree.species) : std::optional(trees::resolveSpecies(o->species));
-    const trees::TreeStats stats = trees::treeStats(pieces, tree);
-    std::size_t vertices = 0;
-    for (const trees::TreeNode& node : tree.nodes) {
-      vertices += pieces[static_cast<std::size_t>(node.piece)].vertices.size();
-    }
+    const std::optional<trees::Species> species = o->species.empty()
+                                                      ? trees::presetSpecies(tree.species)
+                                                      : std::optional(trees::resolveSpecies(o->species));
     if (o->json) {
-      nlohmann::json byType = nlohmann::json::object();
-      for (std::size_t i = 0; i < pieces.size(); ++i) {
-        byType[pieces[i].name] = stats.piecesByType[i];
-      }
-      nlohmann::json out{
-          {"file", o->file},         {"species", tree.species},       {"seed", tree.seed},
-          {"pieces", stats.pieces},  {"piecesByType", byType},        {"joints", stats.joints},
-          {"quads", stats.quads},    {"vertices", vertices},          {"depth", stats.maxDepth},
-          {"order", stats.maxOrder}, {"heightRimUnits", stats.height}};
-      if (species) {
-        out["trunkRadius"] = species->trunkRadius;
-        out["heightMetres"] = stats.height * species->trunkRadius;
-      }
-      std::printf("%s\n", out.dump(2).c_str());
-      return;
-    }
-    std::printf("file     %s\n", o->file.c_str());
-    std::printf("species  %s%s, seed %llu\n", tree.species.c_str(),
-                species ? fmt::format(" (trunk radius {:g} m)", species->trunkRadius).c_str()
-                        : " (not a preset)",
-                static_cast<unsigned long long>(tree.seed));
-    std::printf("pieces   %zu: %s\n", stats.pieces, countsByType(pieces, stats).c_str());
-    std::printf("joints   %zu\n", stats.joints);
-    std::printf("quads    %zu (%zu piece vertices)\n", stats.quads, vertices);
-    std::printf("depth    %d pieces from the root\n", stats.maxDepth);
-    std::printf("order    %d (deepest branching order; the trunk is 0)\n", stats.maxOrder);
-    if (species) {
-      std::printf("height   %.2f m (%.2f rim units x trunk radius %g m)\n",
-                  static_cast<double>(stats.height * species->trunkRadius), static_cast<double>(stats.height),
-                  static_cast<double>(species->trunkRadius));
+      std::printf("%s\n", trees::describeTreeJson(o->file, tree, pieces, species).dump(2).c_str());
     } else {
-      std::printf("height   %.2f rim units (trunk radii; pass --species for metres)\n",
-                  static_cast<double>(stats.height));
+      std::fputs(trees::describeTree(o->file, tree, pieces, species).c_str(), stdout);
     }
   });
 }
@@ -280,18 +226,7 @@ void registerImportPiece(CLI::App& tree) {
     options.tolerance = o->tolerance;
     options.normalTolerance = o->normalTolerance;
     const trees::Piece piece = trees::importPiece(o->file, options);
-    std::printf("%s: piece '%s' is valid: %zu vertices, %zu quads, %zu leaf rim%s%s\n",
-                fs::path(o->file).filename().string().c_str(), piece.name.c_str(), piece.vertices.size(),
-                piece.quads.size(), piece.leafRims(), piece.leafRims() == 1 ? "" : "s",
-                piece.bearsFoliage ? ", bears foliage" : "");
-    for (std::size_t r = 0; r < piece.rims.size(); ++r) {
-      const glm::mat4& f = piece.rims[r].frame;
-      const float radius = glm::length(glm::vec3(f[0]));
-      const std::string label = r == 0 ? std::string("root rim") : fmt::format("leaf rim {}", r);
-      std::printf("%-11s centre %s, axis %s, radius %.4g, corner 0 towards %s\n", label.c_str(),
-                  vec3(glm::vec3(f[3])).c_str(), vec3(glm::normalize(glm::vec3(f[1]))).c_str(),
-                  static_cast<double>(radius), vec3(glm::normalize(glm::vec3(f[0]))).c_str());
-    }
+    std::fputs(trees::describePiece(o->file, piece).c_str(), stdout);
     if (!o->out.empty()) {
       if (ext == ".obj") {
         trees::exportPieceObj(piece, o->out);
@@ -304,23 +239,6 @@ void registerImportPiece(CLI::App& tree) {
 }
 
 /** "8,3,1" → {8, 3, 1}; one-line errors naming the option. */
-std::vector<int> parseLevels(const std::string& text) {
-  std::vector<int> levels;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
-    char* end = nullptr;
-    const long value = std::strtol(item.c_str(), &end, 10);
-    if (item.empty() || end == nullptr || *end != '\0' || value < 1 || value > 64) {
-      fail("--levels {}: '{}' is not a tessellation level in [1, 64]", text, item);
-    }
-    levels.push_back(static_cast<int>(value));
-    start = comma + 1;
-  }
-  return levels;
-}
-
 /**
  * Bakes the impostor atlas of the exported tree on a headless GL context, as `sylva render --trees-far` bakes
  * a species (ez-tree's oak leaf when fetched, else the procedural leaf); returns it with the seconds from the
@@ -471,16 +389,11 @@ void registerExport(CLI::App& tree) {
       }
     }
     trees::TreeExportOptions options;
-    options.levels = parseLevels(o->levels);
+    options.levels = parseIntegers("--levels", o->levels, 1, 64, "a tessellation level");
     const trees::Species species = trees::resolveSpecies(o->species);
     const trees::PieceSet pieces = trees::standardPieces();
     const trees::TreeTopology tree = trees::generateTree(pieces, species, o->seed);
-    std::vector<trees::PieceTiling> tilings;
-    for (const trees::Piece& piece : pieces.pieces) {
-      tilings.push_back(trees::pieceTiling(piece));
-    }
     trees::BarkSet bark;
-    trees::BarkAtlas atlas;
     // The bark tiles of --bark: the mesh's atlas (unless --bark-atlas overrides it) and the --impostor bake.
     const bool tiles = o->bark != "none" && (o->barkAtlas.empty() || o->impostor);
     if (tiles) {
@@ -494,17 +407,7 @@ void registerExport(CLI::App& tree) {
     if (!o->barkAtlas.empty()) {
       options.barkAtlas = loadImage(o->barkAtlas);
     } else if (tiles) {
-      atlas = trees::barkAtlas(bark);
-      options.barkAtlas = atlas.image;
-      // Each quad shows its tile as in the renderer (per piece instance by its root joint, per quad).
-      options.barkUv = [&](std::size_t node, std::size_t quad) {
-        const trees::TreeNode& n = tree.nodes[node];
-        const trees::Piece& piece = pieces[static_cast<std::size_t>(n.piece)];
-        const trees::PieceTiling& tiling = tilings[static_cast<std::size_t>(n.piece)];
-        const std::uint32_t tile =
-            trees::barkTile(bark, piece, tiling, n.rootJoint, static_cast<std::uint32_t>(quad));
-        return trees::barkAtlasUv(atlas, tile, tiling.rotation[quad]);
-      };
+      trees::useRendererBark(options, bark, pieces, tree);
     }
     if (!o->impostorAtlas.empty()) {
       trees::ImpostorAtlas atlas;

@@ -55,6 +55,28 @@ inline std::vector<float> parseNumbers(const std::string& option, const std::str
   return values;
 }
 
+/**
+ * Parses "a,b,c" into whole numbers in [lo, hi] (`what` names one: "a tessellation level"); throws naming the
+ * option, the text and the item at fault.
+ */
+inline std::vector<int> parseIntegers(const std::string& option, const std::string& text, long lo, long hi,
+                                      const char* what) {
+  std::vector<int> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    char* end = nullptr;
+    const long value = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || end == nullptr || *end != '\0' || value < lo || value > hi) {
+      fail("{} {}: '{}' is not {} in [{}, {}]", option, text, item, what, lo, hi);
+    }
+    values.push_back(static_cast<int>(value));
+    start = comma + 1;
+  }
+  return values;
+}
+
 /** A CLI11 check: a finite number in [lo, hi]; CLI11 prefixes the message with the option name. */
 inline CLI::Validator finiteRange(double lo, double hi) {
   return CLI::Validator(
@@ -283,17 +305,7 @@ struct SourceOptions {
    */
   terrain::HeightField load(terrain::LoadReport* report = nullptr,
                             const terrain::LoadOptions* limits = nullptr) const {
-    const terrain::TerrainSource source = terrainSource();
-    if (!procedural()) {
-      return terrain::loadHeightField(source.dem, limits != nullptr ? *limits : source.load, report);
-    }
-    if (report != nullptr) {
-      *report = terrain::LoadReport{};
-      report->units = "metres";
-      report->reason = fmt::format("procedural, --spacing {:g} m", spacing);
-      report->orientation = "row 0 is north";
-    }
-    return terrain::loadTerrainSource(source);
+    return terrain::loadTerrainSource(terrainSource(), limits, report);
   }
 };
 

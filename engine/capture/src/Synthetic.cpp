@@ -615,6 +615,27 @@ std::string sweepLine(const char* name, const SweepTally& t) {
       name, t.clusters, 100.0 * t.exactShare(), t.fewer, 100.0 * t.widthShare(), t.blades);
 }
 
+std::string describeSweep(const SweepReport& report, std::optional<ClusterLayout> only) {
+  std::string text;
+  for (std::size_t i = 0; i < report.byLayout.size(); ++i) {
+    if (report.byLayout[i].clusters > 0) {
+      text += sweepLine(clusterLayoutName(kClusterLayouts[i]), report.byLayout[i]) + "\n";
+    }
+  }
+  text += sweepLine("all", report.all) + "\n";
+  if (!report.wrongSeeds.empty()) {
+    std::string seeds;
+    for (std::size_t i = 0; i < std::min<std::size_t>(report.wrongSeeds.size(), 12); ++i) {
+      seeds += fmt::format("{}{}", i > 0 ? ", " : "", report.wrongSeeds[i]);
+    }
+    const std::string redraw = only ? fmt::format(" --layout {}", clusterLayoutName(*only)) : std::string();
+    text += fmt::format("wrong counts at seeds {}{} (draw one with --sweep-cluster SEED{}, capture it with "
+                        "--explain)\n",
+                        seeds, report.wrongSeeds.size() > 12 ? ", …" : "", redraw);
+  }
+  return text;
+}
+
 SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progress,
                          std::optional<ClusterLayout> only) {
   if (clusters < 1 || clusters > 1000000) {

@@ -187,6 +187,13 @@ std::string lowerExtension(const std::filesystem::path& path) {
   return ext;
 }
 
+void requireExtension(std::string_view option, const std::filesystem::path& path,
+                      std::string_view extension) {
+  if (!path.empty() && lowerExtension(path) != extension) {
+    fail("{} {}: expected a {} file", option, path.string(), extension);
+  }
+}
+
 std::filesystem::path findOnPath(const std::string& name) {
   const char* env = std::getenv("PATH");
   const std::string path = env != nullptr ? env : "";

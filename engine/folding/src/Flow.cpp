@@ -762,4 +762,23 @@ VideoClip syntheticVideo(glm::ivec2 size, int frames, const SyntheticMotion& mot
   return clip;
 }
 
+VideoFlow videoFlow(const std::filesystem::path& video, int a, int b, FlowMethod method) {
+  const int needed = std::max(a, b) + 1;
+  VideoFlow flow;
+  {
+    Progress progress("reading video", static_cast<std::size_t>(needed));
+    flow.clip = loadVideo(video, needed, &progress);
+  }
+  const std::size_t frames = flow.clip.frames.size();
+  if (static_cast<int>(frames) < needed) {
+    fail("--frames: {} has {} frame{} (0..{}), no frame {}", video.string(), frames, frames == 1 ? "" : "s",
+         frames - 1, needed - 1);
+  }
+  const Image& fa = flow.clip.frames[static_cast<std::size_t>(a)];
+  const Image& fb = flow.clip.frames[static_cast<std::size_t>(b)];
+  flow.forward = computeFlow(fa, fb, method);
+  flow.backward = computeFlow(fb, fa, method);
+  return flow;
+}
+
 } // namespace sylva::folding

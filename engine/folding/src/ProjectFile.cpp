@@ -48,6 +48,17 @@ int imageIndexOption(const Project& project, const std::string& option, const st
   return index;
 }
 
+int zoneIndexOption(const Project& project, const std::string& file, const std::string& id) {
+  std::string ids;
+  for (std::size_t z = 0; z < project.zones.size(); ++z) {
+    if (project.zones[z].id == id) {
+      return static_cast<int>(z);
+    }
+    ids += (ids.empty() ? "" : ", ") + project.zones[z].id;
+  }
+  fail("--zone: {} has no zone '{}' (zones: {})", file, id, ids.empty() ? "none" : ids);
+}
+
 nlohmann::json describeProjectJson(const LoadedProject& loaded, const Atlas& atlas) {
   nlohmann::json images = nlohmann::json::array();
   for (const AtlasEntry& e : atlas.entries) {

@@ -15,9 +15,15 @@ ProceduralSpec TerrainSource::defaultProcedural() {
   return defaultLandscapeSpec();
 }
 
-HeightField loadTerrainSource(const TerrainSource& source, const LoadOptions* limits) {
+HeightField loadTerrainSource(const TerrainSource& source, const LoadOptions* limits, LoadReport* report) {
   if (!source.dem.empty()) {
-    return loadHeightField(source.dem, limits != nullptr ? *limits : source.load);
+    return loadHeightField(source.dem, limits != nullptr ? *limits : source.load, report);
+  }
+  if (report != nullptr) {
+    *report = LoadReport{};
+    report->units = "metres";
+    report->reason = fmt::format("procedural, --spacing {:g} m", source.proceduralSpacing);
+    report->orientation = "row 0 is north";
   }
   const int size = source.proceduralSize;
   const int height = source.rows();

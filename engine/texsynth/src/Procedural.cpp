@@ -83,4 +83,14 @@ Texture proceduralBark(int size, std::uint64_t seed) {
   return texture;
 }
 
+Texture loadSourceTexture(const std::string& colourPath, const std::string& normalPath) {
+  if (colourPath == "procedural") {
+    if (!normalPath.empty()) {
+      fail("--normal: the procedural bark has its own normals; give --normal only with a photo");
+    }
+    return proceduralBark(1024, 1);
+  }
+  return loadPhotoTexture(colourPath, normalPath);
+}
+
 } // namespace sylva::texsynth

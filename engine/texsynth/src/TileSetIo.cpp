@@ -4,6 +4,8 @@
 #include <sylva/core/Files.hpp>
 #include <sylva/core/JsonNode.hpp>
 
+#include <fmt/format.h>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -279,6 +281,26 @@ TileSet loadTileSet(const fs::path& dir) {
     set.tiles.push_back(std::move(tile));
   }
   return set;
+}
+
+void checkTileSetOutput(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {
+    fail("--out: {} exists and is not a directory", dir.string());
+  }
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::exists(dir / "tileset.json", ec) &&
+      !std::filesystem::is_empty(dir, ec)) {
+    fail("--out: {} is a directory that holds no tile set; refusing to replace it", dir.string());
+  }
+}
+
+std::string describeTileSet(const TileSet& set, const std::filesystem::path& dir, double seconds) {
+  const AtlasLayout layout = atlasLayout(static_cast<int>(set.tiles.size()), set.channels == 6);
+  return fmt::format("wrote {}: {} tiles of {}x{} texels in {} classes, {} edge colour{}, atlas {}x{} tiles "
+                     "(color.png{}) in {:.1f} s\n",
+                     dir.string(), set.tiles.size(), set.tileSize, set.tileSize, set.classes.size(),
+                     set.colours.size(), set.colours.size() == 1 ? "" : "s", layout.columns, layout.rows,
+                     set.channels == 6 ? ", normal.png" : "", seconds);
 }
 
 } // namespace sylva::texsynth

@@ -8,6 +8,8 @@
 #include <sylva/trees/Skeleton.hpp>
 #include <sylva/trees/Tessellation.hpp>
 
+#include <memory>
+
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -802,6 +804,30 @@ TreeExportStats exportTreeObj(const PieceSet& pieces, const TreeTopology& tree, 
   stats.triangles.push_back(lod.indices.size() / 3);
   stats.bytes = text.size();
   return stats;
+}
+
+void useRendererBark(TreeExportOptions& options, const BarkSet& bark, const PieceSet& pieces,
+                     const TreeTopology& tree) {
+  struct Mapping {
+    BarkSet bark;
+    BarkAtlas atlas;
+    std::vector<PieceTiling> tilings;
+  };
+  auto mapping = std::make_shared<Mapping>();
+  mapping->bark = bark;
+  mapping->atlas = barkAtlas(bark);
+  for (const Piece& piece : pieces.pieces) {
+    mapping->tilings.push_back(pieceTiling(piece));
+  }
+  options.barkAtlas = mapping->atlas.image;
+  options.barkUv = [mapping, &pieces, &tree](std::size_t node, std::size_t quad) {
+    const TreeNode& n = tree.nodes[node];
+    const Piece& piece = pieces[static_cast<std::size_t>(n.piece)];
+    const PieceTiling& tiling = mapping->tilings[static_cast<std::size_t>(n.piece)];
+    const std::uint32_t tile =
+        barkTile(mapping->bark, piece, tiling, n.rootJoint, static_cast<std::uint32_t>(quad));
+    return barkAtlasUv(mapping->atlas, tile, tiling.rotation[quad]);
+  };
 }
 
 } // namespace sylva::trees

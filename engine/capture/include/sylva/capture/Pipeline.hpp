@@ -106,6 +106,16 @@ CaptureRun captureBlades(int frameCount, const std::function<DepthFrame(int)>& f
                          const std::string& label);
 
 /**
+ * What `sylva capture` prints about `run`: the reference frame (label, `kind` of input, size, blades,
+ * clusters, depth range), one line per blade (knots, length, widest width, skeleton method), the refinement
+ * (`levels` as given, frames, motion), with `explain` every cluster's centre, junctions, depth layer and what
+ * was not taken as a blade and why, and for several frames the blade-frames tracking did not find. Lines end
+ * in '\n'.
+ */
+std::string describeCapture(const CaptureRun& run, const std::string& kind, const std::string& levels,
+                            bool explain);
+
+/**
  * The stages of extracting `frame` as PNGs in `dir` (each written atomically): 1-depth (the depth in grey),
  * 2-mask, 3-contour (clusters, centres and junctions), 4-signal (the first cluster's contour distance with
  * its junctions), 5-blades (the blades over the depth).

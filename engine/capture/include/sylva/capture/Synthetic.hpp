@@ -6,6 +6,7 @@
 #include <sylva/capture/Extract.hpp>
 
 #include <glm/vec2.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -167,6 +168,20 @@ SyntheticFrame renderScene(const SyntheticScene& scene, float extraBendRadians =
 std::vector<SyntheticFrame> swaySequence(const SyntheticScene& scene, int frames, double fps,
                                          float amplitudeRadians, double frequencyHz);
 
+/**
+ * The truth of `frames` of `scene` as JSON ("sylva-capture-truth" version 1): the intrinsics and, per frame
+ * and blade, its shape and centreline in pixels (x, y, width) and metres (x, y, z, width).
+ */
+nlohmann::json syntheticTruthJson(const SyntheticScene& scene, const std::vector<SyntheticFrame>& frames);
+
+/**
+ * Writes `frames` to `out`: a .png path holds the first frame as a 16-bit depth PNG (and its colour beside it
+ * as <stem>-colour.png when it has one), any other path becomes a fakenect recording folder of every frame.
+ * Returns the extra files written (the colour PNG).
+ */
+std::vector<std::string> saveSyntheticFrames(const std::string& out,
+                                             const std::vector<SyntheticFrame>& frames);
+
 /** Accuracy of a capture against the truth (tests and `sylva capture synth --evaluate`). */
 struct AccuracyReport {
   int bladesExpected = 0;
@@ -226,5 +241,12 @@ struct SweepReport {
  */
 SweepReport captureSweep(int clusters, std::uint64_t firstSeed = 1, Progress* progress = nullptr,
                          std::optional<ClusterLayout> only = std::nullopt);
+
+/**
+ * What `sylva capture synth --sweep` prints: a sweepLine per layout swept and over all, then the first 12
+ * seeds whose count came out wrong and how to redraw one (`only`: the layout the sweep was narrowed to).
+ * Lines end in '\n'.
+ */
+std::string describeSweep(const SweepReport& report, std::optional<ClusterLayout> only);
 
 } // namespace sylva::capture

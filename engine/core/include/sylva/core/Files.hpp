@@ -49,6 +49,12 @@ void writeTextFile(const std::filesystem::path& path, std::string_view text);
 /** The extension of `path` in lower case, with its dot (".png"), or "" when there is none. */
 std::string lowerExtension(const std::filesystem::path& path);
 
+/**
+ * Throws sylva::Error "`option` PATH: expected a `extension` file" when `path` is given (not empty) and does
+ * not end in `extension` (lower case, with its dot: ".gif"; compared case-insensitively).
+ */
+void requireExtension(std::string_view option, const std::filesystem::path& path, std::string_view extension);
+
 /** The executable `name` in a directory of $PATH (an empty entry is "."), or an empty path when none holds
  * it. */
 std::filesystem::path findOnPath(const std::string& name);

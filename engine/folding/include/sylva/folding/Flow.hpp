@@ -93,6 +93,18 @@ const char* flowMethodName(FlowMethod method); ///< "dis" or "farneback"
  */
 FlowField computeFlow(const Image& a, const Image& b, FlowMethod method);
 
+/** A clip read up to two of its frames, with the flow between them both ways. */
+struct VideoFlow {
+  VideoClip clip;     ///< frames 0 … max(a, b) (the clip's first frames)
+  FlowField forward;  ///< frame a → frame b
+  FlowField backward; ///< frame b → frame a (for the consistency check)
+};
+/**
+ * Reads `video` up to frame max(a, b) (a "reading video" progress line) and computes the flow between frames
+ * `a` and `b` both ways. Throws sylva::Error naming --frames and the file when the clip is shorter.
+ */
+VideoFlow videoFlow(const std::filesystem::path& video, int a, int b, FlowMethod method);
+
 /**
  * Fraction of texels whose forward–backward round trip closes: |f(p) + g(p + f(p))| ≤ `tolerancePx` (frame
  * pixels), g bilinear. Texels whose content leaves the frame count as inconsistent. `backward` is the flow

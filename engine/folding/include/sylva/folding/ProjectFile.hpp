@@ -52,6 +52,9 @@ Textures synthesizeLoaded(const LoadedProject& loaded, SynthesisStats* stats = n
  */
 int imageIndexOption(const Project& project, const std::string& option, const std::string& id);
 
+/** Index of the zone `id` of `project` (read from `file`); throws naming --zone, the file and its zones. */
+int zoneIndexOption(const Project& project, const std::string& file, const std::string& id);
+
 /**
  * What `sylva fold info` prints: the project's images with their sizes, crops and atlas places, its profiles,
  * jump layers and zones with their tools, in the file format's names; several lines, each ending in '\n'.

@@ -46,8 +46,10 @@ inline constexpr std::size_t kProgressSamples = std::size_t{1} << 20;
  * Loads or generates the heights of `source`; errors name the file or the field. A DEM is read with `limits`
  * when given (else source.load); a procedural field above kProgressSamples is generated in strips with a
  * progress line (bit-identical to one generate() call) and can be cancelled (Progress::cancelAll).
+ * `report` (may be null) receives what the DEM loader assumed; a procedural field reports metres, north up.
  */
-HeightField loadTerrainSource(const TerrainSource& source, const LoadOptions* limits = nullptr);
+HeightField loadTerrainSource(const TerrainSource& source, const LoadOptions* limits = nullptr,
+                              LoadReport* report = nullptr);
 
 /**
  * Names a setup field in an error message from its scene-file name ("size", "dem", "sea_level", "tess_level",

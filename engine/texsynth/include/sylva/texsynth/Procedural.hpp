@@ -3,6 +3,7 @@
 #include <sylva/texsynth/Texture.hpp>
 
 #include <cstdint>
+#include <string>
 
 namespace sylva::texsynth {
 
@@ -13,5 +14,11 @@ namespace sylva::texsynth {
  * seed, same texels on every platform.
  */
 Texture proceduralBark(int size, std::uint64_t seed);
+
+/**
+ * The source texture a command names: "procedural" is proceduralBark(1024, 1) (a `normalPath` with it is an
+ * error: it has its own normals), anything else a photo and its optional normal map (loadPhotoTexture).
+ */
+Texture loadSourceTexture(const std::string& colourPath, const std::string& normalPath);
 
 } // namespace sylva::texsynth

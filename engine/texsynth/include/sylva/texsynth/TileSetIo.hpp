@@ -66,4 +66,13 @@ void saveTileSet(const std::filesystem::path& dir, const TileSet& set,
  */
 TileSet loadTileSet(const std::filesystem::path& dir);
 
+/**
+ * Checks, before a tile set is built, that saveTileSet may write `dir`: throws sylva::Error naming --out when
+ * it is a file, or a non-empty directory without a tileset.json (which would be replaced).
+ */
+void checkTileSetOutput(const std::filesystem::path& dir);
+
+/** "wrote DIR: N tiles of SxS texels in C classes, E edge colours, atlas CxR tiles (color.png…) in T s\n". */
+std::string describeTileSet(const TileSet& set, const std::filesystem::path& dir, double seconds);
+
 } // namespace sylva::texsynth

@@ -33,6 +33,7 @@
 // Files are written atomically: a failed export leaves no file; errors are one-line sylva::Error naming it.
 
 #include <sylva/core/Image.hpp>
+#include <sylva/trees/Bark.hpp>
 #include <sylva/trees/JointWind.hpp>
 #include <sylva/trees/Tree.hpp>
 
@@ -94,6 +95,14 @@ struct TreeExportOptions {
   /** Constants of the joint springs written as wind parameters. */
   JointWindSettings wind;
 };
+
+/**
+ * Makes the export show the bark as the renderer draws it: `options.barkAtlas` becomes `bark`'s tiles packed
+ * in one atlas, and `options.barkUv` gives each quad its tile (per piece instance by its root joint, per
+ * quad, with the tile's rotation). `pieces` and `tree` must outlive the export.
+ */
+void useRendererBark(TreeExportOptions& options, const BarkSet& bark, const PieceSet& pieces,
+                     const TreeTopology& tree);
 
 /** One LOD level of an exported tree (world = metres, rest pose). */
 struct TreeMeshLod {
