@@ -4,7 +4,6 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/gl/ContextInfo.hpp>
-#include <sylva/gl/State.hpp>
 #include <sylva/platform/GlfwWindow.hpp>
 #include <sylva/render/gpu/DemoScene.hpp>
 #include <sylva/render/gpu/GpuTimers.hpp>
@@ -286,9 +285,8 @@ void runViewer(const ViewerOptions& o, const std::string& title,
     }
     {
       const render::GpuTimerScope timed(&timers, "blit");
-      gl::blitToWindow(target->framebuffer(), drawn, size);
+      ui::WindowShell::present(*target, drawn, size);
     }
-    gl::bindDefaultFramebuffer(size.x, size.y);
 
     if (shell.panelShown()) {
       const render::GpuTimerScope timed(&timers, "ui");

@@ -67,6 +67,11 @@ void WindowShell::requestClose() {
   glfwSetWindowShouldClose(mWindow.handle(), GLFW_TRUE);
 }
 
+void WindowShell::present(const render::RenderTarget& target, glm::ivec2 drawn, glm::ivec2 windowSize) {
+  gl::blitToWindow(target.framebuffer(), drawn, windowSize);
+  gl::bindDefaultFramebuffer(windowSize.x, windowSize.y);
+}
+
 float WindowShell::meanFrameMs() const {
   float sum = 0.0f;
   for (float ms : mFrameTimes) {

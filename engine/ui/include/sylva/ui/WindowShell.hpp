@@ -7,6 +7,7 @@
 
 #include <sylva/platform/GlfwWindow.hpp>
 #include <sylva/render/Timing.hpp>
+#include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/ui/ImGuiLayer.hpp>
 
 #include <glm/glm.hpp>
@@ -91,6 +92,13 @@ public:
    * line under it; close with ImGui::PopItemWidth() and ImGui::End().
    */
   void beginPanel(const char* title, const std::string& extra = {});
+
+  /**
+   * Shows `target`'s colour (`drawn` pixels of it) over the whole window (`windowSize` pixels), scaled with
+   * linear filtering when a frame was drawn at a lower resolution, and leaves the window's framebuffer bound
+   * for the panels.
+   */
+  static void present(const render::RenderTarget& target, glm::ivec2 drawn, glm::ivec2 windowSize);
 
   /** ImGui frame brackets for the frame callback (ImGuiLayer::begin/end). */
   void beginUi() { mUi.begin(); }
