@@ -3,7 +3,6 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
-#include <sylva/gl/ContextInfo.hpp>
 #include <sylva/platform/GlfwWindow.hpp>
 #include <sylva/render/gpu/DemoScene.hpp>
 #include <sylva/render/gpu/GpuTimers.hpp>
