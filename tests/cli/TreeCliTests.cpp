@@ -8,6 +8,7 @@
 #include <sylva/core/Files.hpp>
 #include <sylva/trees/Pieces.hpp>
 #include <sylva/trees/Species.hpp>
+#include <sylva/trees/Measure.hpp>
 #include <sylva/trees/Tree.hpp>
 
 #include <fmt/format.h>
@@ -83,6 +84,28 @@ TEST(TreeCli, InfoPrintsTheCounts) {
   EXPECT_EQ(j["quads"], stats.quads);
   EXPECT_EQ(j["piecesByType"]["Foot"], 1);
   EXPECT_NEAR(j["heightMetres"].get<double>(), stats.height * species.trunkRadius, 1e-4);
+}
+
+TEST(TreeCli, MeasurePrintsWhatTheLibraryMeasures) {
+  const test::TempDir dir;
+  const trees::TreeMeasures seven =
+      trees::measureSpecies(trees::standardPieces(), trees::speciesPreset("silver-birch"), 7);
+  const test::RunResult json = runSylva(dir, "tree measure --species silver-birch --seed 6 --seeds 3 --json");
+  ASSERT_EQ(json.status, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  ASSERT_EQ(j.at("trees").size(), 3u);
+  EXPECT_EQ(j["trees"][1]["seed"], 7);
+  EXPECT_NEAR(j["trees"][1]["height"].get<double>(), seven.height, 1e-5);
+  EXPECT_NEAR(j["trees"][1]["crownWidth"].get<double>(), seven.crownWidth, 1e-5);
+  EXPECT_EQ(j["trees"][1]["tips"], seven.tips);
+  EXPECT_LE(j["min"]["height"].get<double>(), j["max"]["height"].get<double>());
+  const test::RunResult text = runSylva(dir, "tree measure --species silver-birch --seed 7");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr(fmt::format("{:.2f} m", seven.height)));
+  EXPECT_THAT(text.out, HasSubstr("silhouette width, base to apex"));
+  const test::RunResult bad = runSylva(dir, "tree measure --species bonsai");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_THAT(bad.err, HasSubstr("unknown species 'bonsai'"));
 }
 
 TEST(TreeCli, SpeciesPresetPrintsJsonThatGeneratesAgain) {

@@ -12,6 +12,7 @@
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/core/Log.hpp>
+#include <sylva/core/Progress.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/trees/Bark.hpp>
 #include <sylva/trees/Export.hpp>
@@ -20,6 +21,7 @@
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/gpu/ImpostorRenderer.hpp>
 #include <sylva/trees/Import.hpp>
+#include <sylva/trees/Measure.hpp>
 #include <sylva/trees/Pieces.hpp>
 #include <sylva/trees/Skeleton.hpp>
 #include <sylva/trees/Species.hpp>
@@ -123,6 +125,51 @@ void registerTreeInfo(CLI::App& tree) {
       std::printf("%s\n", trees::describeTreeJson(o->file, tree, pieces, species).dump(2).c_str());
     } else {
       std::fputs(trees::describeTree(o->file, tree, pieces, species).c_str(), stdout);
+    }
+  });
+}
+
+void registerMeasure(CLI::App& tree) {
+  auto* command = tree.add_subcommand(
+      "measure", "Measure trees of a species as the renderer draws them: height, trunk radius, slenderness, "
+                 "crown base, width and height, silhouette profile, drooping twig tips, pieces");
+  struct Options {
+    std::string species;
+    std::uint64_t seed = 1;
+    int seeds = 1;
+    bool json = false;
+  };
+  auto o = std::make_shared<Options>();
+  addSpeciesOption(*command, o->species);
+  command->add_option("--seed", o->seed, "Seed of the first tree (as 'sylva tree generate')")
+      ->check(unsignedInteger())
+      ->capture_default_str();
+  command
+      ->add_option("--seeds", o->seeds,
+                   "Trees measured: seeds --seed, --seed + 1, …; with several, also "
+                   "their min, mean and max")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_flag("--json", o->json, "Print JSON instead of text");
+  command->footer("Examples:\n"
+                  "  sylva tree measure --species oak --seeds 20\n"
+                  "  sylva tree measure --species ./my-species.json --seed 7 --json\n");
+  command->callback([o] {
+    const trees::Species species = trees::resolveSpecies(o->species);
+    const trees::PieceSet pieces = trees::standardPieces();
+    std::vector<trees::TreeMeasures> measured;
+    {
+      Progress progress("measuring trees", static_cast<std::size_t>(o->seeds));
+      for (int i = 0; i < o->seeds; ++i) {
+        measured.push_back(trees::measureSpecies(pieces, species, o->seed + static_cast<std::uint64_t>(i)));
+        progress.advance();
+      }
+    }
+    const trees::MeasureSummary summary = trees::summarise(std::move(measured));
+    if (o->json) {
+      std::printf("%s\n", trees::describeMeasuresJson(species.name, o->seed, summary).dump(2).c_str());
+    } else {
+      std::fputs(trees::describeMeasures(species.name, o->seed, summary).c_str(), stdout);
     }
   });
 }
@@ -472,6 +519,7 @@ void registerTree(CLI::App& app) {
   command->require_subcommand(1);
   registerGenerate(*command);
   registerTreeInfo(*command);
+  registerMeasure(*command);
   registerSpecies(*command);
   registerPieces(*command);
   registerImportPiece(*command);
