@@ -95,14 +95,7 @@ void registerFoldSynth(CLI::App& fold) {
     saveImage(dir / "vectors.png", vectorFieldPicture(textures, step));
     saveImage(dir / "t0.png", thresholdHeatMap(textures, 0));
     saveImage(dir / "t1.png", thresholdHeatMap(textures, 1));
-    std::printf("%s: atlas %dx%d, %zu images, %zu zones, %zu jump layer%s%s\n", l.file.c_str(),
-                textures.width(), textures.height(), l.project.images.size(), l.project.zones.size(),
-                textures.jump.size(), textures.jump.size() == 1 ? "" : "s",
-                textures.fold.empty() ? "" : ", extra fold intervals");
-    std::printf("  %zu anchors, %zu zone texels, %zu folded, %zu with several intervals; jumpMax %.3f px; "
-                "%.2f s\n",
-                stats.anchors, stats.zonePixels, stats.foldedPixels, stats.multiInterval, textures.jumpMax(),
-                seconds);
+    std::fputs(describeSynthesis(l, textures, stats, seconds).c_str(), stdout);
     std::printf("%s\n", dir.string().c_str());
   });
 }

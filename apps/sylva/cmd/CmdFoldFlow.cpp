@@ -64,7 +64,6 @@ void run(const FlowOptions& o) {
   const int b = o.frames[1];
   const FlowMethod method = o.method == "farneback" ? FlowMethod::Farneback : FlowMethod::Dis;
   const VideoFlow flow = videoFlow(o.video, a, b, method);
-  const VideoClip& clip = flow.clip;
   const FlowField& forward = flow.forward;
   const FlowField& backward = flow.backward;
 
@@ -82,14 +81,7 @@ void run(const FlowOptions& o) {
          o.video, o.zone, stats.samples, stats.irregular, stats.inconsistent, stats.still);
   }
 
-  std::printf("%s: %dx%d, %zu frame%s read%s, %g fps; flow %d -> %d (%.3f s apart), %s\n", o.video.c_str(),
-              clip.size.x, clip.size.y, clip.frames.size(), clip.frames.size() == 1 ? "" : "s",
-              clip.truncated ? " (more follow)" : "", clip.fps, a, b,
-              clip.timesS[static_cast<std::size_t>(b)] - clip.timesS[static_cast<std::size_t>(a)],
-              flowMethodName(method));
-  std::printf("  flow: mean %.3f px, max %.3f px; %.1f %% of texels consistent within 1 px\n",
-              forward.meanMagnitude(), forward.maxMagnitude(),
-              100.0 * consistentFraction(forward, backward, 1.0));
+  std::fputs(describeVideoFlow(o.video, flow, a, b, method).c_str(), stdout);
   std::printf("  zone '%s' on '%s' (%dx%d), mapping %s: %.3g x %.3g image px per frame px\n", o.zone.c_str(),
               z.image.c_str(), imageSize.x, imageSize.y, o.map.c_str(), stats.imagePerFramePx.x,
               stats.imagePerFramePx.y);

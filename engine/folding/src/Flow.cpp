@@ -13,6 +13,8 @@
 
 #include "internal/VideoFile.hpp"
 
+#include <fmt/format.h>
+
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgproc.hpp>
@@ -779,6 +781,18 @@ VideoFlow videoFlow(const std::filesystem::path& video, int a, int b, FlowMethod
   flow.forward = computeFlow(fa, fb, method);
   flow.backward = computeFlow(fb, fa, method);
   return flow;
+}
+
+std::string describeVideoFlow(const std::string& video, const VideoFlow& flow, int a, int b,
+                              FlowMethod method) {
+  const VideoClip& clip = flow.clip;
+  return fmt::format("{}: {}x{}, {} frame{} read{}, {:g} fps; flow {} -> {} ({:.3f} s apart), {}\n"
+                     "  flow: mean {:.3f} px, max {:.3f} px; {:.1f} % of texels consistent within 1 px\n",
+                     video, clip.size.x, clip.size.y, clip.frames.size(), clip.frames.size() == 1 ? "" : "s",
+                     clip.truncated ? " (more follow)" : "", clip.fps, a, b,
+                     clip.timesS[static_cast<std::size_t>(b)] - clip.timesS[static_cast<std::size_t>(a)],
+                     flowMethodName(method), flow.forward.meanMagnitude(), flow.forward.maxMagnitude(),
+                     100.0 * consistentFraction(flow.forward, flow.backward, 1.0));
 }
 
 } // namespace sylva::folding

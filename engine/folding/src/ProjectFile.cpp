@@ -59,6 +59,17 @@ int zoneIndexOption(const Project& project, const std::string& file, const std::
   fail("--zone: {} has no zone '{}' (zones: {})", file, id, ids.empty() ? "none" : ids);
 }
 
+std::string describeSynthesis(const LoadedProject& loaded, const Textures& textures,
+                              const SynthesisStats& stats, double seconds) {
+  return fmt::format("{}: atlas {}x{}, {} images, {} zones, {} jump layer{}{}\n"
+                     "  {} anchors, {} zone texels, {} folded, {} with several intervals; jumpMax {:.3f} px; "
+                     "{:.2f} s\n",
+                     loaded.file, textures.width(), textures.height(), loaded.project.images.size(),
+                     loaded.project.zones.size(), textures.jump.size(), textures.jump.size() == 1 ? "" : "s",
+                     textures.fold.empty() ? "" : ", extra fold intervals", stats.anchors, stats.zonePixels,
+                     stats.foldedPixels, stats.multiInterval, textures.jumpMax(), seconds);
+}
+
 nlohmann::json describeProjectJson(const LoadedProject& loaded, const Atlas& atlas) {
   nlohmann::json images = nlohmann::json::array();
   for (const AtlasEntry& e : atlas.entries) {

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace sylva {
@@ -104,6 +105,13 @@ struct VideoFlow {
  * `a` and `b` both ways. Throws sylva::Error naming --frames and the file when the clip is shorter.
  */
 VideoFlow videoFlow(const std::filesystem::path& video, int a, int b, FlowMethod method);
+
+/**
+ * "VIDEO: WxH, N frames read, F fps; flow a -> b (T s apart), METHOD" and the flow's mean and largest
+ * magnitude with the share of texels consistent within 1 px; two lines ending in '\n'.
+ */
+std::string describeVideoFlow(const std::string& video, const VideoFlow& flow, int a, int b,
+                              FlowMethod method);
 
 /**
  * Fraction of texels whose forward–backward round trip closes: |f(p) + g(p + f(p))| ≤ `tolerancePx` (frame

@@ -61,6 +61,14 @@ int zoneIndexOption(const Project& project, const std::string& file, const std::
  * `atlas` from packAtlas() of the same project.
  */
 std::string describeProject(const LoadedProject& loaded, const Atlas& atlas);
+/**
+ * What `sylva fold synth` prints after a synthesis that took `seconds`: the atlas size, images, zones, jump
+ * layers and whether extra fold intervals are used, then anchors, zone texels, folded texels, texels with
+ * several intervals and jumpMax; two lines ending in '\n'.
+ */
+std::string describeSynthesis(const LoadedProject& loaded, const Textures& textures,
+                              const SynthesisStats& stats, double seconds);
+
 /** The same as JSON: {"file", "project" (toJson), "atlas": {"size", "images": [{id, size, crop,
  * atlas_pos}]}}. */
 nlohmann::json describeProjectJson(const LoadedProject& loaded, const Atlas& atlas);
