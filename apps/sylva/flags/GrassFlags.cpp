@@ -141,27 +141,14 @@ grass::GrassView GrassFlags::grassView() const {
   return parseGrassView(view);
 }
 
-namespace {
-
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    if (comma > start) {
-      out.push_back(text.substr(start, comma - start));
-    }
-    start = comma + 1;
-  }
-  return out;
-}
-
-} // namespace
-
 scene::GrassLayer GrassFlags::layerDesc() const {
   scene::GrassLayer l;
   if (types != "procedural") {
-    l.blades = splitList(types);
+    for (std::string& item : commaItems(types)) {
+      if (!item.empty()) {
+        l.blades.push_back(std::move(item));
+      }
+    }
     if (l.blades.empty()) {
       fail("--grass-types: no blade-model file in '{}'", types);
     }

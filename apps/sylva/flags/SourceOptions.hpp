@@ -33,21 +33,29 @@ constexpr double kMinSpacing = 1.0e-6;
 /** Largest accepted height scale (procedural or PNG), metres. */
 constexpr double kMaxHeightScale = 1.0e5;
 
+/** The comma-separated items of "a,b,c" (an empty item where two commas meet or at either end). */
+inline std::vector<std::string> commaItems(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    items.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
+
 /** Parses "a,b,c" into exactly `count` finite numbers; throws naming the option. */
 inline std::vector<float> parseNumbers(const std::string& option, const std::string& text, std::size_t count,
                                        const char* shape) {
   std::vector<float> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
+  for (const std::string& item : commaItems(text)) {
     char* end = nullptr;
     const double value = std::strtod(item.c_str(), &end);
     if (item.empty() || *end != '\0' || !std::isfinite(value) || std::abs(value) > 3.0e38) {
       fail("{}: expected {} ({} finite numbers), got '{}'", option, shape, count, text);
     }
     values.push_back(static_cast<float>(value));
-    start = comma + 1;
   }
   if (values.size() != count) {
     fail("{}: expected {} ({} finite numbers), got '{}'", option, shape, count, text);
@@ -62,17 +70,13 @@ inline std::vector<float> parseNumbers(const std::string& option, const std::str
 inline std::vector<int> parseIntegers(const std::string& option, const std::string& text, long lo, long hi,
                                       const char* what) {
   std::vector<int> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
+  for (const std::string& item : commaItems(text)) {
     char* end = nullptr;
     const long value = std::strtol(item.c_str(), &end, 10);
     if (item.empty() || end == nullptr || *end != '\0' || value < lo || value > hi) {
       fail("{} {}: '{}' is not {} in [{}, {}]", option, text, item, what, lo, hi);
     }
     values.push_back(static_cast<int>(value));
-    start = comma + 1;
   }
   return values;
 }
