@@ -45,7 +45,8 @@ struct JointFrame {
 SYLVA_ASSERT_SIZE(JointFrame, 48);
 
 /** One piece instance: x = root joint index, y = first terminal joint index, z = rim rotation (0 … 5) |
- * piece type << 8, w = tree index | species << 24. */
+ * piece type << 8 | stretch reach << 16 (how far its stretch moves its leaf rims up the root axis, model units
+ * in 8.8 fixed point; 0 unstretched), w = tree index | species << 24. */
 struct TreeInstanceGpu {
   uvec4 joints;
 };

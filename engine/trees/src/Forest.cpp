@@ -245,9 +245,13 @@ PackedInstances packInstances(const Forest& forest) {
     const std::uint32_t offset = forest.jointOffset[ti];
     for (const TreeNode& n : t.topology.nodes) {
       const auto type = static_cast<std::size_t>(n.piece);
-      out.instances[cursor[type]++].joints = glm::uvec4(
-          offset + n.rootJoint, offset + n.jointBase,
-          static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8),
+      // The stretch's reach along the root axis, model units in 8.8 fixed point rounded up (culling bounds).
+      const float reach = std::ceil(stretchReach(forest.pieces[type], n) * 256.0f);
+      const auto reachBits = static_cast<std::uint32_t>(std::clamp(reach, 0.0f, 65535.0f));
+      out.instances[cursor[type]++].joints =
+          glm::uvec4(offset + n.rootJoint, offset + n.jointBase,
+                     static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8) |
+                         (reachBits << 16),
           static_cast<std::uint32_t>(ti) | (static_cast<std::uint32_t>(std::min(t.species, 255)) << 24));
     }
   }
@@ -370,13 +374,15 @@ cullInstances(const PackedInstances& packed, std::span<const gpu::TreePieceGpu> 
   std::vector<std::vector<std::uint32_t>> out(pieces.size());
   for (std::size_t i = 0; i < packed.instances.size(); ++i) {
     const glm::uvec4 inst = packed.instances[i].joints;
-    const std::uint32_t type = inst.z >> 8;
+    const std::uint32_t type = (inst.z >> 8) & 255u;
     const gpu::TreePieceGpu& piece = pieces[type];
     const gpu::JointFrame& root = frames[inst.x];
     const glm::vec3 c(piece.sphere);
     const float scale = glm::length(glm::vec3(root.x.x, root.y.x, root.z.x));
-    const glm::vec3 centre = framePoint(root, glm::vec3(0.0f, c.y, 0.0f));
-    const float radius = (piece.sphere.w + glm::length(glm::vec2(c.x, c.z))) * scale * slack;
+    // A stretched piece reaches `reach` further up its axis: centre the sphere half-way and widen it by half.
+    const float reach = static_cast<float>(inst.z >> 16) / 256.0f;
+    const glm::vec3 centre = framePoint(root, glm::vec3(0.0f, c.y + 0.5f * reach, 0.0f));
+    const float radius = (piece.sphere.w + glm::length(glm::vec2(c.x, c.z)) + 0.5f * reach) * scale * slack;
     bool inside = true;
     for (const glm::vec4& p : planes) {
       if (glm::dot(glm::vec3(p), centre) + p.w < -radius) {

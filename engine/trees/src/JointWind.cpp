@@ -296,18 +296,21 @@ JointWindRest buildJointWindRest(const PieceSet& pieces, std::span<const JointWi
             const Piece& piece = pieces[static_cast<std::size_t>(node.piece)];
             const glm::mat4 model = frames[node.rootJoint] * rimRotation(node.rotation);
             for (std::size_t r = 1; r < piece.rims.size(); ++r) {
-              preBend[node.jointBase + r - 1] = model * piece.joints[r].bind;
+              preBend[node.jointBase + r - 1] = model * leafBind(piece, node, r);
             }
             const PieceMass& pm = pieceMasses[static_cast<std::size_t>(node.piece)];
             const double scale = glm::length(glm::dvec3(glm::vec3(model[0])));
-            const glm::dvec3 centre =
-                glm::dvec3(glm::vec3(model * glm::vec4(glm::vec3(pm.centroid), 1.0f))) - origin;
+            // A stretched piece is that much longer: volume and the centroid's height scale with it.
+            const double stretch = node.stretch;
+            const glm::vec3 stretched(glm::vec3(pm.centroid) * glm::vec3(1.0f, node.stretch, 1.0f));
+            const glm::dvec3 centre = glm::dvec3(glm::vec3(model * glm::vec4(stretched, 1.0f))) - origin;
             Sums s;
-            s.mass = static_cast<double>(species.woodDensity) * pm.volume * scale * scale * scale;
+            s.mass = static_cast<double>(species.woodDensity) * pm.volume * stretch * scale * scale * scale;
             s.massMoment = s.mass * centre;
             s.massSquare = s.mass * glm::dot(centre, centre);
             s.area =
-                (2.0 / kPi * pm.volume + (piece.bearsFoliage ? settings.foliageArea : 0.0)) * scale * scale;
+                (2.0 / kPi * pm.volume * stretch + (piece.bearsFoliage ? settings.foliageArea : 0.0)) * scale *
+                scale;
             s.areaMoment = s.area * centre;
             s.pieces = 1;
             s.jointless = piece.rims.size() <= 1;
@@ -338,7 +341,7 @@ JointWindRest buildJointWindRest(const PieceSet& pieces, std::span<const JointWi
             const TreeNode& node = topo.nodes[nodeIndex];
             const Piece& piece = pieces[static_cast<std::size_t>(node.piece)];
             const std::size_t rim = j - node.jointBase + 1;
-            r.local = rows(rimRotation(node.rotation) * piece.joints[rim].bind);
+            r.local = rows(rimRotation(node.rotation) * leafBind(piece, node, rim));
             const std::uint32_t parent = offset + static_cast<std::uint32_t>(topo.jointParent[j]);
             r.info = glm::uvec4(parent, static_cast<std::uint32_t>(t), rest.joints[parent].info.z + 1u, 0u);
             if (r.info.z + 1u > SYLVA_TREE_MAX_JOINT_CHAIN) {

@@ -27,7 +27,7 @@ void jointFrames(const PieceSet& pieces, const TreeTopology& tree, const glm::ma
     const glm::mat4 root = frames[node.rootJoint] * rimRotation(node.rotation);
     for (std::size_t r = 1; r < piece.rims.size(); ++r) {
       const std::uint32_t j = node.jointBase + static_cast<std::uint32_t>(r) - 1;
-      glm::mat4 f = root * piece.joints[r].bind;
+      glm::mat4 f = root * leafBind(piece, node, r);
       if (j < bends.size()) {
         f = f * bendRotation(bends[j]);
       }

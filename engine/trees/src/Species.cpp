@@ -244,6 +244,10 @@ void validate(const Species& s, const std::string& file) {
     check(std::isfinite(o.bend) && o.bend >= 0.0f && o.bend <= 0.5f, w, "bend",
           "must be in [0, 0.5] radians");
     check(std::isfinite(o.droop) && std::abs(o.droop) <= 0.5f, w, "droop", "must be in [-0.5, 0.5] radians");
+    check(std::isfinite(o.stretch) && o.stretch >= 0.5f && o.stretch <= 6.0f, w, "stretch",
+          "must be in [0.5, 6]");
+    check(o.sideRadius == 0.0f || (o.sideRadius >= 0.05f && o.sideRadius <= 0.95f), w, "sideRadius",
+          "must be 0 (the piece's own) or in [0.05, 0.95]");
   }
 }
 
@@ -301,7 +305,9 @@ nlohmann::json toJson(const Species& s) {
                       {"sideBranch", o.sideBranch},
                       {"asymmetry", o.asymmetry},
                       {"bend", o.bend},
-                      {"droop", o.droop}});
+                      {"droop", o.droop},
+                      {"stretch", o.stretch},
+                      {"sideRadius", o.sideRadius}});
   }
   return {{"version", 1},
           {"name", s.name},
@@ -365,8 +371,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     s.orders.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const JsonNode o = orders[i];
-      o.object(
-          {"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend", "droop"});
+      o.object({"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend", "droop",
+                "stretch", "sideRadius"});
       OrderParams p;
       if (o.has("minSegments"))
         p.minSegments = o["minSegments"].integer(0, 64);
@@ -389,6 +395,13 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
         p.bend = static_cast<float>(o["bend"].number(0, 0.5));
       if (o.has("droop"))
         p.droop = static_cast<float>(o["droop"].number(-0.5, 0.5));
+      if (o.has("stretch"))
+        p.stretch = static_cast<float>(o["stretch"].number(0.5, 6));
+      if (o.has("sideRadius")) {
+        p.sideRadius = static_cast<float>(o["sideRadius"].number(0, 0.95));
+        if (p.sideRadius != 0.0f && p.sideRadius < 0.05f)
+          o["sideRadius"].error("must be 0 (the piece's own) or in [0.05, 0.95]");
+      }
       s.orders.push_back(p);
     }
   }

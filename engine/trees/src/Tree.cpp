@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <set>
@@ -42,6 +43,22 @@ struct PieceIds {
 };
 
 } // namespace
+
+glm::mat4 leafBind(const Piece& piece, const TreeNode& node, std::size_t rim) {
+  glm::mat4 bind = piece.joints[rim].bind;
+  if (node.stretch != 1.0f) {
+    bind[3].y *= node.stretch;
+  }
+  return bind;
+}
+
+float stretchReach(const Piece& piece, const TreeNode& node) {
+  float top = 0.0f;
+  for (std::size_t r = 1; r < piece.joints.size(); ++r) {
+    top = std::max(top, std::abs(piece.joints[r].bind[3].y));
+  }
+  return std::abs(node.stretch - 1.0f) * top;
+}
 
 void indexJoints(const PieceSet& pieces, TreeTopology& tree) {
   tree.jointParent.assign(1, -1);
@@ -88,6 +105,13 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
       node.rotation =
           species.rule == AssemblyRule::Alternate ? (node.depth * 2) % 6 : static_cast<int>(rng.below(6));
     }
+    const OrderParams& params = species.order(order);
+    if ((piece == ids.i || piece == ids.branch) && params.stretch != 1.0f) {
+      // ±15 % per piece from a hash of (seed, node), so the assembly's random stream is untouched.
+      const std::uint64_t h = hash64(seed * 0x9E3779B97F4A7C15ULL ^ (tree.nodes.size() + 0x5bd1e995ULL));
+      const float jitter = static_cast<float>(h >> 40) / 16777216.0f * 2.0f - 1.0f;
+      node.stretch = std::clamp(params.stretch * (1.0f + 0.15f * jitter), kMinStretch, kMaxStretch);
+    }
     tree.nodes.push_back(node);
     const int index = static_cast<int>(tree.nodes.size() - 1);
     const Piece& p = pieces[static_cast<std::size_t>(piece)];
@@ -101,6 +125,15 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
         o.segment = 0;
       }
       open.push_back(o);
+    }
+    // Thin side branches by bone scaling, the stem keeping the rest of the cross-section (pipe model).
+    if (piece == ids.branch && params.sideRadius > 0.0f) {
+      const std::size_t first = open.size() - 2;
+      const float stem = std::sqrt(1.0f - params.sideRadius * params.sideRadius);
+      open[first].scale = stem / rimScale(p, 1);
+      open[first].radius = radius * stem;
+      open[first + 1].scale = params.sideRadius / rimScale(p, 2);
+      open[first + 1].radius = radius * params.sideRadius;
     }
     // Asymmetric forks by bone scaling: one child of a fork keeps its size, the other shrinks.
     if ((piece == ids.y || piece == ids.psi) && species.order(order).asymmetry > 0.0f) {
@@ -185,6 +218,9 @@ void validate(const TreeTopology& tree, const PieceSet& pieces, const std::strin
     if (node.piece < 0 || node.piece >= static_cast<int>(pieces.size())) {
       fail("{}: /nodes/{}/piece: unknown piece index {}", where, n, node.piece);
     }
+    if (!(node.stretch >= kMinStretch && node.stretch <= kMaxStretch)) {
+      fail("{}: /nodes/{}/stretch: {} is not in [{}, {}]", where, n, node.stretch, kMinStretch, kMaxStretch);
+    }
     if (n == 0) {
       if (node.parent != -1) {
         fail("{}: /nodes/0/parent: the root has no parent", where);
@@ -235,11 +271,11 @@ std::vector<glm::mat4> topologicalTransforms(const PieceSet& pieces, const TreeT
   std::vector<glm::mat4> out(tree.nodes.size(), glm::mat4(1.0f));
   for (std::size_t n = 1; n < tree.nodes.size(); ++n) {
     const TreeNode& node = tree.nodes[n];
-    const Piece& parent =
-        pieces[static_cast<std::size_t>(tree.nodes[static_cast<std::size_t>(node.parent)].piece)];
+    const TreeNode& up = tree.nodes[static_cast<std::size_t>(node.parent)];
+    const Piece& parent = pieces[static_cast<std::size_t>(up.piece)];
     const float s = tree.jointScale[node.rootJoint];
     out[n] = out[static_cast<std::size_t>(node.parent)] *
-             parent.joints[static_cast<std::size_t>(node.parentRim)].bind *
+             leafBind(parent, up, static_cast<std::size_t>(node.parentRim)) *
              glm::scale(glm::mat4(1.0f), glm::vec3(s)) * rimRotation(node.rotation);
   }
   return out;
@@ -279,6 +315,9 @@ nlohmann::json toJson(const TreeTopology& tree, const PieceSet& pieces) {
         n["scale"] = s;
       }
     }
+    if (node.stretch != 1.0f) {
+      n["stretch"] = node.stretch;
+    }
     nodes.push_back(n);
   }
   return {{"version", 1}, {"species", tree.species}, {"seed", tree.seed}, {"nodes", nodes}};
@@ -302,9 +341,12 @@ TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, co
   std::vector<float> childScale(count, 1.0f);
   for (std::size_t i = 0; i < count; ++i) {
     const JsonNode n = nodes[i];
-    n.object({"piece", "parent", "rim", "rotation", "order", "scale"});
+    n.object({"piece", "parent", "rim", "rotation", "order", "scale", "stretch"});
     TreeNode node;
     node.piece = pieces.require(n["piece"].string(), fmt::format("{}: {}/piece", where, n.path()));
+    if (n.has("stretch")) {
+      node.stretch = static_cast<float>(n["stretch"].number(kMinStretch, kMaxStretch));
+    }
     if (i > 0) {
       node.parent = n["parent"].integer(0, static_cast<int>(i) - 1);
       node.parentRim = n["rim"].integer(1, 15);

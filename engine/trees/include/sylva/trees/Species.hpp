@@ -41,6 +41,17 @@ struct OrderParams {
   /** Systematic droop towards the ground per joint, radians (weeping forms), applied along the bone's tilt.
    */
   float droop = 0.0f;
+  /**
+   * Length of the I and Branch pieces on axes of this order, × their modelled length (TreeNode::stretch),
+   * varied ±15 % per piece; 1 keeps the pieces as modelled. Longer segments make slender stems: an I is 5
+   * rim radii long as modelled and narrows to 0.875 of its radius.
+   */
+  float stretch = 1.0f;
+  /**
+   * Radius of a side branch relative to its stem at a Branch piece (0: the piece's own 0.5 and 0.85); the stem
+   * then keeps √(1 − sideRadius²) of its radius (the pipe model, Leonardo's rule: cross-sections are conserved).
+   */
+  float sideRadius = 0.0f;
 };
 
 /** A species: rule, limits, per-order grammar, size and colours. */

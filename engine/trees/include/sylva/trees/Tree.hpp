@@ -31,6 +31,12 @@ struct TreeNode {
   /** Branching order (0: trunk) and depth (pieces from the root). */
   int order = 0;
   int depth = 0;
+  /**
+   * Axial stretch (0.5 … 8): the piece's leaf rims sit this many times as far along its root rim's axis
+   * (model +y) as in the piece's mesh, so a segment grows longer without growing thicker. Rims stay exact
+   * similarities (only their joints move); linear blend skinning spreads the stretch over the interior.
+   */
+  float stretch = 1.0f;
   /** Global index of its root joint (the parent's terminal joint; 0 for the root node). */
   std::uint32_t rootJoint = 0;
   /** Global index of its first terminal joint (leaf rim 1); terminal of leaf rim r is jointBase + r − 1. */
@@ -62,12 +68,28 @@ struct TreeTopology {
  */
 TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::uint64_t seed);
 
+/** Smallest and largest TreeNode::stretch a tree may carry. */
+constexpr float kMinStretch = 0.5f;
+constexpr float kMaxStretch = 8.0f;
+
+/**
+ * The bind frame of leaf rim `rim` (1-based) of `node`, a `piece`: the piece's joint bind moved along the
+ * root axis by the node's stretch (bind translation y × stretch). Every consumer of joint frames uses it.
+ */
+glm::mat4 leafBind(const Piece& piece, const TreeNode& node, std::size_t rim);
+
+/**
+ * How far, in the piece's model units, the node's stretch moves its farthest leaf rim along the root axis
+ * ((stretch − 1) × largest leaf-rim height, 0 when unstretched): what culling adds to the piece's bounds.
+ */
+float stretchReach(const Piece& piece, const TreeNode& node);
+
 /** Rebuilds jointParent/jointNode/jointOrder and the nodes' joint indices from pieces and parents. */
 void indexJoints(const PieceSet& pieces, TreeTopology& tree);
 
 /**
  * Checks a topology against `pieces`: parents before children, rims in range and each used once, rotations
- * 0 … 5, depth ≤ 64, no open leaf rim, finite positive scales. Throws sylva::Error "<where>:
+ * 0 … 5, depth ≤ 64, no open leaf rim, finite positive scales, stretches in [kMinStretch, kMaxStretch]. Throws sylva::Error "<where>:
  * nodes[i].<field>: <reason>".
  */
 void validate(const TreeTopology& tree, const PieceSet& pieces, const std::string& where);
