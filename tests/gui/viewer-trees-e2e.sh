@@ -128,7 +128,8 @@ expect_same "$tree_crop" start shaded 200 "trees view: shaded again"
 # 4. Flat bark colours.
 pick "${bark_combo[@]}" "${bark_flat[@]}"
 shot flat
-expect_changed "$trunk_crop" shaded flat 1000 "bark: flat colours"
+# The near tree is a silver birch: a slim, pale trunk some 8 pixels wide, about 1,200 pixels in the crop.
+expect_changed "$trunk_crop" shaded flat 250 "bark: flat colours"
 
 # 5. Esc over the scene quits.
 at 900 600

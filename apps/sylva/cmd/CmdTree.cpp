@@ -20,6 +20,7 @@
 #include <sylva/trees/ForestLook.hpp>
 #include <sylva/trees/Forest.hpp>
 #include <sylva/trees/gpu/ImpostorRenderer.hpp>
+#include <sylva/trees/gpu/SpeciesSheet.hpp>
 #include <sylva/trees/Import.hpp>
 #include <sylva/trees/Measure.hpp>
 #include <sylva/trees/Pieces.hpp>
@@ -310,6 +311,50 @@ bakeImpostor(const ContextFlags& context, const trees::PieceSet& pieces, const t
   return {std::move(atlas), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
 }
 
+void registerSheet(CLI::App& tree) {
+  auto* command = tree.add_subcommand(
+      "sheet", "Render a species sheet: one tree of each species side by side at one scale, seen from the "
+               "side, each beside a 1.75 m person-sized marker (PNG, on a headless GL context)");
+  struct Options {
+    std::string species;
+    std::uint64_t seed = 1;
+    int height = 540;
+    std::string out;
+    ContextFlags context;
+  };
+  auto o = std::make_shared<Options>();
+  command->add_option("--species", o->species,
+                      "Comma-separated presets or species JSON files (default: every "
+                      "preset of a real species, the paper's two rules left out)");
+  command->add_option("--seed", o->seed, "Seed of every tree")
+      ->check(unsignedInteger())
+      ->capture_default_str();
+  command->add_option("--height", o->height, "Image height, pixels")
+      ->check(CLI::Range(16, 8192))
+      ->capture_default_str();
+  command->add_option("-o,--out", o->out, "PNG file to write (atomically)")->required();
+  o->context.add(*command);
+  command->footer("Example:\n  sylva tree sheet -o species.png\n  sylva tree sheet --species "
+                  "silver-birch,weeping-willow --seed 4 --height 720 -o two.png\n");
+  command->callback([o] {
+    if (lowerExtension(o->out) != ".png") {
+      fail("-o {}: a species sheet is a .png file", o->out);
+    }
+    std::vector<trees::Species> species;
+    for (const std::string& name :
+         o->species.empty() ? trees::realSpeciesPresetNames() : commaItems(o->species)) {
+      species.push_back(trees::resolveSpecies(name));
+    }
+    const std::unique_ptr<platform::GlContext> glContext =
+        platform::createHeadlessContext(o->context.options());
+    trees::SpeciesSheetOptions options;
+    options.seed = o->seed;
+    options.height = o->height;
+    saveImage(o->out, trees::renderSpeciesSheet(shader::Library(), species, options));
+    std::printf("%s\n", o->out.c_str());
+  });
+}
+
 void registerExport(CLI::App& tree) {
   auto* command = tree.add_subcommand(
       "export",
@@ -524,6 +569,7 @@ void registerTree(CLI::App& app) {
   registerPieces(*command);
   registerImportPiece(*command);
   registerExport(*command);
+  registerSheet(*command);
 }
 
 } // namespace sylva::app

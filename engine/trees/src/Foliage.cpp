@@ -470,14 +470,17 @@ std::vector<FoliageAnchor> foliageAnchors(const Forest& forest, const FoliageSet
   forestFrames(forest, {}, frames);
   std::vector<glm::vec4> spheres;
   for (const Piece& piece : forest.pieces.pieces) {
-    spheres.push_back(piece.bearsFoliage ? pieceTableEntry(piece).sphere : glm::vec4(0.0f));
+    spheres.push_back(pieceTableEntry(piece).sphere);
   }
   std::vector<FoliageAnchor> out;
   for (std::size_t ti = 0; ti < forest.trees.size(); ++ti) {
     const ForestTree& tree = forest.trees[ti];
+    const auto speciesIndex = static_cast<std::size_t>(std::max(tree.species, 0));
+    const int leafOrder = speciesIndex < forest.species.size() ? forest.species[speciesIndex].leafOrder : 0;
     for (const TreeNode& node : tree.topology.nodes) {
       const auto type = static_cast<std::size_t>(node.piece);
-      if (!forest.pieces[type].bearsFoliage) {
+      const bool alongTwig = leafOrder > 0 && node.order >= leafOrder && node.parent >= 0;
+      if (!forest.pieces[type].bearsFoliage && !alongTwig) {
         continue;
       }
       FoliageAnchor a;
@@ -490,11 +493,15 @@ std::vector<FoliageAnchor> foliageAnchors(const Forest& forest, const FoliageSet
       const glm::vec4 sphere = spheres[type];
       Rng rng(
           hash64(settings.seed ^ hash64(static_cast<std::uint64_t>(a.joint) * 0x9e3779b97f4a7c15ULL + ti)));
-      const float base =
-          std::clamp(settings.radiusScale * sphere.w * scale, settings.minRadius, settings.maxRadius);
+      const float cluster = a.species < forest.species.size() ? forest.species[a.species].leafCluster : 0.0f;
+      const float base = cluster > 0.0f ? cluster
+                                        : std::clamp(settings.radiusScale * sphere.w * scale,
+                                                     settings.minRadius, settings.maxRadius);
       a.radius = base * (1.0f + settings.sizeVariation * rng.uniform(-1.0f, 1.0f));
       a.rotation = settings.rotationVariation * rng.uniform(-1.0f, 1.0f);
-      const glm::vec3 centre = glm::vec3(rimRotation(node.rotation) * glm::vec4(glm::vec3(sphere), 1.0f));
+      // A stretched piece's middle moves up its axis with it.
+      const glm::vec3 middle(sphere.x, sphere.y * node.stretch, sphere.z);
+      const glm::vec3 centre = glm::vec3(rimRotation(node.rotation) * glm::vec4(middle, 1.0f));
       a.offset = centre + glm::vec3(0.0f, scale > 0.0f ? settings.lift * a.radius / scale : 0.0f, 0.0f);
       out.push_back(a);
     }

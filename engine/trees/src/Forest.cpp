@@ -201,10 +201,19 @@ Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& se
 }
 
 Forest gridForest(const std::vector<std::string>& species, int side, float spacing, std::uint64_t seed) {
+  std::vector<Species> resolved;
+  for (const std::string& name : species) {
+    resolved.push_back(resolveSpecies(name));
+  }
+  return gridForestOf(resolved, side, spacing, seed);
+}
+
+Forest gridForestOf(const std::vector<Species>& species, int side, float spacing, std::uint64_t seed) {
   Forest forest;
   forest.pieces = standardPieces();
-  for (const std::string& name : species) {
-    forest.species.push_back(resolveSpecies(name));
+  for (const Species& s : species) {
+    validate(s, "forest: species '" + s.name + "'");
+    forest.species.push_back(s);
   }
   if (forest.species.empty()) {
     fail("forest: needs at least one species");
@@ -248,10 +257,10 @@ PackedInstances packInstances(const Forest& forest) {
       // The stretch's reach along the root axis, model units in 8.8 fixed point rounded up (culling bounds).
       const float reach = std::ceil(stretchReach(forest.pieces[type], n) * 256.0f);
       const auto reachBits = static_cast<std::uint32_t>(std::clamp(reach, 0.0f, 65535.0f));
-      out.instances[cursor[type]++].joints =
-          glm::uvec4(offset + n.rootJoint, offset + n.jointBase,
-                     static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8) |
-                         (reachBits << 16),
+      out.instances[cursor[type]++].joints = glm::uvec4(
+          offset + n.rootJoint, offset + n.jointBase,
+          static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8) |
+              (reachBits << 16),
           static_cast<std::uint32_t>(ti) | (static_cast<std::uint32_t>(std::min(t.species, 255)) << 24));
     }
   }

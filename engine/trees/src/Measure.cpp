@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <type_traits>
 
@@ -95,6 +96,24 @@ TreeMeasures measureTree(const PieceSet& pieces, const TreeTopology& tree, const
     }
   }
   m.crownWidth = crown.width();
+  // The leaves: a sphere around the root joint of every piece that carries a leaf cluster.
+  const float cluster = species.leafCluster > 0.0f ? species.leafCluster : 0.6f;
+  for (const TreeNode& node : tree.nodes) {
+    const Piece& piece = pieces[static_cast<std::size_t>(node.piece)];
+    const bool leafy =
+        piece.bearsFoliage || (species.leafOrder > 0 && node.order >= species.leafOrder && node.parent >= 0);
+    if (!leafy) {
+      continue;
+    }
+    const glm::vec3 c(frames[node.rootJoint][3]);
+    for (int k = 0; k < kDirections; ++k) {
+      const double a = std::numbers::pi * k / kDirections;
+      const glm::vec3 d(static_cast<float>(std::cos(a)), 0.0f, static_cast<float>(std::sin(a)));
+      crown.add(c + cluster * d);
+      crown.add(c - cluster * d);
+    }
+  }
+  m.leafyWidth = crown.width();
   for (int b = 0; b < kProfileBins; ++b) {
     m.profile[static_cast<std::size_t>(b)] = bands[static_cast<std::size_t>(b)].width();
   }
@@ -102,6 +121,7 @@ TreeMeasures measureTree(const PieceSet& pieces, const TreeTopology& tree, const
   m.crownHeight = m.height - m.crownBase;
   m.crownRatio = m.crownHeight > 0.0f ? m.crownWidth / m.crownHeight : 0.0f;
   m.droopingFraction = m.tips > 0 ? static_cast<float>(m.droopingTips) / static_cast<float>(m.tips) : 0.0f;
+  m.spread = m.height > 0.0f ? m.leafyWidth / m.height : 0.0f;
   return m;
 }
 
@@ -122,6 +142,8 @@ template <typename F> void eachField(TreeMeasures& out, const TreeMeasures& t, F
   f(out.crownHeight, t.crownHeight);
   f(out.crownWidth, t.crownWidth);
   f(out.crownRatio, t.crownRatio);
+  f(out.leafyWidth, t.leafyWidth);
+  f(out.spread, t.spread);
   f(out.droopingFraction, t.droopingFraction);
   for (int b = 0; b < kProfileBins; ++b) {
     f(out.profile[static_cast<std::size_t>(b)], t.profile[static_cast<std::size_t>(b)]);
@@ -163,9 +185,9 @@ namespace {
 
 std::string row(const std::string& label, const TreeMeasures& m) {
   return fmt::format(
-      "{:<6} {:6.2f} m {:6.3f} m {:6.1f} {:6.2f} m {:6.2f} m {:6.2f} m {:5.2f} {:5} {:5.1f} % {:6}\n", label,
-      m.height, m.trunkRadius, m.slenderness, m.crownBase, m.crownWidth, m.crownHeight, m.crownRatio, m.tips,
-      100.0f * m.droopingFraction, m.pieces);
+      "{:<6} {:6.2f} m {:6.3f} m {:6.1f} {:6.2f} m {:6.2f} m {:6.2f} m {:5.2f} {:6.2f} {:5} {:5.1f} % {:6}\n",
+      label, m.height, m.trunkRadius, m.slenderness, m.crownBase, m.crownWidth, m.crownHeight, m.crownRatio,
+      m.spread, m.tips, 100.0f * m.droopingFraction, m.pieces);
 }
 
 nlohmann::json toJson(const TreeMeasures& m) {
@@ -176,6 +198,8 @@ nlohmann::json toJson(const TreeMeasures& m) {
           {"crownWidth", m.crownWidth},
           {"crownHeight", m.crownHeight},
           {"crownRatio", m.crownRatio},
+          {"leafyWidth", m.leafyWidth},
+          {"spread", m.spread},
           {"profile", m.profile},
           {"tips", m.tips},
           {"droopingTips", m.droopingTips},
@@ -186,10 +210,11 @@ nlohmann::json toJson(const TreeMeasures& m) {
 } // namespace
 
 std::string describeMeasures(const std::string& species, std::uint64_t firstSeed, const MeasureSummary& s) {
-  std::string text = fmt::format("{}: {} tree{} (metres; woody parts, no foliage)\n", species, s.trees.size(),
-                                 s.trees.size() == 1 ? "" : "s");
-  text += fmt::format("{:<6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>8} {:>5} {:>5} {:>7} {:>6}\n", "seed", "height",
-                      "trunk r", "H/r", "crown@", "width", "crown h", "W/H", "tips", "droop", "pieces");
+  std::string text = fmt::format("{}: {} tree{} (metres; woody parts; spread: leafy crown width / height)\n",
+                                 species, s.trees.size(), s.trees.size() == 1 ? "" : "s");
+  text += fmt::format("{:<6} {:>8} {:>8} {:>6} {:>8} {:>8} {:>8} {:>5} {:>6} {:>5} {:>7} {:>6}\n", "seed",
+                      "height", "trunk r", "H/r", "crown@", "width", "crown h", "W/H", "spread", "tips",
+                      "droop", "pieces");
   for (std::size_t i = 0; i < s.trees.size(); ++i) {
     text += row(std::to_string(firstSeed + i), s.trees[i]);
   }
@@ -202,7 +227,54 @@ std::string describeMeasures(const std::string& species, std::uint64_t firstSeed
   for (float w : m.profile) {
     text += fmt::format(" {:.2f}", widest > 0.0f ? w / widest : 0.0f);
   }
-  return text + "\n";
+  text += "\n";
+  if (const std::optional<SpeciesTargets> targets = speciesTargets(species)) {
+    std::size_t inside = 0;
+    std::string firstMiss;
+    for (std::size_t i = 0; i < s.trees.size(); ++i) {
+      const std::string miss = targetMisses(s.trees[i], *targets);
+      inside += miss.empty() ? 1 : 0;
+      if (!miss.empty() && firstMiss.empty()) {
+        firstMiss = fmt::format(" (seed {}: {})", firstSeed + i, miss);
+      }
+    }
+    text += fmt::format("species targets (docs/trees.md): {} of {} trees inside{}\n", inside, s.trees.size(),
+                        firstMiss);
+  }
+  return text;
+}
+
+std::optional<SpeciesTargets> speciesTargets(const std::string& name) {
+  // {height m, slenderness, spread, crown base share, drooping share}; references in docs/trees.md.
+  static const std::map<std::string, SpeciesTargets> table{
+      {"almond", {{4, 10}, {25, 60}, {0.8f, 1.8f}, {0.15f, 0.45f}, {0.1f, 0.7f}}},
+      {"apple", {{2, 9}, {18, 50}, {0.9f, 2.0f}, {0.15f, 0.5f}, {0.2f, 0.9f}}},
+      {"black-tupelo", {{12, 30}, {50, 120}, {0.25f, 0.7f}, {0.15f, 0.6f}, {0.2f, 0.8f}}},
+      {"california-black-oak", {{9, 25}, {30, 80}, {0.8f, 1.6f}, {0.15f, 0.45f}, {0.2f, 0.8f}}},
+      {"european-larch", {{20, 45}, {50, 120}, {0.25f, 0.6f}, {0.05f, 0.35f}, {0.3f, 0.9f}}},
+      {"lombardy-poplar", {{15, 30}, {35, 100}, {0.1f, 0.3f}, {0.05f, 0.3f}, {0.0f, 0.1f}}},
+      {"quaking-aspen", {{12, 20}, {50, 120}, {0.25f, 0.7f}, {0.15f, 0.6f}, {0.1f, 0.7f}}},
+      {"sassafras", {{6, 18}, {25, 80}, {0.4f, 1.5f}, {0.15f, 0.6f}, {0.0f, 0.6f}}},
+      {"silver-birch", {{15, 25}, {50, 120}, {0.25f, 0.6f}, {0.15f, 0.6f}, {0.6f, 1.0f}}},
+      {"weeping-willow", {{8, 18}, {30, 80}, {0.8f, 1.8f}, {0.1f, 0.45f}, {0.8f, 1.0f}}},
+  };
+  const auto it = table.find(name);
+  return it == table.end() ? std::nullopt : std::optional<SpeciesTargets>(it->second);
+}
+
+std::string targetMisses(const TreeMeasures& m, const SpeciesTargets& t) {
+  std::string out;
+  auto check = [&](const char* what, float v, const MeasureRange& r) {
+    if (!r.contains(v)) {
+      out += fmt::format("{}{} {:.2f} outside [{}, {}]", out.empty() ? "" : "; ", what, v, r.lo, r.hi);
+    }
+  };
+  check("height", m.height, t.height);
+  check("slenderness", m.slenderness, t.slenderness);
+  check("spread", m.spread, t.spread);
+  check("crown base", m.height > 0.0f ? m.crownBase / m.height : 0.0f, t.crownBase);
+  check("drooping", m.droopingFraction, t.drooping);
+  return out;
 }
 
 nlohmann::json describeMeasuresJson(const std::string& species, std::uint64_t firstSeed,

@@ -18,8 +18,9 @@ namespace {
 using internal::finite;
 
 OrderParams order(int minSegments, int maxSegments, float fork, float trifurcation, float sideBranch,
-                  float asymmetry, float bend, float droop) {
-  return OrderParams{minSegments, maxSegments, fork, trifurcation, sideBranch, asymmetry, bend, droop};
+                  float asymmetry, float bend, float droop, float stretch = 1.0f, float sideRadius = 0.0f) {
+  return OrderParams{minSegments, maxSegments, fork,  trifurcation, sideBranch,
+                     asymmetry,   bend,        droop, stretch,      sideRadius};
 }
 
 Species base(const std::string& name) {
@@ -30,20 +31,24 @@ Species base(const std::string& name) {
 
 // Presets. The paper's almond (co-dominant Y forks) and its two rules; the others follow the shapes of
 // Weber & Penn's published tables (1995, Table 1 and their examples): excurrent trunks with many side
-// branches (aspen, tupelo, poplar, larch, birch), decurrent crowns that fork (oak, sassafras, apple), hanging
-// twigs (willow, by droop). Their per-level counts and angles map onto our pieces as segment counts, split
-// probabilities and bends.
+// branches (aspen, tupelo, poplar, larch, birch), decurrent crowns that fork (oak, sassafras, apple, willow),
+// hanging twigs (willow, birch, by droop). Their per-level counts and angles map onto our pieces as segment
+// counts, split probabilities and bends; segment lengths (stretch) and side-branch radii (the pipe model) set
+// proportions. docs/trees.md "Species targets" gives the measured shape each preset is tuned and tested to.
 const std::map<std::string, std::function<Species()>>& presets() {
   static const std::map<std::string, std::function<Species()>> table{
       {"almond",
        [] {
          Species s = base("almond");
-         s.maxOrder = 4;
-         s.trunkRadius = 0.16f;
-         s.orders = {order(2, 3, 0.85f, 0.05f, 0.0f, 0.1f, 0.12f, 0.0f),
-                     order(1, 2, 0.8f, 0.0f, 0.1f, 0.15f, 0.15f, 0.02f),
-                     order(1, 2, 0.7f, 0.0f, 0.2f, 0.2f, 0.18f, 0.04f)};
+         s.maxOrder = 5;
+         s.trunkRadius = 0.14f;
+         s.minRadius = 0.02f;
+         s.orders = {order(1, 2, 0.85f, 0.05f, 0.0f, 0.1f, 0.12f, 0.0f, 1.8f),
+                     order(1, 2, 0.8f, 0.0f, 0.1f, 0.15f, 0.15f, 0.02f, 4.0f, 0.4f),
+                     order(1, 2, 0.7f, 0.0f, 0.2f, 0.2f, 0.18f, 0.04f, 3.5f, 0.45f),
+                     order(1, 2, 0.4f, 0.0f, 0.4f, 0.2f, 0.18f, 0.04f, 3.0f, 0.5f)};
          s.leafColour = {0.27f, 0.45f, 0.16f};
+         s.leafCluster = 0.9f;
          return s;
        }},
       {"paper-alternate",
@@ -66,12 +71,14 @@ const std::map<std::string, std::function<Species()>>& presets() {
        [] {
          Species s = base("quaking-aspen");
          s.maxOrder = 3;
-         s.trunkRadius = 0.14f;
-         s.orders = {order(2, 8, 0.05f, 0.0f, 0.8f, 0.0f, 0.05f, 0.0f),
-                     order(1, 3, 0.35f, 0.0f, 0.45f, 0.2f, 0.15f, 0.05f),
-                     order(1, 2, 0.5f, 0.0f, 0.3f, 0.2f, 0.2f, 0.05f)};
+         s.trunkRadius = 0.18f;
+         s.minRadius = 0.015f;
+         s.orders = {order(2, 14, 0.0f, 0.0f, 0.8f, 0.0f, 0.05f, 0.0f, 3.0f, 0.3f),
+                     order(1, 3, 0.35f, 0.0f, 0.45f, 0.2f, 0.15f, 0.05f, 4.0f, 0.45f),
+                     order(1, 2, 0.5f, 0.0f, 0.3f, 0.2f, 0.2f, 0.05f, 3.5f, 0.5f)};
          s.barkColour = {0.62f, 0.6f, 0.52f};
          s.leafColour = {0.38f, 0.52f, 0.17f};
+         s.leafCluster = 0.9f;
          return s;
        }},
       {"black-tupelo",
@@ -79,36 +86,46 @@ const std::map<std::string, std::function<Species()>>& presets() {
          Species s = base("black-tupelo");
          s.maxOrder = 3;
          s.trunkRadius = 0.2f;
-         s.orders = {order(2, 7, 0.05f, 0.0f, 0.8f, 0.0f, 0.05f, 0.0f),
-                     order(1, 3, 0.3f, 0.0f, 0.5f, 0.25f, 0.12f, 0.12f),
-                     order(1, 2, 0.4f, 0.0f, 0.3f, 0.2f, 0.2f, 0.1f)};
+         s.minRadius = 0.015f;
+         s.orders = {order(2, 14, 0.0f, 0.0f, 0.8f, 0.0f, 0.05f, 0.0f, 3.0f, 0.3f),
+                     order(1, 3, 0.3f, 0.0f, 0.5f, 0.25f, 0.12f, 0.12f, 4.5f, 0.45f),
+                     order(1, 2, 0.4f, 0.0f, 0.3f, 0.2f, 0.2f, 0.1f, 3.5f, 0.5f)};
          s.leafColour = {0.2f, 0.38f, 0.12f};
+         s.leafCluster = 0.9f;
          return s;
        }},
       {"weeping-willow",
        [] {
          Species s = base("weeping-willow");
-         s.maxOrder = 4;
-         s.trunkRadius = 0.24f;
-         s.orders = {order(2, 3, 0.7f, 0.1f, 0.1f, 0.1f, 0.08f, 0.0f),
-                     order(1, 2, 0.6f, 0.0f, 0.3f, 0.2f, 0.1f, 0.1f),
-                     order(2, 4, 0.2f, 0.0f, 0.5f, 0.2f, 0.12f, 0.3f),
-                     order(2, 5, 0.1f, 0.0f, 0.4f, 0.2f, 0.1f, 0.35f)};
+         s.maxOrder = 3;
+         s.trunkRadius = 0.3f;
+         s.minRadius = 0.01f;
+         // Arching limbs that branch along their length; from them, long thin shoots that hang straight down,
+         // leafy all along (leafOrder 3).
+         s.orders = {order(1, 2, 0.7f, 0.2f, 0.1f, 0.1f, 0.08f, 0.0f, 2.0f),
+                     order(1, 3, 0.3f, 0.0f, 0.6f, 0.2f, 0.1f, -0.05f, 3.0f, 0.45f),
+                     order(1, 4, 0.1f, 0.0f, 0.8f, 0.2f, 0.12f, 0.12f, 4.0f, 0.4f),
+                     order(3, 4, 0.0f, 0.0f, 0.0f, 0.2f, 0.05f, 0.5f, 10.0f, 0.5f)};
          s.barkColour = {0.3f, 0.26f, 0.2f};
          s.leafColour = {0.45f, 0.55f, 0.2f};
+         s.leafCluster = 0.7f;
+         s.leafOrder = 3;
          s.youngModulus = 6e9f;
          return s;
        }},
       {"california-black-oak",
        [] {
          Species s = base("california-black-oak");
-         s.maxOrder = 4;
+         s.maxOrder = 5;
          s.trunkRadius = 0.3f;
-         s.orders = {order(1, 3, 0.7f, 0.2f, 0.1f, 0.25f, 0.1f, 0.0f),
-                     order(1, 2, 0.5f, 0.1f, 0.3f, 0.3f, 0.25f, 0.08f),
-                     order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.3f, 0.08f)};
+         s.minRadius = 0.025f;
+         s.orders = {order(1, 2, 0.7f, 0.2f, 0.1f, 0.25f, 0.1f, 0.0f, 3.0f),
+                     order(1, 2, 0.5f, 0.1f, 0.3f, 0.3f, 0.25f, 0.04f, 5.5f, 0.35f),
+                     order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.3f, 0.08f, 4.5f, 0.4f),
+                     order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.3f, 0.08f, 3.0f, 0.45f)};
          s.barkColour = {0.22f, 0.2f, 0.18f};
          s.leafColour = {0.2f, 0.33f, 0.12f};
+         s.leafCluster = 2.0f;
          s.youngModulus = 11e9f;
          s.woodDensity = 850.0f;
          return s;
@@ -116,56 +133,74 @@ const std::map<std::string, std::function<Species()>>& presets() {
       {"sassafras",
        [] {
          Species s = base("sassafras");
-         s.maxOrder = 3;
-         s.trunkRadius = 0.17f;
-         s.orders = {order(3, 5, 0.3f, 0.2f, 0.4f, 0.1f, 0.08f, 0.0f),
-                     order(1, 3, 0.5f, 0.1f, 0.3f, 0.2f, 0.2f, 0.0f),
-                     order(1, 2, 0.5f, 0.0f, 0.2f, 0.1f, 0.2f, 0.0f)};
+         s.maxOrder = 4;
+         s.trunkRadius = 0.25f;
+         s.minRadius = 0.015f;
+         s.orders = {order(1, 3, 0.1f, 0.1f, 0.6f, 0.1f, 0.08f, 0.0f, 2.0f, 0.35f),
+                     order(1, 3, 0.5f, 0.1f, 0.3f, 0.2f, 0.2f, 0.05f, 3.0f, 0.4f),
+                     order(1, 2, 0.5f, 0.0f, 0.2f, 0.1f, 0.2f, 0.0f, 3.0f, 0.45f),
+                     order(1, 2, 0.3f, 0.0f, 0.4f, 0.1f, 0.2f, 0.0f, 3.0f, 0.5f)};
          s.leafColour = {0.3f, 0.48f, 0.16f};
+         s.leafCluster = 0.9f;
          return s;
        }},
       {"lombardy-poplar",
        [] {
          Species s = base("lombardy-poplar");
          s.maxOrder = 2;
-         s.trunkRadius = 0.2f;
-         s.orders = {order(2, 10, 0.02f, 0.0f, 0.9f, 0.0f, 0.02f, -0.12f),
-                     order(2, 4, 0.2f, 0.0f, 0.4f, 0.1f, 0.05f, -0.25f)};
+         s.trunkRadius = 0.4f;
+         s.minRadius = 0.02f;
+         // One straight leader to the top with many thin, short, steeply rising side branches close along it.
+         s.orders = {order(1, 30, 0.0f, 0.0f, 0.95f, 0.0f, 0.02f, -0.12f, 1.3f, 0.22f),
+                     order(1, 3, 0.2f, 0.0f, 0.4f, 0.1f, 0.04f, -0.15f, 1.3f, 0.5f)};
          s.leafColour = {0.24f, 0.44f, 0.15f};
+         s.leafCluster = 0.75f;
          return s;
        }},
       {"european-larch",
        [] {
          Species s = base("european-larch");
-         s.maxOrder = 3;
-         s.trunkRadius = 0.18f;
-         s.orders = {order(2, 10, 0.0f, 0.0f, 0.95f, 0.0f, 0.02f, 0.0f),
-                     order(1, 3, 0.1f, 0.0f, 0.6f, 0.1f, 0.08f, 0.15f),
-                     order(1, 2, 0.2f, 0.0f, 0.3f, 0.1f, 0.1f, 0.1f)};
+         s.maxOrder = 2;
+         s.trunkRadius = 0.3f;
+         s.minRadius = 0.02f;
+         // A leader to the top; tiers of thin side branches, longest low down (the trunk thins upwards and
+         // the branches with it), twigs hanging from them.
+         s.orders = {order(1, 30, 0.0f, 0.0f, 0.97f, 0.0f, 0.02f, 0.0f, 2.5f, 0.25f),
+                     order(1, 4, 0.0f, 0.0f, 0.6f, 0.1f, 0.06f, 0.12f, 5.0f, 0.5f),
+                     order(0, 1, 0.2f, 0.0f, 0.3f, 0.1f, 0.1f, 0.15f, 3.0f, 0.5f)};
          s.leafColour = {0.33f, 0.47f, 0.2f};
+         s.leafCluster = 1.0f;
          return s;
        }},
       {"silver-birch",
        [] {
          Species s = base("silver-birch");
          s.maxOrder = 3;
-         s.trunkRadius = 0.13f;
-         s.orders = {order(2, 7, 0.1f, 0.0f, 0.8f, 0.0f, 0.04f, 0.0f),
-                     order(1, 3, 0.3f, 0.0f, 0.5f, 0.2f, 0.12f, 0.18f),
-                     order(2, 3, 0.2f, 0.0f, 0.5f, 0.2f, 0.12f, 0.25f)};
+         s.trunkRadius = 0.2f;
+         s.minRadius = 0.012f;
+         // A slender leader, ascending branches, and fine twigs hanging from them, leafy along their length.
+         s.orders = {order(2, 14, 0.0f, 0.0f, 0.75f, 0.0f, 0.04f, 0.0f, 3.0f, 0.3f),
+                     order(1, 3, 0.3f, 0.0f, 0.5f, 0.2f, 0.1f, 0.08f, 4.5f, 0.45f),
+                     order(1, 3, 0.2f, 0.0f, 0.5f, 0.2f, 0.12f, 0.25f, 4.0f, 0.5f),
+                     order(2, 2, 0.0f, 0.0f, 0.0f, 0.2f, 0.05f, 0.45f, 8.0f, 0.5f)};
          s.barkColour = {0.8f, 0.78f, 0.72f};
          s.leafColour = {0.35f, 0.5f, 0.18f};
+         s.leafCluster = 0.8f;
+         s.leafOrder = 3;
          return s;
        }},
       {"apple",
        [] {
          Species s = base("apple");
-         s.maxOrder = 4;
+         s.maxOrder = 5;
          s.trunkRadius = 0.15f;
-         s.orders = {order(1, 2, 0.6f, 0.3f, 0.1f, 0.2f, 0.15f, 0.0f),
-                     order(1, 2, 0.5f, 0.1f, 0.3f, 0.3f, 0.25f, 0.1f),
-                     order(1, 2, 0.4f, 0.0f, 0.3f, 0.3f, 0.25f, 0.12f)};
+         s.minRadius = 0.02f;
+         s.orders = {order(1, 2, 0.6f, 0.3f, 0.1f, 0.2f, 0.15f, 0.0f, 1.8f),
+                     order(1, 2, 0.5f, 0.1f, 0.3f, 0.3f, 0.25f, 0.1f, 3.0f, 0.4f),
+                     order(1, 2, 0.4f, 0.0f, 0.3f, 0.3f, 0.25f, 0.12f, 3.0f, 0.45f),
+                     order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.25f, 0.12f, 2.5f, 0.5f)};
          s.leafColour = {0.25f, 0.42f, 0.14f};
+         s.leafCluster = 0.8f;
          return s;
        }},
   };
@@ -218,6 +253,9 @@ void validate(const Species& s, const std::string& file) {
         "sizeVariation", "must be in [0, 1)");
   check(!s.orders.empty() && s.orders.size() <= 17, where, "orders", "needs 1 … 17 entries");
   check(finite(s.barkColour) && finite(s.leafColour), where, "colours", "must be finite");
+  check(std::isfinite(s.leafCluster) && s.leafCluster >= 0.0f && s.leafCluster <= 10.0f, where, "leafCluster",
+        "must be in [0, 10] metres");
+  check(s.leafOrder >= 0 && s.leafOrder <= 16, where, "leafOrder", "must be in [0, 16]");
   check(std::find(barkPhotoNames().begin(), barkPhotoNames().end(), s.bark) != barkPhotoNames().end(), where,
         "bark", "must be one of oak, birch, pine, willow, procedural");
   check(std::isfinite(s.youngModulus) && s.youngModulus >= 1e6f && s.youngModulus <= 1e12f, where,
@@ -244,8 +282,8 @@ void validate(const Species& s, const std::string& file) {
     check(std::isfinite(o.bend) && o.bend >= 0.0f && o.bend <= 0.5f, w, "bend",
           "must be in [0, 0.5] radians");
     check(std::isfinite(o.droop) && std::abs(o.droop) <= 0.5f, w, "droop", "must be in [-0.5, 0.5] radians");
-    check(std::isfinite(o.stretch) && o.stretch >= 0.5f && o.stretch <= 6.0f, w, "stretch",
-          "must be in [0.5, 6]");
+    check(std::isfinite(o.stretch) && o.stretch >= 0.5f && o.stretch <= 12.0f, w, "stretch",
+          "must be in [0.5, 12]");
     check(o.sideRadius == 0.0f || (o.sideRadius >= 0.05f && o.sideRadius <= 0.95f), w, "sideRadius",
           "must be 0 (the piece's own) or in [0.05, 0.95]");
   }
@@ -255,6 +293,16 @@ std::vector<std::string> speciesPresetNames() {
   std::vector<std::string> names;
   for (const auto& [name, make] : presets()) {
     names.push_back(name);
+  }
+  return names;
+}
+
+std::vector<std::string> realSpeciesPresetNames() {
+  std::vector<std::string> names;
+  for (const std::string& name : speciesPresetNames()) {
+    if (name.rfind("paper-", 0) != 0) {
+      names.push_back(name);
+    }
   }
   return names;
 }
@@ -321,6 +369,8 @@ nlohmann::json toJson(const Species& s) {
           {"orders", orders},
           {"barkColour", {s.barkColour.r, s.barkColour.g, s.barkColour.b}},
           {"leafColour", {s.leafColour.r, s.leafColour.g, s.leafColour.b}},
+          {"leafCluster", s.leafCluster},
+          {"leafOrder", s.leafOrder},
           {"bark", s.bark},
           {"youngModulus", s.youngModulus},
           {"woodDensity", s.woodDensity},
@@ -331,8 +381,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, 1, where);
   const JsonNode root(json, where, "");
   root.object({"version", "name", "rule", "maxOrder", "maxDepth", "maxPieces", "minRadius", "trunkRadius",
-               "sizeVariation", "orders", "barkColour", "leafColour", "bark", "youngModulus", "woodDensity",
-               "damping"});
+               "sizeVariation", "orders", "barkColour", "leafColour", "leafCluster", "leafOrder", "bark",
+               "youngModulus", "woodDensity", "damping"});
   Species s;
   s.name = root["name"].string();
   if (root.has("rule")) {
@@ -357,6 +407,10 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     s.barkColour = colour(root["barkColour"]);
   if (root.has("leafColour"))
     s.leafColour = colour(root["leafColour"]);
+  if (root.has("leafCluster"))
+    s.leafCluster = static_cast<float>(root["leafCluster"].number(0, 10));
+  if (root.has("leafOrder"))
+    s.leafOrder = root["leafOrder"].integer(0, 16);
   if (root.has("bark"))
     s.bark = root["bark"].choice({"oak", "birch", "pine", "willow", "procedural"});
   if (root.has("youngModulus"))
@@ -371,8 +425,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     s.orders.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const JsonNode o = orders[i];
-      o.object({"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend", "droop",
-                "stretch", "sideRadius"});
+      o.object({"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend",
+                "droop", "stretch", "sideRadius"});
       OrderParams p;
       if (o.has("minSegments"))
         p.minSegments = o["minSegments"].integer(0, 64);
@@ -396,7 +450,7 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
       if (o.has("droop"))
         p.droop = static_cast<float>(o["droop"].number(-0.5, 0.5));
       if (o.has("stretch"))
-        p.stretch = static_cast<float>(o["stretch"].number(0.5, 6));
+        p.stretch = static_cast<float>(o["stretch"].number(0.5, 12));
       if (o.has("sideRadius")) {
         p.sideRadius = static_cast<float>(o["sideRadius"].number(0, 0.95));
         if (p.sideRadius != 0.0f && p.sideRadius < 0.05f)

@@ -65,8 +65,8 @@ TEST_F(TreeGolden, BarkTilesCloseUp) {
   std::vector<int> speciesSet;
   renderer.setBark(barkSetsFor(*forest, sources, speciesSet), speciesSet);
   render::Camera camera;
-  camera.position = {0.9f, 1.4f, 1.2f};
-  camera.target = {0.0f, 1.3f, 0.0f};
+  camera.position = {1.6f, 4.2f, 2.2f};
+  camera.target = {0.0f, 4.4f, 0.0f};
   camera.fovY = glm::radians(50.0f);
   camera.nearPlane = 0.05f;
   camera.farPlane = 100.0f;
@@ -93,8 +93,8 @@ TEST_F(TreeGolden, LeafyOakWithPhotoBarkAndLeaves) {
   FoliageRenderer foliage(shaders(), forest);
   foliage.setLeafTexture(loadLeafImage(leaf));
   render::Camera camera;
-  camera.position = {-1.6f, 2.6f, 6.2f};
-  camera.target = {0.6f, 3.1f, 0.0f};
+  camera.position = {-7.0f, 5.0f, 19.0f};
+  camera.target = {1.0f, 6.0f, 0.0f};
   camera.fovY = glm::radians(55.0f);
   camera.nearPlane = 0.1f;
   camera.farPlane = 200.0f;

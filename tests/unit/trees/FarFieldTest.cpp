@@ -260,8 +260,9 @@ TEST(FarFieldTest, FarTreesLeanAsMuchAsTheirNearTwinsBend) {
     const float lean5 = fresh.perSpeedSquared * 25.0f;
     std::printf("%s: lean %.4f at 3 m/s, %.4f at 5 m/s (k %.5f, %.5f per (m/s)^2)\n", species, lean3, lean5,
                 gentle.perSpeedSquared, fresh.perSpeedSquared);
-    // docs/trees.md: the springs bend a tree's top by about 2 % of its height at 3 m/s.
-    EXPECT_GT(lean3, 0.004f) << species;
+    // docs/trees.md: the springs bend a tree's top by a few tenths of a per cent (a 13 m oak) to about 2 % (a
+    // 6 m almond) of its height at 3 m/s.
+    EXPECT_GT(lean3, 0.002f) << species;
     EXPECT_LT(lean3, 0.08f) << species;
     // Small bends: the response is quadratic in the speed, k is nearly the same at both speeds.
     EXPECT_NEAR(fresh.perSpeedSquared / gentle.perSpeedSquared, 1.0f, 0.2f) << species;

@@ -389,7 +389,8 @@ TEST(JointWind, SteadyWindBendsTreesDownwind) {
   JointWindState state(rest.jointCount());
   std::vector<glm::mat4> before;
   forestJointFrames(rest, state, before);
-  for (int step = 1; step <= 1200; ++step) {
+  // 40 s: grown trees sway at a few tenths of a hertz, and their sway decays over several seconds.
+  for (int step = 1; step <= 2400; ++step) {
     stepJointWind(rest, state, wind::toUniforms(w, static_cast<float>(step) * kDt), kDt);
   }
   std::vector<glm::mat4> after;

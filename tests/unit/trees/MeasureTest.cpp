@@ -93,5 +93,43 @@ TEST(TreeMeasure, AColumnIsNarrowerThanASpreadingCrownAndSummariesBracketTheTree
   EXPECT_NE(describeMeasures("lombardy-poplar", 1, poplar).find("mean"), std::string::npos);
 }
 
+TEST(TreeSpeciesTargets, EveryRealSpeciesFallsInsideItsTargetsForTwentySeeds) {
+  // docs/trees.md "Species targets": height, slenderness, spread, crown base and drooping tips of each preset
+  // of a real species, seeds 1 … 20, in the pose the renderer draws.
+  const PieceSet pieces = standardPieces();
+  const std::vector<std::string> names = realSpeciesPresetNames();
+  ASSERT_GE(names.size(), 8u);
+  for (const std::string& name : names) {
+    const std::optional<SpeciesTargets> targets = speciesTargets(name);
+    ASSERT_TRUE(targets.has_value()) << name << " has no targets";
+    const Species species = speciesPreset(name);
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+      const std::string miss = targetMisses(measureSpecies(pieces, species, seed), *targets);
+      EXPECT_TRUE(miss.empty()) << name << " seed " << seed << ": " << miss;
+    }
+  }
+  // The targets tell species apart: a poplar is no oak, a willow no poplar.
+  EXPECT_FALSE(targetMisses(measureSpecies(pieces, speciesPreset("lombardy-poplar"), 1),
+                            *speciesTargets("california-black-oak"))
+                   .empty());
+  EXPECT_FALSE(targetMisses(measureSpecies(pieces, speciesPreset("weeping-willow"), 1),
+                            *speciesTargets("lombardy-poplar"))
+                   .empty());
+  EXPECT_FALSE(speciesTargets("paper-alternate").has_value());
+}
+
+TEST(TreeMeasure, SpreadCountsTheLeafClusters) {
+  // The leafy width holds the wood's crown and grows with the clusters' radius by about twice the change.
+  const PieceSet pieces = standardPieces();
+  Species species = speciesPreset("quaking-aspen");
+  const TreeMeasures a = measureSpecies(pieces, species, 4);
+  species.leafCluster += 1.0f;
+  const TreeMeasures b = measureSpecies(pieces, species, 4);
+  EXPECT_GE(a.leafyWidth, a.crownWidth);
+  EXPECT_NEAR(b.leafyWidth - a.leafyWidth, 2.0f, 0.2f);
+  EXPECT_FLOAT_EQ(a.crownWidth, b.crownWidth);
+  EXPECT_NEAR(a.spread, a.leafyWidth / a.height, 1e-6f);
+}
+
 } // namespace
 } // namespace sylva::trees

@@ -187,6 +187,82 @@ TEST(Assembly, TreeJsonRoundTripsAndRejectsBadFiles) {
   expectError(deep, "recursion limit");
 }
 
+TEST(Assembly, StretchedSegmentsAreLongerNotThickerAndRoundTrip) {
+  // The oak's segments are stretched: each stretched node's leaf joints sit `stretch` times as far up its
+  // axis as the piece models them, at the same radius, and the stretch survives tree JSON.
+  const PieceSet pieces = standardPieces();
+  const Species species = speciesPreset("california-black-oak");
+  const TreeTopology tree = generateTree(pieces, species, 5);
+  std::vector<glm::mat4> frames;
+  jointFrames(pieces, tree, glm::mat4(1.0f), {}, frames);
+  int stretched = 0;
+  for (const TreeNode& node : tree.nodes) {
+    const Piece& piece = pieces[static_cast<std::size_t>(node.piece)];
+    if (node.stretch == 1.0f || piece.leafRims() == 0) {
+      continue;
+    }
+    ++stretched;
+    EXPECT_GE(node.stretch, kMinStretch);
+    EXPECT_LE(node.stretch, kMaxStretch);
+    const glm::mat4 root = frames[node.rootJoint] * rimRotation(node.rotation);
+    const float scale = glm::length(glm::vec3(root[0]));
+    for (std::size_t r = 1; r <= piece.leafRims(); ++r) {
+      const glm::mat4& leaf = frames[node.jointBase + r - 1];
+      const glm::vec3 local = glm::vec3(glm::inverse(root) * leaf[3]);
+      const glm::vec3 modelled(piece.joints[r].bind[3]);
+      EXPECT_NEAR(local.y, modelled.y * node.stretch, 1e-3f * std::abs(modelled.y * node.stretch));
+      EXPECT_NEAR(local.x, modelled.x, 1e-3f);
+      EXPECT_NEAR(local.z, modelled.z, 1e-3f);
+      // Not thicker: the leaf rim's radius is the piece's own (bone scales aside).
+      EXPECT_NEAR(glm::length(glm::vec3(leaf[0])) / scale,
+                  glm::length(glm::vec3(piece.joints[r].bind[0])) * tree.jointScale[node.jointBase + r - 1],
+                  1e-4f);
+    }
+  }
+  EXPECT_GT(stretched, 10);
+  const TreeTopology back = treeFromJson(toJson(tree, pieces), pieces, "t.json");
+  for (std::size_t n = 0; n < tree.nodes.size(); ++n) {
+    EXPECT_EQ(back.nodes[n].stretch, tree.nodes[n].stretch) << n;
+  }
+  nlohmann::json j = toJson(tree, pieces);
+  j["nodes"][1]["stretch"] = 40;
+  try {
+    treeFromJson(j, pieces, "t.json");
+    ADD_FAILURE() << "a stretch of 40 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nodes/1/stretch"), std::string::npos) << e.what();
+  }
+  TreeTopology bad = tree;
+  bad.nodes[3].stretch = 0.1f;
+  EXPECT_THROW(validate(bad, pieces, "t.json"), Error);
+}
+
+TEST(Assembly, ThinSideBranchesKeepTheCrossSection) {
+  // sideRadius: at every Branch piece of the poplar's trunk the side branch has sideRadius of the stem's
+  // radius and the stem keeps the rest of the cross-section (r_stem² + r_side² = r²: the pipe model).
+  const PieceSet pieces = standardPieces();
+  const Species species = speciesPreset("lombardy-poplar");
+  const float side = species.order(0).sideRadius;
+  ASSERT_GT(side, 0.0f);
+  const TreeTopology tree = generateTree(pieces, species, 2);
+  std::vector<glm::mat4> frames;
+  jointFrames(pieces, tree, glm::mat4(1.0f), {}, frames);
+  auto radius = [&](std::uint32_t j) { return glm::length(glm::vec3(frames[j][0])); };
+  int checked = 0;
+  for (const TreeNode& node : tree.nodes) {
+    if (node.piece != pieces.find("Branch") || node.order != 0) {
+      continue;
+    }
+    const float r = radius(node.rootJoint);
+    const float stem = radius(node.jointBase);
+    const float branch = radius(node.jointBase + 1);
+    EXPECT_NEAR(branch / r, side, 1e-4f);
+    EXPECT_NEAR(stem * stem + branch * branch, r * r, 1e-4f * r * r);
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+}
+
 TEST(Species, PresetsValidateAndJsonRoundTrips) {
   const std::vector<std::string> names = speciesPresetNames();
   EXPECT_GE(names.size(), 10u);

@@ -222,7 +222,8 @@ struct FoliageAnchor {
 };
 
 /**
- * One anchor per instance of a foliage-bearing piece (Piece::bearsFoliage) of every tree, in tree order then
+ * One anchor per instance of a foliage-bearing piece (Piece::bearsFoliage) of every tree, and per piece on an
+ * axis of its species' leafOrder or deeper (Species::leafOrder > 0), in tree order then
  * node order; radii from the rest frames (forestFrames without extra bends). Deterministic in the settings.
  */
 std::vector<FoliageAnchor> foliageAnchors(const Forest& forest, const FoliageSettings& settings);

@@ -94,6 +94,8 @@ Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& se
  * (benchmarks, tests); tree i is of species[i % species.size()] (preset names or files).
  */
 Forest gridForest(const std::vector<std::string>& species, int side, float spacing, std::uint64_t seed);
+/** The same grid from species given as values (each validated). */
+Forest gridForestOf(const std::vector<Species>& species, int side, float spacing, std::uint64_t seed);
 
 /** Instances grouped by piece type: instances[first[t] … first[t] + count[t]) are of piece type t. */
 struct PackedInstances {

@@ -20,13 +20,13 @@
 // Stiffness. The spec's cantilever k = E·(π r⁴/4)/L (r: the joint's rim radius, L: the bone from the node's
 // root rim centre to the joint, metres) and I = Σ_subtree m |x − x_j|² (lumped masses: wood density × the
 // piece mesh's volume, at the piece's centroid) are computed for every joint (JointSpring), but the pieces
-// are a few radii long (the I: five), not slender branches, and carry no leaves: the literal cantilever puts the presets'
-// trunk joints at 35–125 Hz and their twig tips at 6–40 kHz (far above the 30 Hz a 60 Hz step can show), and
-// no wind bends them visibly; no per-order factor can fix that, as twig tips of one order already spread over
-// a factor of 5. The natural frequency is therefore calibrated: f = f_ref · (f_cantilever / f_cref)^γ
+// are lumps of wood on short bones that carry no leaves: the literal cantilever puts the presets' trunk
+// joints at 2–7 Hz and their twig tips at kilohertz (far above the 30 Hz a 60 Hz step can show), and no wind
+// bends the twigs visibly; no per-order factor can fix that, as twig tips of one order already spread over a
+// factor of 5. The natural frequency is therefore calibrated: f = f_ref · (f_cantilever / f_cref)^γ
 // (JointWindSettings), which keeps the physics' ordering and its dependence on E, ρ, r, L and the subtree's
 // mass (stiffer or lighter → faster) but compresses the range onto what trees do: trunks 0.2–1 Hz, twigs
-// 2–6 Hz (measured on released joints: trunks 0.30–0.69 Hz, twig tips 3.09–5.63 Hz over the almond, aspen,
+// 2–6 Hz (measured on released joints: trunks 0.25–0.55 Hz, twig tips 2.19–5.49 Hz over the almond, aspen,
 // oak and willow presets). The spring then uses k = I (2πf)² and c = 2ζ√(kI) with the species' damping ratio
 // ζ. The 30° stop is inelastic: θ is put back on the circle and ω loses its outward part. Units: SI
 // throughout (m, s, kg, rad); world space is metres with y up; wind (x, z) is world (x, z).
@@ -71,11 +71,12 @@ struct JointWindSettings {
    * (see the header comment): a joint whose literal cantilever frequency is referenceCantilever swings at
    * referenceFrequency; exponent in (0, 1], 1 = the literal physics shifted by a constant factor.
    */
-  float referenceFrequency = 0.45f;
+  float referenceFrequency = 0.75f;
   /** The literal cantilever frequency that maps onto referenceFrequency, Hz. */
   float referenceCantilever = 60.0f;
-  /** The calibration's exponent γ (0.41: 35–125 Hz → 0.36–0.6 Hz, 6–40 kHz → 3–6.5 Hz). */
-  float frequencyExponent = 0.41f;
+  /** The calibration's exponent γ (0.32 with referenceFrequency 0.75 Hz: 2–7 Hz → 0.25–0.37 Hz, 30 kHz → 5.5
+   * Hz). */
+  float frequencyExponent = 0.32f;
 };
 
 /** Throws sylva::Error "<where>.<field>: <reason>" for non-finite, non-positive or out-of-range values. */

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -37,6 +38,13 @@ struct TreeMeasures {
   float crownWidth = 0.0f;
   /** crownWidth / crownHeight (a column is well below 1, a spreading crown above it). */
   float crownRatio = 0.0f;
+  /**
+   * The crown's caliper width with its leaves: every leaf cluster a sphere of the species' leafCluster radius
+   * (0.6 m when it has none) around the joint that carries it. What a forester's "spread" measures.
+   */
+  float leafyWidth = 0.0f;
+  /** leafyWidth / height: the spread against the height, as nursery and forestry references give them. */
+  float spread = 0.0f;
   /** Caliper width of the surfaces in each of kProfileBins equal height bands from the base to the top. */
   std::array<float, kProfileBins> profile{};
   std::size_t pieces = 0;
@@ -55,6 +63,32 @@ TreeMeasures measureTree(const PieceSet& pieces, const TreeTopology& tree, const
 
 /** The tree `species` grows from `seed`, measured in the pose the renderer draws it in. */
 TreeMeasures measureSpecies(const PieceSet& pieces, const Species& species, std::uint64_t seed);
+
+/** A closed range [lo, hi]. */
+struct MeasureRange {
+  float lo = 0.0f;
+  float hi = 0.0f;
+  bool contains(float v) const { return v >= lo && v <= hi; }
+};
+
+/**
+ * What a preset of a real species is tuned to and tested against (docs/trees.md "Species targets", with the
+ * references): height (m), slenderness (height / trunk radius), spread (leafy crown width / height), crown
+ * base (share of the height) and the share of drooping twig tips.
+ */
+struct SpeciesTargets {
+  MeasureRange height;
+  MeasureRange slenderness;
+  MeasureRange spread;
+  MeasureRange crownBase;
+  MeasureRange drooping;
+};
+
+/** The targets of preset `name` (realSpeciesPresetNames()); nullopt for any other name. */
+std::optional<SpeciesTargets> speciesTargets(const std::string& name);
+
+/** "height 12.3 m outside [15, 30]; …" for each measure of `m` outside `targets`; empty when all are in. */
+std::string targetMisses(const TreeMeasures& m, const SpeciesTargets& targets);
 
 /** The minimum, mean and maximum of each measure over several trees. */
 struct MeasureSummary {

@@ -27,7 +27,8 @@ void jointFrames(const PieceSet& pieces, const TreeTopology& tree, const glm::ma
 
 /**
  * A random pose (paper Fig. 6): bends per joint, uniform in a disc of the joint's order's `bend` amplitude,
- * plus its `droop` towards the ground; deterministic in (tree seed, seed).
+ * plus its `droop` towards the ground (× the sine of the bone's angle from vertical as posed so far, parents
+ * first, so hanging twigs come to rest pointing down); deterministic in (tree seed, seed).
  */
 std::vector<glm::vec2> randomPose(const TreeTopology& tree, const Species& species, std::uint64_t seed);
 

@@ -48,8 +48,9 @@ struct OrderParams {
    */
   float stretch = 1.0f;
   /**
-   * Radius of a side branch relative to its stem at a Branch piece (0: the piece's own 0.5 and 0.85); the stem
-   * then keeps √(1 − sideRadius²) of its radius (the pipe model, Leonardo's rule: cross-sections are conserved).
+   * Radius of a side branch relative to its stem at a Branch piece (0: the piece's own 0.5 and 0.85); the
+   * stem then keeps √(1 − sideRadius²) of its radius (the pipe model, Leonardo's rule: cross-sections are
+   * conserved).
    */
   float sideRadius = 0.0f;
 };
@@ -74,8 +75,18 @@ struct Species {
   glm::vec3 barkColour{0.33f, 0.25f, 0.19f};
   glm::vec3 leafColour{0.22f, 0.42f, 0.14f};
   /**
-   * Bark photos the bark tiles are synthesised from (docs/trees.md "Bark"): one of barkPhotoNames() (ez-tree's
-   * oak, birch, pine, willow) or "procedural" (no photos needed).
+   * Radius of the leaf cluster on each twig tip, metres (the foliage billboard's sphere, ± the foliage
+   * settings' variation); 0: sized from the twig by FoliageSettings (radiusScale, minRadius, maxRadius).
+   */
+  float leafCluster = 0.0f;
+  /**
+   * Leaves along twigs: every piece on an axis of this branching order or deeper carries a leaf cluster too
+   * (hanging willow shoots, birch twigs), not only the twig tips; 0: tips only.
+   */
+  int leafOrder = 0;
+  /**
+   * Bark photos the bark tiles are synthesised from (docs/trees.md "Bark"): one of barkPhotoNames()
+   * (ez-tree's oak, birch, pine, willow) or "procedural" (no photos needed).
    */
   std::string bark = "oak";
   /** Wind: Young's modulus of the wood, Pa; wood density kg/m³; damping ratio. */
@@ -99,6 +110,8 @@ const std::vector<std::string>& barkPhotoNames();
 
 /** Names of the built-in presets (almond, quaking-aspen, black-tupelo, weeping-willow, …). */
 std::vector<std::string> speciesPresetNames();
+/** The presets of real species (speciesPresetNames() without the paper's two rules). */
+std::vector<std::string> realSpeciesPresetNames();
 /** A built-in preset; throws sylva::Error "unknown species '<name>' (known: …)". */
 Species speciesPreset(const std::string& name);
 /** A preset name or a species JSON file path (anything with a '/' or ending in .json). */

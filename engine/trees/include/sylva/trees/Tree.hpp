@@ -32,7 +32,7 @@ struct TreeNode {
   int order = 0;
   int depth = 0;
   /**
-   * Axial stretch (0.5 … 8): the piece's leaf rims sit this many times as far along its root rim's axis
+   * Axial stretch (0.5 … 16): the piece's leaf rims sit this many times as far along its root rim's axis
    * (model +y) as in the piece's mesh, so a segment grows longer without growing thicker. Rims stay exact
    * similarities (only their joints move); linear blend skinning spreads the stretch over the interior.
    */
@@ -70,7 +70,7 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
 
 /** Smallest and largest TreeNode::stretch a tree may carry. */
 constexpr float kMinStretch = 0.5f;
-constexpr float kMaxStretch = 8.0f;
+constexpr float kMaxStretch = 16.0f;
 
 /**
  * The bind frame of leaf rim `rim` (1-based) of `node`, a `piece`: the piece's joint bind moved along the
@@ -89,8 +89,8 @@ void indexJoints(const PieceSet& pieces, TreeTopology& tree);
 
 /**
  * Checks a topology against `pieces`: parents before children, rims in range and each used once, rotations
- * 0 … 5, depth ≤ 64, no open leaf rim, finite positive scales, stretches in [kMinStretch, kMaxStretch]. Throws sylva::Error "<where>:
- * nodes[i].<field>: <reason>".
+ * 0 … 5, depth ≤ 64, no open leaf rim, finite positive scales, stretches in [kMinStretch, kMaxStretch].
+ * Throws sylva::Error "<where>: nodes[i].<field>: <reason>".
  */
 void validate(const TreeTopology& tree, const PieceSet& pieces, const std::string& where);
 
