@@ -18,20 +18,21 @@ SYLVA_GPU_BEGIN
 #define SYLVA_TREE_MAX_PIECE_JOINTS 4   // root + up to three terminal joints (Psi)
 #define SYLVA_TREE_MAX_PIECES 8         // piece types in one renderer
 #define SYLVA_TREE_CULL_GROUP 64
-#define SYLVA_TREE_MAX_SPECIES 8        // species with their own bark colour in one renderer
+#define SYLVA_TREE_MAX_SPECIES 8 // species with their own bark colour in one renderer
 // Storage bindings of the tree surface, foliage and far-field passes. They reuse numbers of the grass
 // simulation's compute passes (never bound in one program together); every pass binds its buffers before use.
-#define SYLVA_TREE_QUAD_BINDING 16     // storage: uvec2[] per piece type per quad: x tile class | rotation << 8,
-                                       // y its four edge ids (8 bits each; 255: a rim edge)
+#define SYLVA_TREE_QUAD_BINDING                                                                              \
+  16 // storage: uvec2[] per piece type per quad: x tile class | rotation << 8,
+     // y its four edge ids (8 bits each; 255: a rim edge)
 #define SYLVA_TREE_CENTRE_BINDING 17   // storage: vec4[] per tree: base (world xyz, m), crown height (w, m)
 #define SYLVA_TREE_FOLIAGE_BINDING 18  // storage: foliage anchors (FoliageRenderer)
 #define SYLVA_TREE_IMPOSTOR_BINDING 19 // storage: far-field impostor instances (ImpostorRenderer)
 // Texture units of the tree passes.
-#define SYLVA_TREE_BARK_COLOUR_UNIT 8  // sampler2DArray: bark tiles, colour (sRGB8_ALPHA8), one layer per tile
-#define SYLVA_TREE_BARK_NORMAL_UNIT 9  // sampler2DArray: bark tiles, tangent-space normal (RGBA8, n = 2c - 1)
-#define SYLVA_TREE_FOLIAGE_UNIT 10     // sampler2D: the 2.5D leaf-cloud impostor (rgb colour, a depth)
-#define SYLVA_TREE_IMPOSTOR_UNIT 11    // sampler2DArray: far-field octahedral atlas (first of the units used)
-#define SYLVA_TREE_MAX_TILE_CLASSES 4  // bark tile classes (the pieces use 0: plain, 1: by a fork, 2: crotch)
+#define SYLVA_TREE_BARK_COLOUR_UNIT 8 // sampler2DArray: bark tiles, colour (sRGB8_ALPHA8), one layer per tile
+#define SYLVA_TREE_BARK_NORMAL_UNIT 9 // sampler2DArray: bark tiles, tangent-space normal (RGBA8, n = 2c - 1)
+#define SYLVA_TREE_FOLIAGE_UNIT 10    // sampler2D: the 2.5D leaf-cloud impostor (rgb colour, a depth)
+#define SYLVA_TREE_IMPOSTOR_UNIT 11   // sampler2DArray: far-field octahedral atlas (first of the units used)
+#define SYLVA_TREE_MAX_TILE_CLASSES 4 // bark tile classes (the pieces use 0: plain, 1: by a fork, 2: crotch)
 
 /**
  * A joint's world frame as three rows of a 3x4 matrix: world = (dot(x, p1), dot(y, p1), dot(z, p1)) with
@@ -45,17 +46,17 @@ struct JointFrame {
 SYLVA_ASSERT_SIZE(JointFrame, 48);
 
 /** One piece instance: x = root joint index, y = first terminal joint index, z = rim rotation (0 … 5) |
- * piece type << 8 | stretch reach << 16 (how far its stretch moves its leaf rims up the root axis, model units
- * in 8.8 fixed point; 0 unstretched), w = tree index | species << 24. */
+ * piece type << 8 | stretch reach << 16 (how far its stretch moves its leaf rims up the root axis, model
+ * units in 8.8 fixed point; 0 unstretched), w = tree index | species << 24. */
 struct TreeInstanceGpu {
   uvec4 joints;
 };
 SYLVA_ASSERT_SIZE(TreeInstanceGpu, 16);
 
 /**
- * Per piece type: bounding sphere in model space (xyz centre, w radius, rim units), commands and list (x first
- * indirect command, y commands (quad chunks), z instance list offset, w index count), and the inverse bind
- * frame of each joint (rows).
+ * Per piece type: bounding sphere in model space (xyz centre, w radius, rim units), commands and list (x
+ * first indirect command, y commands (quad chunks), z instance list offset, w index count), and the inverse
+ * bind frame of each joint (rows).
  */
 struct TreePieceGpu {
   vec4 sphere;
@@ -67,10 +68,10 @@ SYLVA_ASSERT_SIZE(TreePieceGpu, 224);
 /** Per draw: tessellation and culling settings. colours[s].w is species s's bark set (texture array layers
  * colours[s].w · bark.x onwards). */
 struct TreeUniforms {
-  vec4 frustum[6];    // world-space planes (xyz normal pointing inwards, w offset)
-  vec4 tess;          // x: K (pixels-to-level factor: viewport height / (2 tan(fov/2)) / target pixels per
-                      // segment), y: maximum level, z: fixed level (> 0 overrides the distance rule), w: cull
-                      // distance in metres
+  vec4 frustum[6]; // world-space planes (xyz normal pointing inwards, w offset)
+  vec4 tess;       // x: K (pixels-to-level factor: viewport height / (2 tan(fov/2)) / target pixels per
+                   // segment), y: maximum level, z: fixed level (> 0 overrides the distance rule), w: cull
+                   // distance in metres
   vec4 colours[SYLVA_TREE_MAX_SPECIES]; // bark colour (rgb) per species of the forest
   uvec4 info;         // x: instance count, y: piece types, z: view (TreeView), w: debug flags (1: break rims)
   vec4 cull;          // x: bounding-sphere slack factor for bends, y: quads per indirect command (a chunk's
@@ -78,13 +79,14 @@ struct TreeUniforms {
                       // is dropped when its sphere's diameter < z * distance + w (sizeCullTerms)
   vec4 corners[6];    // rimCorner(k) exactly as the CPU computes it (xyz)
   vec4 rimNormals[6]; // rimNormal(k) (xyz)
-  uvec4 quadTable[2]; // first entry of piece type t in the quad table at SYLVA_TREE_QUAD_BINDING: [t / 4][t % 4]
+  uvec4 quadTable[2]; // first entry of piece type t in the quad table at SYLVA_TREE_QUAD_BINDING: [t / 4][t %
+                      // 4]
   uvec4 tileFirst;    // first layer of bark tile class c (0 … 3) within one species' bark set
   uvec4 tileCount;    // variants per edge colouring of class c (its tiles: K⁴ blocks of this many)
   vec4 bark;          // x: layers per bark set (0: untextured, flat colours), y: tile size in texels,
                       // z: normal-map strength (0: none), w: symmetric edge colours K
-  vec4 far;           // x: distance where trees begin to cross-fade into far-field impostors (m), y: where they
-                      // are impostors only (m); y <= x: no far field, every tree is drawn as pieces
+  vec4 far; // x: distance where trees begin to cross-fade into far-field impostors (m), y: where they
+            // are impostors only (m); y <= x: no far field, every tree is drawn as pieces
 };
 SYLVA_ASSERT_SIZE(TreeUniforms, 560);
 
@@ -112,7 +114,8 @@ struct TreeJointRest {
   vec4 probe; // xy: world (x, z) of the subtree's area centroid where the wind is sampled (m);
               // zw: rest bend of the pose (radians)
   uvec4 info; // x: parent joint (global index) or SYLVA_TREE_NO_PARENT; y: tree index; z: chain
-              // length from the base (base: 0); w: flags (SYLVA_TREE_WIND_FIXED)
+              // length from the base (base: 0); w: flags (SYLVA_TREE_WIND_FIXED) in the low 16 bits, the
+              // joint's stop in the high 16 (its largest |θ| = maxBend × (w >> 16) / 65535)
 };
 SYLVA_ASSERT_SIZE(TreeJointRest, 112);
 
@@ -141,23 +144,23 @@ SYLVA_ASSERT_SIZE(FoliageAnchorGpu, 48);
 
 /** Per bake and draw of the foliage passes. */
 struct FoliageUniforms {
-  mat4 bake;       // cloud units → clip of the orthographic bake (foliageBakeMatrix)
-  vec4 forward;    // xyz: view direction the texture was baked for (world, unit); w: anchor count
-  vec4 right;      // xyz: the texture's +u axis (world, unit); w: colour code scale (rgb = srgb(lit · w))
-  vec4 up;         // xyz: the texture's +v axis (world, unit); w: 1 with a leaf texture, 0 without
-  vec4 sun;        // xyz: towards the sun (world, unit); w: sun intensity (bake lighting)
-  vec4 far;        // xy: far-field range (m, TreeLod::farRange; y <= x: none); z: draw distance (m,
-                   // TreeLod::drawDistance; 0: none); w: unused
+  mat4 bake;    // cloud units → clip of the orthographic bake (foliageBakeMatrix)
+  vec4 forward; // xyz: view direction the texture was baked for (world, unit); w: anchor count
+  vec4 right;   // xyz: the texture's +u axis (world, unit); w: colour code scale (rgb = srgb(lit · w))
+  vec4 up;      // xyz: the texture's +v axis (world, unit); w: 1 with a leaf texture, 0 without
+  vec4 sun;     // xyz: towards the sun (world, unit); w: sun intensity (bake lighting)
+  vec4 far;     // xy: far-field range (m, TreeLod::farRange; y <= x: none); z: draw distance (m,
+                // TreeLod::drawDistance; 0: none); w: unused
   vec4 leafColours[SYLVA_TREE_MAX_SPECIES]; // rgb: species leaf colour / leaf texture mean (linear)
 };
 SYLVA_ASSERT_SIZE(FoliageUniforms, 272);
 
-// ---- Far field: octahedral impostors (sylva/trees/gpu/ImpostorRenderer.hpp; shaders/trees/impostor.*) ---------
-// Storage at SYLVA_TREE_IMPOSTOR_BINDING holds ImpostorInstanceGpu[] (one per far tree). The atlas is two
-// sampler2DArray, one layer per species, views × views cells (hemi-octahedral grid, FarField.hpp): colour at
-// SYLVA_TREE_IMPOSTOR_UNIT (SRGB8_ALPHA8: albedo premultiplied by coverage, a coverage) and normal + depth at
-// SYLVA_TREE_IMPOSTOR_NORMAL_UNIT (RGBA8, premultiplied by coverage: rgb object-space normal as 0.5 + 0.5 n,
-// a depth towards the viewer as 0.5 + 0.5 · offset / bounding radius).
+// ---- Far field: octahedral impostors (sylva/trees/gpu/ImpostorRenderer.hpp; shaders/trees/impostor.*)
+// --------- Storage at SYLVA_TREE_IMPOSTOR_BINDING holds ImpostorInstanceGpu[] (one per far tree). The atlas
+// is two sampler2DArray, one layer per species, views × views cells (hemi-octahedral grid, FarField.hpp):
+// colour at SYLVA_TREE_IMPOSTOR_UNIT (SRGB8_ALPHA8: albedo premultiplied by coverage, a coverage) and normal
+// + depth at SYLVA_TREE_IMPOSTOR_NORMAL_UNIT (RGBA8, premultiplied by coverage: rgb object-space normal as
+// 0.5 + 0.5 n, a depth towards the viewer as 0.5 + 0.5 · offset / bounding radius).
 #define SYLVA_TREE_IMPOSTOR_UNIFORM_BINDING 22 // uniform block ImpostorUniforms
 #define SYLVA_TREE_IMPOSTOR_NORMAL_UNIT 12     // sampler2DArray: normal + depth atlas
 #define SYLVA_TREE_IMPOSTOR_SOURCE_UNIT 13     // bake resolve: a view's colour (13) and depth (14)
@@ -182,7 +185,7 @@ struct ImpostorUniforms {
   vec4 far;   // xy: far range (m): impostors dissolve in from x, alone from y; y <= x: far-only trees only
   uvec4 info; // x: instances, y: species, zw: unused
   vec4 sphere[SYLVA_TREE_MAX_SPECIES];
-  vec4 frustum[6]; // world-space planes (xyz normal pointing inwards, w offset)
+  vec4 frustum[6];   // world-space planes (xyz normal pointing inwards, w offset)
   WindUniforms wind; // the wind at the frame's time; flow.z 0: no sway (ImpostorRenderer::setWind)
   vec4 sway[SYLVA_TREE_MAX_SPECIES]; // per species: x lean per squared wind speed (1/(m/s)²), y largest lean
 };

@@ -10,6 +10,7 @@ vec4 jointWindStep(TreeJointRest r, vec4 m, WindUniforms wind, float dt, float m
   if ((r.info.w & SYLVA_TREE_WIND_FIXED) != 0u) {
     return vec4(0.0);
   }
+  float stop = maxBend * (float(r.info.w >> 16u) * (1.0 / 65535.0));
   wind.flow.w = wind.flow.w + r.spring.w;
   vec2 u = windVelocity(wind, r.probe.xy);
   float speed = sqrt(u.x * u.x + u.y * u.y);
@@ -23,10 +24,10 @@ vec4 jointWindStep(TreeJointRest r, vec4 m, WindUniforms wind, float dt, float m
   vec2 omega1 = (omega + dt * (accel - kI * theta)) / denom;
   vec2 theta1 = theta + dt * omega1;
   float square = theta1.x * theta1.x + theta1.y * theta1.y;
-  if (square > maxBend * maxBend) {
+  if (square > stop * stop) {
     float len = sqrt(square);
     vec2 dir = theta1 / len;
-    theta1 = dir * maxBend;
+    theta1 = dir * stop;
     float outward = omega1.x * dir.x + omega1.y * dir.y;
     if (outward > 0.0) {
       omega1 = omega1 - dir * outward;

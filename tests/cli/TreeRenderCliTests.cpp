@@ -126,6 +126,62 @@ TEST(CliTreesRender, TreesAreVisible) {
 
 // The bark tile-id debug view is a picture like the others: opaque (it once wrote the trees at alpha 1/255,
 // invisible in an image viewer), with the ids in colour where the trees are.
+TEST(CliTreesRender, SpeciesSheetDrawsEachSpeciesAtOneScale) {
+  // `sylva tree sheet`: an apple tree and a poplar side by side, at one scale: two person markers (dark
+  // columns reaching 1.75 m) stand on the ground strip, sky above both crowns, and the poplar (18 m) stands
+  // far taller than the apple tree (4–5 m, leaves included). Bad input: one line, no file.
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "sheet.png";
+  const test::RunResult run =
+      runSylva(dir, "tree sheet --species apple,lombardy-poplar --height 240 -o " + quote(out.string()));
+  ASSERT_EQ(run.status, 0) << run.err;
+  const Image image = loadImage(out);
+  EXPECT_EQ(image.height(), 240);
+  EXPECT_GT(image.width(), image.height() / 2);
+  // The sky is kept in its clear colour: the first row, and the ground strip the last.
+  const float skyBlue = image.get(0, 0, 2);
+  EXPECT_GT(skyBlue, image.get(0, 0, 0));
+  // Markers: columns whose pixels are near-black from the ground up.
+  int markerColumns = 0;
+  // The ground strip: brown (red above blue) up from the last row, at the left edge (sky above it).
+  int groundRow = image.height() - 1;
+  while (groundRow > 0 && image.get(0, groundRow - 1, 2) < image.get(0, groundRow - 1, 0)) {
+    --groundRow;
+  }
+  EXPECT_LT(groundRow, image.height() - 2);
+  EXPECT_GT(groundRow, image.height() * 3 / 4);
+  for (int x = 0; x < image.width(); ++x) {
+    const int y = groundRow - 2;
+    markerColumns +=
+        image.get(x, y, 0) < 0.2f && image.get(x, y, 1) < 0.2f && image.get(x, y, 2) < 0.2f ? 1 : 0;
+  }
+  EXPECT_GE(markerColumns, 2) << "two 0.45 m wide markers";
+  // Each tree's highest non-sky pixel: the poplar (right half) reaches higher than the birch (left half).
+  auto top = [&](int x0, int x1) {
+    for (int y = 0; y < image.height(); ++y) {
+      for (int x = x0; x < x1; ++x) {
+        if (std::abs(image.get(x, y, 2) - skyBlue) > 0.05f) {
+          return y;
+        }
+      }
+    }
+    return image.height();
+  };
+  const int poplarTop = top(image.width() / 2, image.width());
+  const int appleTop = top(0, image.width() / 2);
+  EXPECT_GT(poplarTop, 0) << "sky above the tallest crown";
+  EXPECT_LT(poplarTop, groundRow - 5 * (groundRow - appleTop) / 2)
+      << "the poplar: over 2.5x the apple's height";
+  const fs::path bad = dir.path() / "bad.png";
+  const test::RunResult unknown = runSylva(dir, "tree sheet --species bonsai -o " + quote(bad.string()));
+  EXPECT_NE(unknown.status, 0);
+  EXPECT_NE(unknown.err.find("unknown species 'bonsai'"), std::string::npos) << unknown.err;
+  EXPECT_FALSE(fs::exists(bad));
+  const test::RunResult jpeg = runSylva(dir, "tree sheet -o " + quote((dir.path() / "x.jpg").string()));
+  EXPECT_NE(jpeg.status, 0);
+  EXPECT_NE(jpeg.err.find("a species sheet is a .png file"), std::string::npos) << jpeg.err;
+}
+
 TEST(CliTreesRender, TheTileIdViewIsOpaque) {
   const test::TempDir dir;
   const Image tiles = loadImage(render(dir, "--trees --trees-view tiles --time 1", "tiles.png"));

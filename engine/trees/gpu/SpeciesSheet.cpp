@@ -84,6 +84,7 @@ Image renderSpeciesSheet(const shader::Library& library, const std::vector<Speci
   }
   forest->index();
   const float width = cursor + options.gap * 0.5f;
+  top *= 1.05f;                    // sky above the tallest crown
   const float below = 0.06f * top; // ground strip
   const float tall = top + below;
   const int heightPx = options.height;

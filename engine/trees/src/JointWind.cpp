@@ -110,6 +110,7 @@ gpu::JointFrame rows(const glm::mat4& m) {
   if ((r.info.w & SYLVA_TREE_WIND_FIXED) != 0u) {
     return glm::vec4(0.0f);
   }
+  const float stop = maxBend * (static_cast<float>(r.info.w >> 16u) * (1.0f / 65535.0f));
   const float speed = std::sqrt(u.x * u.x + u.y * u.y);
   const glm::vec2 drive = u * speed;
   const glm::vec2 accel(r.torque.x * drive.x + r.torque.y * drive.y,
@@ -122,11 +123,11 @@ gpu::JointFrame rows(const glm::mat4& m) {
   glm::vec2 omega1 = (omega + dt * (accel - kI * theta)) / denom;
   glm::vec2 theta1 = theta + dt * omega1;
   const float square = theta1.x * theta1.x + theta1.y * theta1.y;
-  if (square > maxBend * maxBend) {
-    // The stop: θ back onto the 30° circle, the outward part of ω lost (an inelastic stop).
+  if (square > stop * stop) {
+    // The stop: θ back onto the joint's circle, the outward part of ω lost (an inelastic stop).
     const float len = std::sqrt(square);
     const glm::vec2 dir = theta1 / len;
-    theta1 = dir * maxBend;
+    theta1 = dir * stop;
     const float out = omega1.x * dir.x + omega1.y * dir.y;
     if (out > 0.0f) {
       omega1 = omega1 - dir * out;
@@ -203,6 +204,7 @@ void validate(const JointWindSettings& s, const std::string& where) {
   const std::pair<float, const char*> positive[] = {{s.airDensity, "airDensity"},
                                                     {s.dragCoefficient, "dragCoefficient"},
                                                     {s.maxBend, "maxBend"},
+                                                    {s.chainBend, "chainBend"},
                                                     {s.referenceFrequency, "referenceFrequency"},
                                                     {s.referenceCantilever, "referenceCantilever"},
                                                     {s.frequencyExponent, "frequencyExponent"}};
@@ -216,6 +218,9 @@ void validate(const JointWindSettings& s, const std::string& where) {
   }
   if (s.maxBend > 1.5f) {
     fail("{}.maxBend: must be at most 1.5 radians, got {}", where, s.maxBend);
+  }
+  if (s.chainBend > 3.0f) {
+    fail("{}.chainBend: must be at most 3 radians, got {}", where, s.chainBend);
   }
   if (s.frequencyExponent > 1.0f) {
     fail("{}.frequencyExponent: must be in (0, 1], got {}", where, s.frequencyExponent);
@@ -308,9 +313,8 @@ JointWindRest buildJointWindRest(const PieceSet& pieces, std::span<const JointWi
             s.mass = static_cast<double>(species.woodDensity) * pm.volume * stretch * scale * scale * scale;
             s.massMoment = s.mass * centre;
             s.massSquare = s.mass * glm::dot(centre, centre);
-            s.area =
-                (2.0 / kPi * pm.volume * stretch + (piece.bearsFoliage ? settings.foliageArea : 0.0)) * scale *
-                scale;
+            s.area = (2.0 / kPi * pm.volume * stretch + (piece.bearsFoliage ? settings.foliageArea : 0.0)) *
+                     scale * scale;
             s.areaMoment = s.area * centre;
             s.pieces = 1;
             s.jointless = piece.rims.size() <= 1;
@@ -396,6 +400,27 @@ JointWindRest buildJointWindRest(const PieceSet& pieces, std::span<const JointWi
             spring.order = topo.jointOrder[j];
             spring.depth = node.depth;
             spring.tip = s.pieces == 1 && s.jointless;
+          }
+          // Stops: each joint's share of chainBend, its bone over the longest base-to-tip path through it.
+          std::vector<double> up(count, 0.0);
+          std::vector<double> down(count, 0.0);
+          for (std::size_t j = 1; j < count; ++j) {
+            up[j] = up[static_cast<std::size_t>(topo.jointParent[j])] + rest.springs[offset + j].length;
+          }
+          for (std::size_t j = count; j-- > 1;) {
+            const auto parent = static_cast<std::size_t>(topo.jointParent[j]);
+            down[parent] = std::max(down[parent], down[j] + rest.springs[offset + j].length);
+          }
+          for (std::size_t j = 1; j < count; ++j) {
+            JointSpring& spring = rest.springs[offset + j];
+            const double path = std::max(up[j] + down[j], 1e-9);
+            const double share = std::min(static_cast<double>(settings.chainBend) * spring.length / path,
+                                          static_cast<double>(settings.maxBend)) /
+                                 static_cast<double>(settings.maxBend);
+            // Rounded down, so the stops along a path never sum past chainBend.
+            const auto bits = static_cast<std::uint32_t>(std::floor(std::clamp(share, 0.0, 1.0) * 65535.0));
+            rest.joints[offset + j].info.w |= bits << 16u;
+            spring.stop = settings.maxBend * (static_cast<float>(bits) * (1.0f / 65535.0f));
           }
         }
       },

@@ -40,7 +40,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
       {"almond",
        [] {
          Species s = base("almond");
-         s.maxOrder = 5;
+         s.maxOrder = 4;
          s.trunkRadius = 0.14f;
          s.minRadius = 0.02f;
          s.orders = {order(1, 2, 0.85f, 0.05f, 0.0f, 0.1f, 0.12f, 0.0f, 1.8f),
@@ -48,7 +48,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 2, 0.7f, 0.0f, 0.2f, 0.2f, 0.18f, 0.04f, 3.5f, 0.45f),
                      order(1, 2, 0.4f, 0.0f, 0.4f, 0.2f, 0.18f, 0.04f, 3.0f, 0.5f)};
          s.leafColour = {0.27f, 0.45f, 0.16f};
-         s.leafCluster = 0.9f;
+         s.leafCluster = 1.1f;
          return s;
        }},
       {"paper-alternate",
@@ -192,7 +192,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
       {"apple",
        [] {
          Species s = base("apple");
-         s.maxOrder = 5;
+         s.maxOrder = 4;
          s.trunkRadius = 0.15f;
          s.minRadius = 0.02f;
          s.orders = {order(1, 2, 0.6f, 0.3f, 0.1f, 0.2f, 0.15f, 0.0f, 1.8f),
@@ -200,7 +200,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 2, 0.4f, 0.0f, 0.3f, 0.3f, 0.25f, 0.12f, 3.0f, 0.45f),
                      order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.25f, 0.12f, 2.5f, 0.5f)};
          s.leafColour = {0.25f, 0.42f, 0.14f};
-         s.leafCluster = 0.8f;
+         s.leafCluster = 1.1f;
          return s;
        }},
   };

@@ -357,7 +357,7 @@ TEST(JointWind, StaysBoundedForAMinuteOfStorm) {
       ASSERT_LE(bend, rest.maxBend * (1.0f + 1e-6f)) << "joint " << j << " at step " << step;
       largest = std::max(largest, bend);
       fastest = std::max(fastest, glm::length(glm::vec2(m.z, m.w)));
-      atStop += bend > rest.maxBend * 0.999f ? 1u : 0u;
+      atStop += bend >= rest.springs[j].stop * 0.999f && rest.springs[j].stop > 0.0f ? 1u : 0u;
       if (rest.springs[j].order == 0 && j != rest.jointOffset[rest.joints[j].info.y]) {
         largestTrunk = std::max(largestTrunk, bend);
       }
@@ -370,6 +370,79 @@ TEST(JointWind, StaysBoundedForAMinuteOfStorm) {
   EXPECT_GT(atStop, 0u);
   EXPECT_GT(largestTrunk, 0.01f);
   EXPECT_LT(fastest, 100.0f);
+}
+
+TEST(JointWind, NoWindFoldsACrownOverOrIntoTheGround) {
+  // Issue 29's extremes: a steady 60 m/s wind with gusts and turbulence for 20 s on tall, spreading and
+  // hanging species. Every joint's bend stays within its stop, the stops along any base-to-tip path sum to at
+  // most chainBend, so no twig tip turns further than that from its rest direction, none goes below the
+  // ground its tree stands on, and no bone folds back over its parent's.
+  wind::WindSettings w = storm();
+  w.speed = 60.0f;
+  TestForest f;
+  int i = 0;
+  for (const std::string name :
+       {"lombardy-poplar", "california-black-oak", "weeping-willow", "silver-birch"}) {
+    f.add(name, 41 + static_cast<std::uint64_t>(i), {static_cast<float>(i) * 25.0f, 0.0f, 3.0f},
+          windTimeOffset(i));
+    ++i;
+  }
+  const JointWindRest rest = f.rest();
+  JointWindSettings settings;
+  // The stops along each path from the base to a tip.
+  for (std::size_t t = 0; t < rest.treeCount(); ++t) {
+    std::vector<double> sum(rest.jointOffset[t + 1] - rest.jointOffset[t], 0.0);
+    for (std::uint32_t j = rest.jointOffset[t] + 1; j < rest.jointOffset[t + 1]; ++j) {
+      const std::uint32_t parent = rest.joints[j].info.x;
+      sum[j - rest.jointOffset[t]] = sum[parent - rest.jointOffset[t]] + rest.springs[j].stop;
+      EXPECT_LE(rest.springs[j].stop, rest.maxBend);
+      EXPECT_LE(sum[j - rest.jointOffset[t]], settings.chainBend * (1.0 + 1e-5))
+          << "tree " << t << " joint " << j;
+    }
+  }
+  JointWindState state(rest.jointCount());
+  std::vector<glm::mat4> atRest;
+  forestJointFrames(rest, state, atRest);
+  float worstTurn = 0.0f;
+  float lowest = 1e9f;
+  float worstFold = 0.0f;
+  for (int step = 1; step <= 1200; ++step) {
+    stepJointWind(rest, state, wind::toUniforms(w, static_cast<float>(step) * kDt), kDt);
+    if (step % 60 != 0) {
+      continue;
+    }
+    std::vector<glm::mat4> frames;
+    forestJointFrames(rest, state, frames);
+    for (std::size_t j = 0; j < rest.jointCount(); ++j) {
+      const float bend = glm::length(glm::vec2(state.motion[j].x, state.motion[j].y));
+      ASSERT_LE(bend, rest.springs[j].stop + 1e-6f) << "joint " << j;
+      if (rest.joints[j].info.x == SYLVA_TREE_NO_PARENT) {
+        continue;
+      }
+      const glm::vec3 bone = glm::normalize(glm::vec3(frames[j][1]));
+      const glm::vec3 parentBone = glm::normalize(glm::vec3(frames[rest.joints[j].info.x][1]));
+      const glm::vec3 restBone = glm::normalize(glm::vec3(atRest[j][1]));
+      const glm::vec3 restParent = glm::normalize(glm::vec3(atRest[rest.joints[j].info.x][1]));
+      // Folding: how much further the bone turned away from its parent's than at rest.
+      const float fold = std::acos(std::clamp(glm::dot(bone, parentBone), -1.0f, 1.0f)) -
+                         std::acos(std::clamp(glm::dot(restBone, restParent), -1.0f, 1.0f));
+      worstFold = std::max(worstFold, fold);
+      if (rest.springs[j].tip) {
+        const float turn = std::acos(std::clamp(glm::dot(bone, restBone), -1.0f, 1.0f));
+        worstTurn = std::max(worstTurn, turn);
+        EXPECT_LE(turn, settings.chainBend + 1e-3f) << "joint " << j << " at step " << step;
+        const float ground = frames[rest.jointOffset[rest.joints[j].info.y]][3].y;
+        lowest = std::min(lowest, frames[j][3].y - ground);
+      }
+    }
+  }
+  std::printf(
+      "60 m/s: twig tips turned up to %.1f deg from rest (chain limit %.1f), lowest tip %.2f m above the "
+      "ground, a bone folded at most %.1f deg further from its parent's\n",
+      glm::degrees(worstTurn), glm::degrees(settings.chainBend), lowest, glm::degrees(worstFold));
+  EXPECT_GT(lowest, 0.0f);
+  EXPECT_LT(worstFold, rest.maxBend + 1e-3f);
+  EXPECT_GT(worstTurn, 0.2f) << "the storm bends the trees";
 }
 
 TEST(JointWind, SteadyWindBendsTreesDownwind) {

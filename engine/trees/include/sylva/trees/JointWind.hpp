@@ -6,7 +6,8 @@
 //   τ = Σ_s (x_s − x_j) × ½ ρ_air C_d A_s |u| u  over the pieces s of j's subtree,
 // stepped at a fixed rate by the spec's semi-implicit (backward Euler) step, unconditionally stable for the
 // spring and damper:
-//   ω' = (ω + dt (τ − kθ)/I) / (1 + dt c/I + dt² k/I),   θ' = θ + dt ω',   |θ'| ≤ maxBend (30°).
+//   ω' = (ω + dt (τ − kθ)/I) / (1 + dt c/I + dt² k/I),   θ' = θ + dt ω',   |θ'| ≤ the joint's stop (at most
+// maxBend, 30°; the stops along any base-to-tip path sum to at most chainBend, 60°).
 // The drawn bends are the tree's rest pose plus θ. A tree's base (its joint 0) never bends.
 //
 // O(1) per joint and step: everything but the wind is folded into per-joint constants at rest
@@ -26,7 +27,7 @@
 // factor of 5. The natural frequency is therefore calibrated: f = f_ref · (f_cantilever / f_cref)^γ
 // (JointWindSettings), which keeps the physics' ordering and its dependence on E, ρ, r, L and the subtree's
 // mass (stiffer or lighter → faster) but compresses the range onto what trees do: trunks 0.2–1 Hz, twigs
-// 2–6 Hz (measured on released joints: trunks 0.25–0.55 Hz, twig tips 2.19–5.49 Hz over the almond, aspen,
+// 2–6 Hz (measured on released joints: trunks 0.25–0.55 Hz, twig tips 2.19–5.80 Hz over the almond, aspen,
 // oak and willow presets). The spring then uses k = I (2πf)² and c = 2ζ√(kI) with the species' damping ratio
 // ζ. The 30° stop is inelastic: θ is put back on the circle and ω loses its outward part. Units: SI
 // throughout (m, s, kg, rad); world space is metres with y up; wind (x, z) is world (x, z).
@@ -55,7 +56,7 @@ struct JointWindSettings {
   /**
    * Effective drag coefficient. A rigid cylinder has 1.0–1.2, but crowns streamline in wind (reconfiguration:
    * measured whole-tree coefficients fall to 0.2–0.5 at moderate to strong winds, Mayhead 1973, Vollsinger
-   * et al. 2005); 0.3 bends a tree's top by about 2 % of its height at 3 m/s and 5–13 % at 8 m/s.
+   * et al. 2005); 0.3 bends a grown tree's top by 0.3–2 % of its height at 3 m/s and about 13 % at 8 m/s.
    */
   float dragCoefficient = 0.3f;
   /**
@@ -66,6 +67,13 @@ struct JointWindSettings {
   float foliageArea = 6.0f;
   /** Largest bend |θ| of a joint, radians (30°). */
   float maxBend = 0.52359878f;
+  /**
+   * Largest bend summed along any chain from a tree's base to a twig tip, radians (60°), so no wind folds a
+   * crown over, through itself or into the ground. Each joint's own stop is its share of it: chainBend × its
+   * bone length / the longest base-to-tip path through it (the shares along any one path add up to at most
+   * 1), and never more than maxBend.
+   */
+  float chainBend = 1.0471976f;
   /**
    * Frequency calibration f = referenceFrequency · (f_cantilever / referenceCantilever)^frequencyExponent, Hz
    * (see the header comment): a joint whose literal cantilever frequency is referenceCantilever swings at
@@ -129,6 +137,8 @@ struct JointSpring {
   int depth = 0;
   /** True when the joint carries a single piece without leaf rims (a cap: the tip of a twig). */
   bool tip = false;
+  /** The joint's own stop, radians: its share of chainBend, at most maxBend (TreeJointRest.info.w >> 16). */
+  float stop = 0.0f;
 };
 
 /**
