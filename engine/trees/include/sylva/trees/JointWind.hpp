@@ -56,7 +56,7 @@ struct JointWindSettings {
   /**
    * Effective drag coefficient. A rigid cylinder has 1.0–1.2, but crowns streamline in wind (reconfiguration:
    * measured whole-tree coefficients fall to 0.2–0.5 at moderate to strong winds, Mayhead 1973, Vollsinger
-   * et al. 2005); 0.3 bends a grown tree's top by 0.3–2 % of its height at 3 m/s and about 13 % at 8 m/s.
+   * et al. 2005); 0.3 bends a grown tree's top by 0.3–1 % of its height at 3 m/s and 10–12 % at 8 m/s.
    */
   float dragCoefficient = 0.3f;
   /**
