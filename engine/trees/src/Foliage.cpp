@@ -464,6 +464,10 @@ void validate(const FoliageSettings& s, const std::string& where) {
   validate(s.cloud, where + ".cloud");
 }
 
+bool carriesLeaves(const Piece& piece, const TreeNode& node, const Species& species) {
+  return piece.bearsFoliage || (species.leafOrder > 0 && node.order >= species.leafOrder && node.parent >= 0);
+}
+
 std::vector<FoliageAnchor> foliageAnchors(const Forest& forest, const FoliageSettings& settings) {
   validate(settings, "foliage");
   std::vector<gpu::JointFrame> frames;
@@ -476,11 +480,11 @@ std::vector<FoliageAnchor> foliageAnchors(const Forest& forest, const FoliageSet
   for (std::size_t ti = 0; ti < forest.trees.size(); ++ti) {
     const ForestTree& tree = forest.trees[ti];
     const auto speciesIndex = static_cast<std::size_t>(std::max(tree.species, 0));
-    const int leafOrder = speciesIndex < forest.species.size() ? forest.species[speciesIndex].leafOrder : 0;
+    const Species noSpecies;
+    const Species& species = speciesIndex < forest.species.size() ? forest.species[speciesIndex] : noSpecies;
     for (const TreeNode& node : tree.topology.nodes) {
       const auto type = static_cast<std::size_t>(node.piece);
-      const bool alongTwig = leafOrder > 0 && node.order >= leafOrder && node.parent >= 0;
-      if (!forest.pieces[type].bearsFoliage && !alongTwig) {
+      if (!carriesLeaves(forest.pieces[type], node, species)) {
         continue;
       }
       FoliageAnchor a;

@@ -1,6 +1,7 @@
 #include <sylva/trees/Measure.hpp>
 
 #include <sylva/trees/Export.hpp>
+#include <sylva/trees/Foliage.hpp>
 #include <sylva/trees/Skeleton.hpp>
 
 #include <fmt/format.h>
@@ -99,10 +100,7 @@ TreeMeasures measureTree(const PieceSet& pieces, const TreeTopology& tree, const
   // The leaves: a sphere around the root joint of every piece that carries a leaf cluster.
   const float cluster = species.leafCluster > 0.0f ? species.leafCluster : 0.6f;
   for (const TreeNode& node : tree.nodes) {
-    const Piece& piece = pieces[static_cast<std::size_t>(node.piece)];
-    const bool leafy =
-        piece.bearsFoliage || (species.leafOrder > 0 && node.order >= species.leafOrder && node.parent >= 0);
-    if (!leafy) {
+    if (!carriesLeaves(pieces[static_cast<std::size_t>(node.piece)], node, species)) {
       continue;
     }
     const glm::vec3 c(frames[node.rootJoint][3]);

@@ -222,6 +222,12 @@ struct FoliageAnchor {
 };
 
 /**
+ * Whether `node` (a `piece`) of a tree of `species` carries a leaf cluster: a foliage-bearing piece (a twig
+ * tip), or any non-root piece on an axis of the species' leafOrder or deeper (Species::leafOrder > 0).
+ */
+bool carriesLeaves(const Piece& piece, const TreeNode& node, const Species& species);
+
+/**
  * One anchor per instance of a foliage-bearing piece (Piece::bearsFoliage) of every tree, and per piece on an
  * axis of its species' leafOrder or deeper (Species::leafOrder > 0), in tree order then
  * node order; radii from the rest frames (forestFrames without extra bends). Deterministic in the settings.
