@@ -86,7 +86,8 @@ struct TreeUniforms {
   vec4 bark;          // x: layers per bark set (0: untextured, flat colours), y: tile size in texels,
                       // z: normal-map strength (0: none), w: symmetric edge colours K
   vec4 far; // x: distance where trees begin to cross-fade into far-field impostors (m), y: where they
-            // are impostors only (m); y <= x: no far field, every tree is drawn as pieces
+            // are impostors only (m); y <= x: no far field, every tree is drawn as pieces; zw: width
+            // culling, a piece is dropped when its root rim's width (2 · frame scale) < z * distance + w
 };
 SYLVA_ASSERT_SIZE(TreeUniforms, 560);
 

@@ -4,6 +4,7 @@
 // command (cullInstances in C++ is the reference).
 #include "trees.glsl"
 #include "../common/frame.glsl"
+#include "fade.glsl"
 
 layout(local_size_x = SYLVA_TREE_CULL_GROUP) in;
 
@@ -21,6 +22,10 @@ void main() {
     return;
   }
   uvec4 inst = instances[i].joints;
+  // Far field: a tree whose crown is past the fade band is its impostor alone; its pieces would draw nothing.
+  if (trees.far.y > trees.far.x && farBlend(crownDistance(inst.w & 0xffffffu, frame.cameraPos.xyz), trees.far.xy) >= 1.0) {
+    return;
+  }
   uint type = (inst.z >> 8) & 255u;
   TreePieceGpu piece = pieceTable[type];
   JointFrame root = joints[inst.x];
@@ -40,8 +45,9 @@ void main() {
   if (trees.tess.w > 0.0 && d - radius > trees.tess.w) {
     return;
   }
-  // Size culling: under TreeLod::minPixels across (cull.z per metre of distance, cull.w for orthographic).
-  if (2.0 * radius < trees.cull.z * d + trees.cull.w) {
+  // Size culling: under TreeLod::minPixels across (cull.z per metre of distance, cull.w for orthographic),
+  // or a branch under TreeLod::minWidthPixels wide (far.zw; the root rim is 2 model units across).
+  if (2.0 * radius < trees.cull.z * d + trees.cull.w || 2.0 * scale < trees.far.z * d + trees.far.w) {
     return;
   }
   // The type's first command hands out the slot; its other quad chunks count the same instances.

@@ -9,9 +9,6 @@
 
 layout(binding = SYLVA_TREE_BARK_COLOUR_UNIT) uniform sampler2DArray barkColour;
 layout(binding = SYLVA_TREE_BARK_NORMAL_UNIT) uniform sampler2DArray barkNormal;
-layout(std430, binding = SYLVA_TREE_CENTRE_BINDING) readonly buffer TreeCentres {
-  vec4 treeCentres[]; // base (xyz, m), crown height (w, m)
-};
 
 in vec3 fWorld;
 in vec3 fNormal;
@@ -55,9 +52,7 @@ void main() {
   uint tree = inst.w & 0xffffffu;
   if (trees.far.y > trees.far.x) {
     // Far field: dissolve into the impostor with the complementary mask of its pass.
-    vec4 c = treeCentres[tree];
-    float d = distance(frame.cameraPos.xyz, c.xyz + vec3(0.0, 0.5 * c.w, 0.0));
-    if (!piecesKeep(farBlend(d, trees.far.xy), uvec2(gl_FragCoord.xy), tree)) {
+    if (!piecesKeep(farBlend(crownDistance(tree, frame.cameraPos.xyz), trees.far.xy), uvec2(gl_FragCoord.xy), tree)) {
       discard;
     }
   }

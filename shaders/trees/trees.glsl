@@ -19,6 +19,17 @@ layout(std430, binding = SYLVA_TREE_PIECE_BINDING) readonly buffer PieceTable {
   TreePieceGpu pieceTable[];
 };
 
+layout(std430, binding = SYLVA_TREE_CENTRE_BINDING) readonly buffer TreeCentres {
+  vec4 treeCentres[]; // base (xyz, m), crown height (w, m)
+};
+
+/** Distance from `camera` to the centre of tree `tree`'s crown (half its height above the base), metres: the
+ * distance of the far field's fade (cullInstances in C++ measures it the same way). */
+float crownDistance(uint tree, vec3 camera) {
+  vec4 c = treeCentres[tree];
+  return distance(camera, c.xyz + vec3(0.0, 0.5 * c.w, 0.0));
+}
+
 // Per quad of every piece type: x tile class | rotation << 8, y four edge ids (sylva::trees::quadTileTable).
 layout(std430, binding = SYLVA_TREE_QUAD_BINDING) readonly buffer QuadTable {
   uvec2 quadTiles[];

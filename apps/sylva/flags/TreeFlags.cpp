@@ -64,6 +64,16 @@ void TreeFlags::add(CLI::App& command) {
       ->check(finiteRange(0.0, 1.0e6))
       ->capture_default_str();
   command
+      .add_option("--trees-min-pixels", lod.minPixels,
+                  "Size culling: pieces whose bounding sphere spans fewer pixels are not drawn (0: off)")
+      ->check(finiteRange(0.0, 100.0))
+      ->capture_default_str();
+  command
+      .add_option("--trees-min-width", lod.minWidthPixels,
+                  "Width culling: branches thinner than this many pixels are not drawn (0: off)")
+      ->check(finiteRange(0.0, 100.0))
+      ->capture_default_str();
+  command
       .add_option(
           "--trees-view", view,
           "Trees view: shaded, pieces (piece types), bones (root weights), lod, tiles (bark tile ids)")

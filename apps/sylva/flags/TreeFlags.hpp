@@ -54,7 +54,9 @@ struct TreeFlags {
   /** Bark, foliage and far field as the flags say (the engine's description, trees::ForestLook). */
   trees::ForestLook look() const;
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
-   * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-view, --trees-wind. */
+   * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-min-pixels,
+   * --trees-min-width,
+   * --trees-view, --trees-wind. */
   void add(CLI::App& command);
   /** Throws naming the option when a value is malformed (before any work is done). */
   void check() const;

@@ -528,6 +528,8 @@ void TreesPanel::show(scene::SceneWorld& world, const render::GpuTimers& timers)
   ImGui::SliderFloat("max level", &lod.maxLevel, 1.0f, 64.0f, "%.0f", kClamp);
   ImGui::SliderFloat("fixed level (0: by distance)", &lod.fixedLevel, 0.0f, 64.0f, "%.0f", kClamp);
   ImGui::SliderFloat("tree distance (m, 0: all)", &lod.drawDistance, 0.0f, 5000.0f, "%.0f", kLogarithmic);
+  ImGui::SliderFloat("min size (pixels)", &lod.minPixels, 0.0f, 100.0f, "%.2f", kLogarithmic);
+  ImGui::SliderFloat("min width (pixels)", &lod.minWidthPixels, 0.0f, 100.0f, "%.2f", kLogarithmic);
   if (ImGui::Checkbox("wind on trees", &desc.wind) && built) {
     if (!attempt(buildError, [&] { world.forest(0).setWind(desc.wind); })) {
       desc.wind = false;

@@ -161,6 +161,7 @@ void SceneWorld::registerPasses() {
       if (in.shadow) {
         options.view = trees::TreeView::Depth;
         lod.minPixels = render::kCasterMinTexels;
+        lod.minWidthPixels = std::max(lod.minWidthPixels, 1.0f);
       }
       for (auto& forest : mForests) {
         forest->draw(in.camera, in.width, in.height, in.time, lod, options, in.timers);

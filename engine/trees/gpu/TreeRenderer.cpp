@@ -231,7 +231,7 @@ void TreeRenderer::setBark(std::span<const BarkSet> sets, std::span<const int> s
 }
 
 void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod,
-                                  TreeView view, bool breakRims, glm::vec2 sizeCull) {
+                                  TreeView view, bool breakRims, glm::vec4 sizeCull) {
   gpu::TreeUniforms& u = mLast;
   const Frustum frustum = camera.frustum(aspect);
   for (std::size_t p = 0; p < 6; ++p) {
@@ -260,11 +260,11 @@ void TreeRenderer::uploadUniforms(const render::Camera& camera, float aspect, co
   }
   u.bark = glm::vec4(static_cast<float>(mBarkLayers), static_cast<float>(mBarkTileSize),
                      mBarkNormals ? 1.0f : 0.0f, static_cast<float>(mEdgeColours));
-  u.far = glm::vec4(lod.farRange, 0.0f, 0.0f);
+  u.far = glm::vec4(lod.farRange, sizeCull.z, sizeCull.w);
   u.info =
       glm::uvec4(static_cast<unsigned>(mPacked.instances.size()), static_cast<unsigned>(mPieceTable.size()),
                  static_cast<unsigned>(view), breakRims ? 1u : 0u);
-  u.cull = glm::vec4(kBendSlack, static_cast<float>(mQuadsPerCommand), sizeCull);
+  u.cull = glm::vec4(kBendSlack, static_cast<float>(mQuadsPerCommand), sizeCull.x, sizeCull.y);
   for (int k = 0; k < kRimCorners; ++k) {
     u.corners[k] = glm::vec4(rimCorner(k), 0.0f);
     u.rimNormals[k] = glm::vec4(rimNormal(k), 0.0f);
@@ -292,16 +292,18 @@ void TreeRenderer::bindAll() const {
 
 void TreeRenderer::cull(const render::Camera& camera, float aspect, const TreeLod& lod,
                         render::GpuTimers* timers) {
-  runCull(camera, aspect, lod, glm::vec2(0.0f), timers, {});
+  runCull(camera, aspect, lod, glm::vec4(0.0f), timers, {});
 }
 
 void TreeRenderer::cull(const render::Camera& camera, int width, int height, const TreeLod& lod,
                         render::GpuTimers* timers, const render::Environment& environment) {
   runCull(camera, static_cast<float>(std::max(width, 1)) / static_cast<float>(std::max(height, 1)), lod,
-          sizeCullTerms(camera.fovY, camera.orthoHeight, height, lod.minPixels), timers, environment);
+          glm::vec4(sizeCullTerms(camera.fovY, camera.orthoHeight, height, lod.minPixels),
+                    sizeCullTerms(camera.fovY, camera.orthoHeight, height, lod.minWidthPixels)),
+          timers, environment);
 }
 
-void TreeRenderer::runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec2 sizeCull,
+void TreeRenderer::runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec4 sizeCull,
                            render::GpuTimers* timers, const render::Environment& environment) {
   const render::GpuTimerScope timed(timers, "trees cull");
   useQuadsPerCommand(quadsPerCommand(lod.fixedLevel > 0.0f ? lod.fixedLevel : lod.maxLevel));

@@ -3,6 +3,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Random.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/trees/FarField.hpp>
 #include <sylva/wind/Wind.hpp>
 
 #include <glm/common.hpp>
@@ -379,10 +380,19 @@ glm::vec2 sizeCullTerms(float fovY, float orthoHeight, int height, float minPixe
 std::vector<std::vector<std::uint32_t>>
 cullInstances(const PackedInstances& packed, std::span<const gpu::TreePieceGpu> pieces,
               std::span<const gpu::JointFrame> frames, const std::array<glm::vec4, 6>& planes,
-              glm::vec3 camera, float drawDistance, float slack, glm::vec2 sizeCull) {
+              glm::vec3 camera, float drawDistance, float slack, glm::vec2 sizeCull, glm::vec2 widthCull,
+              std::span<const glm::vec4> treeCentres, glm::vec2 farRange) {
   std::vector<std::vector<std::uint32_t>> out(pieces.size());
+  const bool far = farRange.y > farRange.x && !treeCentres.empty();
   for (std::size_t i = 0; i < packed.instances.size(); ++i) {
     const glm::uvec4 inst = packed.instances[i].joints;
+    if (far) {
+      const glm::vec4 c = treeCentres[inst.w & 0xffffffu];
+      const float d = glm::length(camera - (glm::vec3(c) + glm::vec3(0.0f, 0.5f * c.w, 0.0f)));
+      if (farBlend(d, farRange) >= 1.0f) {
+        continue;
+      }
+    }
     const std::uint32_t type = (inst.z >> 8) & 255u;
     const gpu::TreePieceGpu& piece = pieces[type];
     const gpu::JointFrame& root = frames[inst.x];
@@ -404,6 +414,9 @@ cullInstances(const PackedInstances& packed, std::span<const gpu::TreePieceGpu> 
       inside = false;
     }
     if (inside && 2.0f * radius < sizeCull.x * distance + sizeCull.y) {
+      inside = false;
+    }
+    if (inside && 2.0f * scale < widthCull.x * distance + widthCull.y) {
       inside = false;
     }
     if (inside) {

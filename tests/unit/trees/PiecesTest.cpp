@@ -352,6 +352,8 @@ TEST(Tessellation, CommandsStayWithinTheVertexBudgetAtEveryLevel) {
 
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sylva::trees {
@@ -372,6 +374,48 @@ TEST(SizeCulling, TermsTurnPixelsIntoMetresForBothProjections) {
   // Off: no pixels asked for, or no target.
   EXPECT_EQ(sizeCullTerms(glm::radians(45.0f), 0.0f, 720, 0.0f), glm::vec2(0.0f));
   EXPECT_EQ(sizeCullTerms(glm::radians(45.0f), 10.0f, 0, 1.0f), glm::vec2(0.0f));
+}
+
+TEST(SizeCulling, WidthCullingDropsThinBranchesWhoseSpheresStillSpanPixels) {
+  // One birch (long, thin, stretched twigs) seen from 40 m: the sphere rule keeps twigs whose length spans
+  // pixels; the width rule drops exactly the pieces whose root rim (2 · frame scale) is under the width.
+  const Forest forest = gridForest({"silver-birch"}, 1, 1.0f, 3);
+  const PackedInstances packed = packInstances(forest);
+  std::vector<gpu::JointFrame> frames;
+  forestFrames(forest, {}, frames);
+  std::vector<gpu::TreePieceGpu> table;
+  for (const Piece& p : forest.pieces.pieces) {
+    table.push_back(pieceTableEntry(p));
+  }
+  const glm::vec3 camera(0.0f, 8.0f, 40.0f);
+  std::array<glm::vec4, 6> planes{};
+  planes.fill(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)); // every point inside
+  const glm::vec2 onePixel = sizeCullTerms(glm::radians(50.0f), 0.0f, 720, 1.0f);
+  auto count = [](const std::vector<std::vector<std::uint32_t>>& lists) {
+    std::size_t n = 0;
+    for (const auto& l : lists) {
+      n += l.size();
+    }
+    return n;
+  };
+  const auto sphere = cullInstances(packed, table, frames, planes, camera, 0.0f, 1.25f, onePixel);
+  const auto width = cullInstances(packed, table, frames, planes, camera, 0.0f, 1.25f, onePixel, onePixel);
+  EXPECT_LT(count(width), count(sphere) * 3 / 4);
+  EXPECT_GT(count(width), 0u);
+  for (std::size_t t = 0; t < width.size(); ++t) {
+    for (std::uint32_t i : sphere[t]) {
+      const gpu::JointFrame& root = frames[packed.instances[i].joints.x];
+      const float scale = glm::length(glm::vec3(root.x.x, root.y.x, root.z.x));
+      const bool kept = std::binary_search(width[t].begin(), width[t].end(), i);
+      // Wide pieces (2 · scale well over a pixel at their distance, at most 60 m) are always kept.
+      if (2.0f * scale > onePixel.x * 60.0f) {
+        EXPECT_TRUE(kept) << "instance " << i;
+      }
+      if (2.0f * scale < onePixel.x * 30.0f) {
+        EXPECT_FALSE(kept) << "instance " << i;
+      }
+    }
+  }
 }
 
 } // namespace

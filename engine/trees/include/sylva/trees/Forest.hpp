@@ -139,12 +139,19 @@ glm::vec2 sizeCullTerms(float fovY, float orthoHeight, int height, float minPixe
 
 /**
  * CPU reference of the culling pass: the visible instance indices of each piece type (sorted), given the
- * frames, the camera's frustum planes (as in TreeUniforms) and position, the draw distance, the slack and
- * the size culling terms (sizeCullTerms; zero: none).
+ * frames, the camera's frustum planes (as in TreeUniforms) and position, the draw distance, the slack, the
+ * size culling terms of the bounding sphere (sizeCullTerms with TreeLod::minPixels; zero: none) and those of
+ * the width (sizeCullTerms with TreeLod::minWidthPixels: a piece is dropped when its root rim, 2 · frame
+ * scale metres across, is narrower; zero: none). With a far range (TreeLod::farRange, y > x) and the trees'
+ * centres (TreeRenderer::treeCentres: base xyz, crown height w), the pieces of a tree whose crown centre
+ * (half its height up) lies at or past the end of the fade band are dropped too: there the tree is its
+ * impostor alone and its pieces would draw no pixel.
  */
 std::vector<std::vector<std::uint32_t>>
 cullInstances(const PackedInstances& packed, std::span<const gpu::TreePieceGpu> pieces,
               std::span<const gpu::JointFrame> frames, const std::array<glm::vec4, 6>& planes,
-              glm::vec3 camera, float drawDistance, float slack, glm::vec2 sizeCull = glm::vec2(0.0f));
+              glm::vec3 camera, float drawDistance, float slack, glm::vec2 sizeCull = glm::vec2(0.0f),
+              glm::vec2 widthCull = glm::vec2(0.0f), std::span<const glm::vec4> treeCentres = {},
+              glm::vec2 farRange = glm::vec2(0.0f));
 
 } // namespace sylva::trees

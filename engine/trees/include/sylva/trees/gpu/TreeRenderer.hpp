@@ -75,6 +75,13 @@ struct TreeLod {
    * shadow cascade).
    */
   float minPixels = 1.0f;
+  /**
+   * Width culling: a piece whose root rim (the branch's thickness there, 2 · frame scale) spans fewer pixels
+   * than this is not drawn, however long it is. A twig a fifth of a pixel wide is a dotted line whose
+   * samples hit one pixel in five along it, and the foliage around it covers most of it; it still pays for
+   * all its patches (docs/trees.md "Size culling"). 0 draws every piece; cull() with a target size only.
+   */
+  float minWidthPixels = 0.2f;
 };
 
 /** Per-draw options. */
@@ -153,8 +160,8 @@ public:
 
 private:
   void uploadUniforms(const render::Camera& camera, float aspect, const TreeLod& lod, TreeView view,
-                      bool breakRims, glm::vec2 sizeCull = glm::vec2(0.0f));
-  void runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec2 sizeCull,
+                      bool breakRims, glm::vec4 sizeCull = glm::vec4(0.0f));
+  void runCull(const render::Camera& camera, float aspect, const TreeLod& lod, glm::vec4 sizeCull,
                render::GpuTimers* timers, const render::Environment& environment);
   void bindAll() const;
   /** Uniforms, frame block and bindings of a draw (both draw paths). */
