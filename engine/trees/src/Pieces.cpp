@@ -335,15 +335,23 @@ Piece makePsi() {
 }
 
 Piece makeCap() {
+  // A twig tip tapering to a point (a rounded stub reads as a finger): the rim's cone for half a radius (as
+  // every piece continues it), rings at 60 % and 20 % of the radius, then three quads meeting at the tip on
+  // the axis; the cross-section at 95 % of the length is under 5 % of the rim's (a last ring at 6 % keeps
+  // Phong tessellation from rounding the point).
   Builder b("Cap");
   const Ring root = b.rim(glm::mat4(1.0f));
   const Ring r1 = b.ring(glm::mat4(1.0f), 0.5f, 1.0f - 0.5f * kTanCone);
-  const Ring r2 = b.ring(glm::mat4(1.0f), 1.25f, 0.62f);
-  const std::uint32_t tip = b.point(glm::vec3(0.0f, 1.85f, 0.0f));
+  const Ring r2 = b.ring(glm::mat4(1.0f), 1.6f, 0.6f);
+  const Ring r3 = b.ring(glm::mat4(1.0f), 2.6f, 0.2f);
+  const Ring r4 = b.ring(glm::mat4(1.0f), 3.0f, 0.06f);
+  const std::uint32_t tip = b.point(glm::vec3(0.0f, kCapLength, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
   b.band(root, r1, 3);
   b.band(r1, r2, 3);
+  b.band(r2, r3, 3);
+  b.band(r3, r4, 3);
   for (std::size_t k = 0; k < 6; k += 2) {
-    b.quad(tip, r2[k], r2[k + 1], r2[(k + 2) % 6], 3);
+    b.quad(tip, r4[k], r4[k + 1], r4[(k + 2) % 6], 3);
   }
   return b.finish(true);
 }

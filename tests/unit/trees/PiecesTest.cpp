@@ -2,12 +2,15 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/trees/Pieces.hpp>
 #include <sylva/trees/Skeleton.hpp>
+#include <sylva/trees/Tessellation.hpp>
 
 #include <glm/geometric.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -25,6 +28,40 @@ TEST(Pieces, StandardSetValidatesAndHasTheNamedPieces) {
     EXPECT_NO_THROW(validatePiece(p, "test"));
     EXPECT_EQ(p.leafRims(), leafRims.at(p.name));
     EXPECT_EQ(p.tileClass.size(), p.quads.size());
+  }
+}
+
+TEST(Pieces, TheCapTapersToAPointWithoutABulge) {
+  // Twig tips close to a point (issue 29: at most 5 % of the base radius), not in a rounded stub: sample the
+  // Phong-tessellated surface of every quad and take the widest point in each band of height.
+  const Piece cap = makeCap();
+  constexpr int kBands = 20;
+  std::array<float, kBands> widest{};
+  float top = 0.0f;
+  for (const auto& q : cap.quads) {
+    std::array<glm::vec3, 4> p{};
+    std::array<glm::vec3, 4> n{};
+    for (std::size_t c = 0; c < 4; ++c) {
+      p[c] = cap.vertices[q[c]].position;
+      n[c] = cap.vertices[q[c]].normal;
+    }
+    for (int i = 0; i <= 32; ++i) {
+      for (int j = 0; j <= 32; ++j) {
+        const glm::vec3 s = phongQuad(p, n, static_cast<float>(i) / 32.0f, static_cast<float>(j) / 32.0f);
+        top = std::max(top, s.y);
+        const int band = std::clamp(static_cast<int>(s.y / kCapLength * kBands), 0, kBands - 1);
+        widest[static_cast<std::size_t>(band)] =
+            std::max(widest[static_cast<std::size_t>(band)], glm::length(glm::vec2(s.x, s.z)));
+      }
+    }
+  }
+  EXPECT_NEAR(top, kCapLength, 1e-4f);
+  EXPECT_GE(kCapLength, 3.0f); // a taper, not a dome (the old cap ended 1.85 radii up)
+  // The last band, from 95 % of the length to the tip, is under 5 % of the rim's radius (1).
+  EXPECT_LE(widest[kBands - 1], 0.05f);
+  // Narrower all the way up (a little slack for the hexagon's corners between bands).
+  for (int b = 1; b < kBands; ++b) {
+    EXPECT_LE(widest[static_cast<std::size_t>(b)], widest[static_cast<std::size_t>(b - 1)] + 0.01f) << b;
   }
 }
 

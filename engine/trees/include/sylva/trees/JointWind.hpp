@@ -79,10 +79,10 @@ struct JointWindSettings {
    * (see the header comment): a joint whose literal cantilever frequency is referenceCantilever swings at
    * referenceFrequency; exponent in (0, 1], 1 = the literal physics shifted by a constant factor.
    */
-  float referenceFrequency = 0.75f;
+  float referenceFrequency = 0.83f;
   /** The literal cantilever frequency that maps onto referenceFrequency, Hz. */
   float referenceCantilever = 60.0f;
-  /** The calibration's exponent γ (0.32 with referenceFrequency 0.75 Hz: 2–7 Hz → 0.25–0.37 Hz, 30 kHz → 5.5
+  /** The calibration's exponent γ (0.32 with referenceFrequency 0.83 Hz: 2–7 Hz → 0.28–0.42 Hz, 10 kHz → 4.4
    * Hz). */
   float frequencyExponent = 0.32f;
 };

@@ -19,7 +19,12 @@ Piece makePsi();
 /** The branch–stem attachment ⊢: the stem continues (scale 0.85) and a side branch leaves at 58° (scale 0.5).
  */
 Piece makeBranch();
-/** A branch tip: the root rim closed by a short dome (no leaf rims). Bears foliage. */
+/** Length of the Cap along its axis, rim radii: the tip is this far above the root rim's centre. */
+constexpr float kCapLength = 3.3f;
+/**
+ * A branch tip: the root rim tapering to a point on the axis kCapLength up (the rim's cone to half a radius,
+ * then rings at 60 %, 20 % and 6 % of the radius; no leaf rims). Bears foliage.
+ */
 Piece makeCap();
 /** The trunk's base: a flared foot closed at the bottom with one leaf rim on top (the tree's root piece). */
 Piece makeFoot();
