@@ -9,6 +9,8 @@
 #include "GlTest.hpp"
 #include "Golden.hpp"
 
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 
 namespace sylva::trees {
@@ -73,39 +75,92 @@ TEST_F(TreeGolden, BarkTilesCloseUp) {
   test::expectGolden(render(renderer, camera, TreeView::Shaded), "trees_bark_closeup", kTreeTolerance);
 }
 
-TEST_F(TreeGolden, LeafyOakWithPhotoBarkAndLeaves) {
-  // The real thing: bark tiles synthesised from ez-tree's oak photo and normal map, foliage impostors of its
-  // oak leaf, one oak and an apple tree behind it (leaves depth-tested against each other and the branches).
-  const std::filesystem::path bark = test::externalData("ez-tree/bark/oak_color_1k.jpg");
-  const std::filesystem::path leaf = test::externalData("ez-tree/leaves/oak_color.png");
-  SYLVA_REQUIRE_EXTERNAL_DATA(bark);
-  SYLVA_REQUIRE_EXTERNAL_DATA(leaf);
+// Bark synthesised from ez-tree's oak photo and normal map for `forest` (its first set must be the oak's).
+std::vector<BarkSet> oakPhotoBark(const Forest& forest, std::vector<int>& speciesSet) {
+  BarkSources sources;
+  sources.photoDir = test::externalData("ez-tree/bark/oak_color_1k.jpg").parent_path();
+  std::vector<BarkSet> sets = barkSetsFor(forest, sources, speciesSet);
+  EXPECT_EQ(sets[0].name, "oak");
+  return sets;
+}
+
+// One oak and an apple tree behind it with photo bark and foliage impostors of ez-tree's oak leaf (leaves
+// depth-tested against each other and the branches), width × height.
+Image leafyOak(const shader::Library& library, int width, int height) {
   auto forest = std::make_shared<Forest>(gridForest({"california-black-oak", "apple"}, 2, 4.0f, 11));
   forest->trees.resize(2);
   forest->index();
-  TreeRenderer renderer(shaders(), forest);
-  BarkSources sources;
-  sources.photoDir = bark.parent_path();
+  TreeRenderer renderer(library, forest);
   std::vector<int> speciesSet;
-  const std::vector<BarkSet> sets = barkSetsFor(*forest, sources, speciesSet);
-  ASSERT_EQ(sets[0].name, "oak");
-  renderer.setBark(sets, speciesSet);
-  FoliageRenderer foliage(shaders(), forest);
-  foliage.setLeafTexture(loadLeafImage(leaf));
+  renderer.setBark(oakPhotoBark(*forest, speciesSet), speciesSet);
+  FoliageRenderer foliage(library, forest);
+  foliage.setLeafTexture(loadLeafImage(test::externalData("ez-tree/leaves/oak_color.png")));
   render::Camera camera;
   camera.position = {-7.0f, 5.0f, 19.0f};
   camera.target = {1.0f, 6.0f, 0.0f};
   camera.fovY = glm::radians(55.0f);
   camera.nearPlane = 0.1f;
   camera.farPlane = 200.0f;
-  render::RenderTarget target(320, 240);
+  render::RenderTarget target(width, height);
   target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
   const TreeLod lod;
   renderer.cull(camera, target.aspect(), lod);
-  renderer.draw(camera, 320, 240, 0.0, lod);
+  renderer.draw(camera, width, height, 0.0, lod);
   foliage.bake(camera);
-  foliage.draw(camera, 320, 240, 0.0, renderer, lod);
-  test::expectGolden(target.readColor(), "trees_leafy_oak", kTreeTolerance);
+  foliage.draw(camera, width, height, 0.0, renderer, lod);
+  return target.readColor();
+}
+
+TEST_F(TreeGolden, LeafyOakWithPhotoBarkAndLeaves) {
+  // The real thing: bark tiles synthesised from ez-tree's oak photo and normal map, foliage impostors of its
+  // oak leaf.
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("ez-tree/bark/oak_color_1k.jpg"));
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("ez-tree/leaves/oak_color.png"));
+  test::expectGolden(leafyOak(shaders(), 320, 240), "trees_leafy_oak", kTreeTolerance);
+}
+
+TEST_F(TreeGolden, DocumentationPictures) {
+  // docs/trees.md "Pictures": the bark close-ups (photo bark and flat colours, at the camera of
+  // trees_bark_closeup), the leafy oak at 960 × 720 and an almond's impostor atlas, into a directory.
+  const char* dir = std::getenv("SYLVA_TREE_PICTURES");
+  if (dir == nullptr) {
+    GTEST_SKIP() << "set SYLVA_TREE_PICTURES=<directory> to render the documentation pictures";
+  }
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("ez-tree/bark/oak_color_1k.jpg"));
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("ez-tree/leaves/oak_color.png"));
+  const std::filesystem::path out(dir);
+  {
+    auto forest = std::make_shared<Forest>(gridForest({"california-black-oak"}, 1, 1.0f, 4));
+    TreeRenderer renderer(shaders(), forest);
+    render::Camera camera;
+    camera.position = {1.6f, 4.2f, 2.2f};
+    camera.target = {0.0f, 4.4f, 0.0f};
+    camera.fovY = glm::radians(50.0f);
+    camera.nearPlane = 0.05f;
+    camera.farPlane = 100.0f;
+    auto closeUp = [&] {
+      render::RenderTarget target(480, 720);
+      target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
+      const TreeLod lod;
+      renderer.cull(camera, target.aspect(), lod);
+      renderer.draw(camera, 480, 720, 0.0, lod);
+      return target.readColor();
+    };
+    saveImage(out / "bark-flat-closeup.png", closeUp());
+    std::vector<int> speciesSet;
+    renderer.setBark(oakPhotoBark(*forest, speciesSet), speciesSet);
+    saveImage(out / "bark-oak-closeup.png", closeUp());
+  }
+  saveImage(out / "leafy-oak.png", leafyOak(shaders(), 960, 720));
+  {
+    auto forest = std::make_shared<Forest>(gridForest({"almond"}, 1, 1.0f, 4));
+    std::vector<int> speciesSet;
+    const std::vector<BarkSet> bark = oakPhotoBark(*forest, speciesSet);
+    const Image leaf = loadLeafImage(test::externalData("ez-tree/leaves/oak_color.png"));
+    ImpostorRenderer impostors(shaders());
+    impostors.bake(*forest, sceneBakeOptions(shaders(), bark, speciesSet, true, &leaf));
+    saveImage(out / "impostor-atlas.png", impostors.readAtlas(0));
+  }
 }
 
 TEST_F(TreeGolden, ForestToTheHorizon) {
