@@ -73,6 +73,8 @@ for saved in first.json tools.json; do
   if ! cmp -s "$work/$saved" "$expected"; then
     echo "$name: $saved differs from $expected:" >&2
     diff -u "$expected" "$work/$saved" >&2 || true
+    echo "$name: the editor's log:" >&2
+    tail -n 40 "$work/log" >&2
     cp "$work/$saved" "$out/$name.actual.json"
     failed=1
   fi

@@ -2,6 +2,8 @@
 // drags, the freeze brush).
 #include "internal/Editor.hpp"
 
+#include <sylva/core/Log.hpp>
+
 namespace sylva::folding_ui {
 
 void FoldEditor::onKey(int key, int mods) {
@@ -347,6 +349,11 @@ void FoldEditor::canvasInput() {
     const Gesture g = mGesture;
     mGesture = {};
     mSession->history().endCoalescing();
+    if (g.handle) {
+      // Where a drag ended, for the log (the GUI tests print it when a saved project differs).
+      log::info("select: handle of zone {} dragged from ({:.1f}, {:.1f}) to ({:.1f}, {:.1f})", g.handle->zone,
+                g.start.x, g.start.y, g.handleLast.x, g.handleLast.y);
+    }
     const Vec2 d = g.current - g.start;
     edit([&] {
       switch (g.tool) {
