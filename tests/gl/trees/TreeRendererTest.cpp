@@ -29,15 +29,26 @@ render::Camera lookingAt(glm::vec3 from, glm::vec3 to) {
   return camera;
 }
 
+// The forest's joint frames at rest and its piece table, as the renderer uploads them (the CPU cull's
+// inputs).
+std::vector<gpu::JointFrame> restFrames(const Forest& forest) {
+  std::vector<gpu::JointFrame> frames;
+  forestFrames(forest, {}, frames);
+  return frames;
+}
+std::vector<gpu::TreePieceGpu> pieceTable(const Forest& forest) {
+  std::vector<gpu::TreePieceGpu> table;
+  for (const Piece& p : forest.pieces.pieces) {
+    table.push_back(pieceTableEntry(p));
+  }
+  return table;
+}
+
 TEST_F(TreeRendererTest, CullingPassMatchesTheCpuReference) {
   auto forest = std::make_shared<Forest>(gridForest({"almond", "apple", "weeping-willow"}, 6, 6.0f, 2));
   TreeRenderer renderer(shaders(), forest);
-  std::vector<gpu::JointFrame> frames;
-  forestFrames(*forest, {}, frames);
-  std::vector<gpu::TreePieceGpu> table;
-  for (const Piece& p : forest->pieces.pieces) {
-    table.push_back(pieceTableEntry(p));
-  }
+  const std::vector<gpu::JointFrame> frames = restFrames(*forest);
+  const std::vector<gpu::TreePieceGpu> table = pieceTable(*forest);
   const float aspect = 16.0f / 9.0f;
   int partial = 0;
   for (const auto& [camera, distance] : {std::pair{lookingAt({-20, 6, 20}, {0, 2, 0}), 0.0f},
@@ -69,12 +80,8 @@ TEST_F(TreeRendererTest, TreesPastTheFarFieldAreCulledAndThePictureIsTheSame) {
   // and every fragment discarded.
   auto forest = std::make_shared<Forest>(gridForest({"almond", "apple"}, 6, 6.0f, 2));
   TreeRenderer renderer(shaders(), forest);
-  std::vector<gpu::JointFrame> frames;
-  forestFrames(*forest, {}, frames);
-  std::vector<gpu::TreePieceGpu> table;
-  for (const Piece& p : forest->pieces.pieces) {
-    table.push_back(pieceTableEntry(p));
-  }
+  const std::vector<gpu::JointFrame> frames = restFrames(*forest);
+  const std::vector<gpu::TreePieceGpu> table = pieceTable(*forest);
   const render::Camera camera = lookingAt({-6, 4, -6}, {15, 2, 15});
   render::RenderTarget target(240, 135);
   TreeLod nearOnly;
@@ -201,12 +208,8 @@ TEST_F(TreeRendererTest, SizeCullingMatchesTheCpuReferenceAndKeepsThePicture) {
   // keeps, and the picture hardly changes (the dropped pieces span under a pixel).
   auto forest = std::make_shared<Forest>(gridForest({"almond", "california-black-oak"}, 3, 6.0f, 5));
   TreeRenderer renderer(shaders(), forest);
-  std::vector<gpu::JointFrame> frames;
-  forestFrames(*forest, {}, frames);
-  std::vector<gpu::TreePieceGpu> table;
-  for (const Piece& p : forest->pieces.pieces) {
-    table.push_back(pieceTableEntry(p));
-  }
+  const std::vector<gpu::JointFrame> frames = restFrames(*forest);
+  const std::vector<gpu::TreePieceGpu> table = pieceTable(*forest);
   const int width = 320;
   const int height = 180;
   render::RenderTarget target(width, height);

@@ -58,6 +58,17 @@ TEST_F(TreeGolden, SmallForestOfFourSpecies) {
   test::expectGolden(render(renderer, camera, TreeView::Shaded), "trees_forest_shaded", kTreeTolerance);
 }
 
+// The trunk above the foot and the first fork of the oak of trees_bark_closeup, close.
+render::Camera barkCloseUpCamera() {
+  render::Camera camera;
+  camera.position = {1.6f, 4.2f, 2.2f};
+  camera.target = {0.0f, 4.4f, 0.0f};
+  camera.fovY = glm::radians(50.0f);
+  camera.nearPlane = 0.05f;
+  camera.farPlane = 100.0f;
+  return camera;
+}
+
 TEST_F(TreeGolden, BarkTilesCloseUp) {
   // Procedural bark (no photos needed): the tile rule, rotations and seams at a trunk and a fork, close.
   auto forest = std::make_shared<Forest>(gridForest({"california-black-oak"}, 1, 1.0f, 4));
@@ -66,12 +77,7 @@ TEST_F(TreeGolden, BarkTilesCloseUp) {
   sources.mode = "procedural";
   std::vector<int> speciesSet;
   renderer.setBark(barkSetsFor(*forest, sources, speciesSet), speciesSet);
-  render::Camera camera;
-  camera.position = {1.6f, 4.2f, 2.2f};
-  camera.target = {0.0f, 4.4f, 0.0f};
-  camera.fovY = glm::radians(50.0f);
-  camera.nearPlane = 0.05f;
-  camera.farPlane = 100.0f;
+  const render::Camera camera = barkCloseUpCamera();
   test::expectGolden(render(renderer, camera, TreeView::Shaded), "trees_bark_closeup", kTreeTolerance);
 }
 
@@ -132,12 +138,7 @@ TEST_F(TreeGolden, DocumentationPictures) {
   {
     auto forest = std::make_shared<Forest>(gridForest({"california-black-oak"}, 1, 1.0f, 4));
     TreeRenderer renderer(shaders(), forest);
-    render::Camera camera;
-    camera.position = {1.6f, 4.2f, 2.2f};
-    camera.target = {0.0f, 4.4f, 0.0f};
-    camera.fovY = glm::radians(50.0f);
-    camera.nearPlane = 0.05f;
-    camera.farPlane = 100.0f;
+    const render::Camera camera = barkCloseUpCamera();
     auto closeUp = [&] {
       render::RenderTarget target(480, 720);
       target.begin(glm::vec4(0.62f, 0.72f, 0.85f, 1.0f));
