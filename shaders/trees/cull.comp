@@ -23,7 +23,8 @@ void main() {
   }
   uvec4 inst = instances[i].joints;
   // Far field: a tree whose crown is past the fade band is its impostor alone; its pieces would draw nothing.
-  if (trees.far.y > trees.far.x && farBlend(crownDistance(inst.w & 0xffffffu, frame.cameraPos.xyz), trees.far.xy) >= 1.0) {
+  if (trees.far.y > trees.far.x &&
+      farBlend(crownDistance(inst.w & 0xffffffu, frame.cameraPos.xyz), trees.far.xy) >= 1.0) {
     return;
   }
   uint type = (inst.z >> 8) & 255u;

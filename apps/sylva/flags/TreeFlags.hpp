@@ -55,8 +55,7 @@ struct TreeFlags {
   trees::ForestLook look() const;
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
    * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-min-pixels,
-   * --trees-min-width,
-   * --trees-view, --trees-wind. */
+   * --trees-min-width, --trees-view, --trees-wind. */
   void add(CLI::App& command);
   /** Throws naming the option when a value is malformed (before any work is done). */
   void check() const;

@@ -82,7 +82,7 @@ struct JointWindSettings {
   float referenceFrequency = 0.83f;
   /** The literal cantilever frequency that maps onto referenceFrequency, Hz. */
   float referenceCantilever = 60.0f;
-  /** The calibration's exponent γ (0.32 with referenceFrequency 0.83 Hz: 2–7 Hz → 0.28–0.42 Hz, 10 kHz → 4.4
+  /** The calibration's exponent γ (0.32 with referenceFrequency 0.83 Hz: 2–7 Hz → 0.28–0.42 Hz, 10 kHz → 4.3
    * Hz). */
   float frequencyExponent = 0.32f;
 };
