@@ -50,6 +50,11 @@ void TreeFlags::add(CLI::App& command) {
   command.add_option("--trees-max-slope", forest.maxSlope, "Steepest ground a tree grows on, degrees")
       ->check(finiteRange(0.0, 90.0))
       ->capture_default_str();
+  command
+      .add_option("--trees-autumn", forest.autumn,
+                  "Season of the leaves: 0 summer green to 1 each species' full autumn colour")
+      ->check(finiteRange(0.0, 1.0))
+      ->capture_default_str();
   command.add_option("--trees-pixels", lod.pixelsPerSegment, "Tessellation target: pixels per segment")
       ->check(finiteRange(0.5, 100.0))
       ->capture_default_str();
@@ -181,6 +186,7 @@ scene::ForestDesc TreeFlags::forestDesc() const {
   f.seed = forest.seed;
   f.spacing = forest.spacing;
   f.maxSlope = forest.maxSlope;
+  f.autumn = forest.autumn;
   f.clusterSize = forest.clusterSize;
   f.bare = forest.bare;
   f.regionRadius = forest.regionRadius;

@@ -411,6 +411,7 @@ void TreesPanel::resetPending() {
   pendingCount = desc.count;
   pendingSeed = static_cast<int>(std::min<std::uint64_t>(desc.seed, 0x7fffffff));
   pendingSpacing = desc.spacing;
+  pendingAutumn = desc.autumn;
 }
 
 void TreesPanel::resetPendingFar() {
@@ -502,14 +503,17 @@ void TreesPanel::show(scene::SceneWorld& world, const render::GpuTimers& timers)
   ImGui::InputInt("seed", &pendingSeed);
   pendingSeed = std::max(pendingSeed, 0);
   ImGui::SliderFloat("spacing (m)", &pendingSpacing, 0.0f, 100.0f, "%.1f", kClamp);
+  ImGui::SliderFloat("autumn", &pendingAutumn, 0.0f, 1.0f, "%.2f", kClamp);
+  ui::disabledTooltip("leaves: 0 summer green, 1 each species' autumn colour");
   const bool edited = pendingCount != desc.count || static_cast<std::uint64_t>(pendingSeed) != desc.seed ||
-                      pendingSpacing != desc.spacing;
+                      pendingSpacing != desc.spacing || pendingAutumn != desc.autumn;
   ImGui::BeginDisabled(!edited && built);
   if (ImGui::Button("Rebuild")) {
     scene::ForestDesc next = desc;
     next.count = pendingCount;
     next.seed = static_cast<std::uint64_t>(pendingSeed);
     next.spacing = pendingSpacing;
+    next.autumn = pendingAutumn;
     rebuild(world, next);
   }
   ImGui::EndDisabled();

@@ -227,7 +227,8 @@ GrassLayer readGrass(const Node& n) {
 
 ForestDesc readForest(const Node& n) {
   n.object({"species", "count", "seed", "spacing", "max_slope", "min_height", "max_height", "density_map",
-            "cluster_size", "bare", "region", "bark", "foliage", "far_distance", "far_band", "far_count"});
+            "cluster_size", "bare", "region", "bark", "foliage", "far_distance", "far_band", "far_count",
+            "autumn"});
   ForestDesc f;
   {
     const Node s = n["species"];
@@ -282,6 +283,9 @@ ForestDesc readForest(const Node& n) {
   }
   if (n.has("bare")) {
     f.bare = n["bare"].real(0.0, 0.99);
+  }
+  if (n.has("autumn")) {
+    f.autumn = static_cast<float>(n["autumn"].real(0.0, 1.0));
   }
   if (n.has("region")) {
     const Node r = n["region"];

@@ -34,6 +34,7 @@ trees::ForestSettings forestSettings(const ForestDesc& f, float exaggeration, st
   s.seed = f.seed;
   s.spacing = f.spacing;
   s.maxSlope = f.maxSlope;
+  s.autumn = f.autumn;
   s.clusterSize = f.clusterSize;
   s.bare = f.bare;
   s.verticalScale = 1.0f; // placement reads the drawn (already exaggerated) heights

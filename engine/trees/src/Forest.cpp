@@ -56,6 +56,9 @@ void validate(const ForestSettings& s, const std::string& where) {
   if (!(std::isfinite(s.maxSlope) && s.maxSlope >= 0.0f && s.maxSlope <= 90.0f)) {
     fail("{}.maxSlope: must be in [0, 90] degrees", where);
   }
+  if (!(std::isfinite(s.autumn) && s.autumn >= 0.0f && s.autumn <= 1.0f)) {
+    fail("{}.autumn: must be in [0, 1] (0 summer, 1 full autumn colour)", where);
+  }
   if (std::isinf(s.minHeight) || std::isinf(s.maxHeight)) {
     fail("{}.minHeight/maxHeight: must be finite", where);
   }
@@ -129,6 +132,7 @@ Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& se
   forest.pieces = standardPieces();
   for (const std::string& name : settings.species) {
     forest.species.push_back(resolveSpecies(name));
+    forest.species.back().leafColour = seasonalLeafColour(forest.species.back(), settings.autumn);
   }
   Rng rng(hash64(settings.seed ^ 0xf0e57ULL));
   const float cell = std::max(settings.spacing, 0.5f);

@@ -48,6 +48,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 2, 0.7f, 0.0f, 0.2f, 0.2f, 0.18f, 0.04f, 3.5f, 0.45f),
                      order(1, 2, 0.4f, 0.0f, 0.4f, 0.2f, 0.18f, 0.04f, 3.0f, 0.5f)};
          s.leafColour = {0.27f, 0.45f, 0.16f};
+         s.autumnColour = {0.62f, 0.5f, 0.16f};
          s.leafCluster = 1.1f;
          return s;
        }},
@@ -78,6 +79,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 2, 0.5f, 0.0f, 0.3f, 0.2f, 0.2f, 0.05f, 3.5f, 0.5f)};
          s.barkColour = {0.62f, 0.6f, 0.52f};
          s.leafColour = {0.38f, 0.52f, 0.17f};
+         s.autumnColour = {0.85f, 0.66f, 0.1f};
          s.leafCluster = 0.9f;
          return s;
        }},
@@ -91,6 +93,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 3, 0.3f, 0.0f, 0.5f, 0.25f, 0.12f, 0.12f, 4.5f, 0.45f),
                      order(1, 2, 0.4f, 0.0f, 0.3f, 0.2f, 0.2f, 0.1f, 3.5f, 0.5f)};
          s.leafColour = {0.2f, 0.38f, 0.12f};
+         s.autumnColour = {0.66f, 0.12f, 0.08f};
          s.leafCluster = 0.9f;
          return s;
        }},
@@ -108,6 +111,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(3, 4, 0.0f, 0.0f, 0.0f, 0.2f, 0.05f, 0.5f, 10.0f, 0.5f)};
          s.barkColour = {0.3f, 0.26f, 0.2f};
          s.leafColour = {0.45f, 0.55f, 0.2f};
+         s.autumnColour = {0.8f, 0.68f, 0.14f};
          s.leafCluster = 0.7f;
          s.leafOrder = 3;
          s.youngModulus = 6e9f;
@@ -125,6 +129,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.3f, 0.08f, 3.0f, 0.45f)};
          s.barkColour = {0.22f, 0.2f, 0.18f};
          s.leafColour = {0.2f, 0.33f, 0.12f};
+         s.autumnColour = {0.55f, 0.38f, 0.12f};
          s.leafCluster = 2.0f;
          s.youngModulus = 11e9f;
          s.woodDensity = 850.0f;
@@ -141,6 +146,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 2, 0.5f, 0.0f, 0.2f, 0.1f, 0.2f, 0.0f, 3.0f, 0.45f),
                      order(1, 2, 0.3f, 0.0f, 0.4f, 0.1f, 0.2f, 0.0f, 3.0f, 0.5f)};
          s.leafColour = {0.3f, 0.48f, 0.16f};
+         s.autumnColour = {0.82f, 0.32f, 0.08f};
          s.leafCluster = 0.9f;
          return s;
        }},
@@ -154,6 +160,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
          s.orders = {order(1, 30, 0.0f, 0.0f, 0.95f, 0.0f, 0.02f, -0.12f, 1.3f, 0.22f),
                      order(1, 3, 0.2f, 0.0f, 0.4f, 0.1f, 0.04f, -0.15f, 1.3f, 0.5f)};
          s.leafColour = {0.24f, 0.44f, 0.15f};
+         s.autumnColour = {0.78f, 0.66f, 0.16f};
          s.leafCluster = 0.75f;
          return s;
        }},
@@ -169,6 +176,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 4, 0.0f, 0.0f, 0.6f, 0.1f, 0.06f, 0.12f, 5.0f, 0.5f),
                      order(0, 1, 0.2f, 0.0f, 0.3f, 0.1f, 0.1f, 0.15f, 3.0f, 0.5f)};
          s.leafColour = {0.33f, 0.47f, 0.2f};
+         s.autumnColour = {0.8f, 0.58f, 0.12f};
          s.leafCluster = 1.0f;
          return s;
        }},
@@ -185,6 +193,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(2, 2, 0.0f, 0.0f, 0.0f, 0.2f, 0.05f, 0.45f, 8.0f, 0.5f)};
          s.barkColour = {0.8f, 0.78f, 0.72f};
          s.leafColour = {0.35f, 0.5f, 0.18f};
+         s.autumnColour = {0.86f, 0.7f, 0.16f};
          s.leafCluster = 0.8f;
          s.leafOrder = 3;
          return s;
@@ -200,6 +209,7 @@ const std::map<std::string, std::function<Species()>>& presets() {
                      order(1, 2, 0.4f, 0.0f, 0.3f, 0.3f, 0.25f, 0.12f, 3.0f, 0.45f),
                      order(1, 2, 0.4f, 0.0f, 0.4f, 0.3f, 0.25f, 0.12f, 2.5f, 0.5f)};
          s.leafColour = {0.25f, 0.42f, 0.14f};
+         s.autumnColour = {0.6f, 0.45f, 0.14f};
          s.leafCluster = 1.1f;
          return s;
        }},
@@ -252,7 +262,8 @@ void validate(const Species& s, const std::string& file) {
   check(std::isfinite(s.sizeVariation) && s.sizeVariation >= 0.0f && s.sizeVariation < 1.0f, where,
         "sizeVariation", "must be in [0, 1)");
   check(!s.orders.empty() && s.orders.size() <= 17, where, "orders", "needs 1 … 17 entries");
-  check(finite(s.barkColour) && finite(s.leafColour), where, "colours", "must be finite");
+  check(finite(s.barkColour) && finite(s.leafColour) && finite(s.autumnColour), where, "colours",
+        "must be finite");
   check(std::isfinite(s.leafCluster) && s.leafCluster >= 0.0f && s.leafCluster <= 10.0f, where, "leafCluster",
         "must be in [0, 10] metres");
   check(s.leafOrder >= 0 && s.leafOrder <= 16, where, "leafOrder", "must be in [0, 16]");
@@ -305,6 +316,11 @@ std::vector<std::string> realSpeciesPresetNames() {
     }
   }
   return names;
+}
+
+glm::vec3 seasonalLeafColour(const Species& species, float autumn) {
+  const float t = std::isfinite(autumn) ? std::clamp(autumn, 0.0f, 1.0f) : 0.0f;
+  return species.leafColour * (1.0f - t) + species.autumnColour * t; // exact at both ends
 }
 
 const std::vector<std::string>& barkPhotoNames() {
@@ -369,6 +385,7 @@ nlohmann::json toJson(const Species& s) {
           {"orders", orders},
           {"barkColour", {s.barkColour.r, s.barkColour.g, s.barkColour.b}},
           {"leafColour", {s.leafColour.r, s.leafColour.g, s.leafColour.b}},
+          {"autumnColour", {s.autumnColour.r, s.autumnColour.g, s.autumnColour.b}},
           {"leafCluster", s.leafCluster},
           {"leafOrder", s.leafOrder},
           {"bark", s.bark},
@@ -381,8 +398,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, 1, where);
   const JsonNode root(json, where, "");
   root.object({"version", "name", "rule", "maxOrder", "maxDepth", "maxPieces", "minRadius", "trunkRadius",
-               "sizeVariation", "orders", "barkColour", "leafColour", "leafCluster", "leafOrder", "bark",
-               "youngModulus", "woodDensity", "damping"});
+               "sizeVariation", "orders", "barkColour", "leafColour", "autumnColour", "leafCluster",
+               "leafOrder", "bark", "youngModulus", "woodDensity", "damping"});
   Species s;
   s.name = root["name"].string();
   if (root.has("rule")) {
@@ -407,6 +424,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     s.barkColour = colour(root["barkColour"]);
   if (root.has("leafColour"))
     s.leafColour = colour(root["leafColour"]);
+  if (root.has("autumnColour"))
+    s.autumnColour = colour(root["autumnColour"]);
   if (root.has("leafCluster"))
     s.leafCluster = static_cast<float>(root["leafCluster"].number(0, 10));
   if (root.has("leafOrder"))

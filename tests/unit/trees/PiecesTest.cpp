@@ -315,6 +315,37 @@ TEST(Species, PresetsValidateAndJsonRoundTrips) {
   EXPECT_THROW(speciesPreset("baobab"), Error);
 }
 
+TEST(Species, LeavesTurnToTheirAutumnColour) {
+  // Every real species has its own autumn colour, warmer than its summer green (red over green rises: the
+  // tupelo turns scarlet, the birch and the aspen yellow), and the season blends linearly between them.
+  for (const std::string& n : realSpeciesPresetNames()) {
+    SCOPED_TRACE(n);
+    const Species s = speciesPreset(n);
+    const glm::vec3 summer = seasonalLeafColour(s, 0.0f);
+    const glm::vec3 autumn = seasonalLeafColour(s, 1.0f);
+    EXPECT_EQ(summer, s.leafColour);
+    EXPECT_EQ(autumn, s.autumnColour);
+    EXPECT_GT(autumn.r / autumn.g, 1.0f);
+    EXPECT_LT(summer.r / summer.g, 1.0f);
+    const glm::vec3 half = seasonalLeafColour(s, 0.5f);
+    EXPECT_NEAR(half.r, 0.5f * (summer.r + autumn.r), 1e-6f);
+    EXPECT_EQ(seasonalLeafColour(s, 3.0f), autumn); // clamped
+  }
+  EXPECT_GT(speciesPreset("black-tupelo").autumnColour.r / speciesPreset("black-tupelo").autumnColour.g,
+            4.0f);
+  // A species file may give its own; a bad one names the field.
+  nlohmann::json j = toJson(speciesPreset("almond"));
+  j["autumnColour"] = {0.9, 0.1, 0.05};
+  EXPECT_EQ(speciesFromJson(j, "red.json").autumnColour, glm::vec3(0.9f, 0.1f, 0.05f));
+  j["autumnColour"] = {0.9, 0.1};
+  try {
+    (void)speciesFromJson(j, "bad.json");
+    ADD_FAILURE() << "a two-number colour was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("autumnColour"), std::string::npos) << e.what();
+  }
+}
+
 } // namespace
 } // namespace sylva::trees
 

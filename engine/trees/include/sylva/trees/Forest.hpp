@@ -70,6 +70,8 @@ struct ForestSettings {
   float verticalScale = 1.0f;
   /** Relative weight of each species (same order as `species`, each > 0); empty: every species equally. */
   std::vector<float> speciesWeights;
+  /** Season of the leaves: 0 summer (each species' leafColour) … 1 full autumn colour (autumnColour). */
+  float autumn = 0.0f;
   /**
    * Density map over the terrain's footprint: `densityWidth` × `densityHeight` values in [0, 1], row 0 at
    * z = 0 (north), stretched over [0, extentX] × [0, extentZ]; a candidate at p survives with the map's

@@ -74,6 +74,8 @@ struct Species {
   std::vector<OrderParams> orders{OrderParams{}};
   glm::vec3 barkColour{0.33f, 0.25f, 0.19f};
   glm::vec3 leafColour{0.22f, 0.42f, 0.14f};
+  /** Leaf colour in full autumn colour, linear RGB (ForestSettings::autumn blends towards it). */
+  glm::vec3 autumnColour{0.62f, 0.42f, 0.12f};
   /**
    * Radius of the leaf cluster on each twig tip, metres (the foliage billboard's sphere, ± the foliage
    * settings' variation); 0: sized from the twig by FoliageSettings (radiusScale, minRadius, maxRadius).
@@ -104,6 +106,12 @@ struct Species {
  * (≤ 16, ≤ 64, ≤ 200,000), non-finite numbers.
  */
 void validate(const Species& species, const std::string& where);
+
+/**
+ * The leaf colour at `autumn` ∈ [0, 1]: 0 the summer leafColour, 1 the autumnColour, linear in between (the
+ * season's turn; values outside are clamped).
+ */
+glm::vec3 seasonalLeafColour(const Species& species, float autumn);
 
 /** Valid values of Species::bark: oak, birch, pine, willow, procedural. */
 const std::vector<std::string>& barkPhotoNames();
