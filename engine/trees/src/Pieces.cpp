@@ -335,10 +335,10 @@ Piece makePsi() {
 }
 
 Piece makeCap() {
-  // A twig tip tapering to a point (a rounded stub reads as a finger): the rim's cone for half a radius (as
-  // every piece continues it), rings at 60 %, 20 % and 6 % of the radius (the last keeps Phong tessellation
-  // from rounding the point), then three quads meeting at the tip on the axis; the cross-section at 95 % of
-  // the length is under 5 % of the rim's.
+  // A twig tip tapering to a point, since a rounded stub reads as a finger. Like every piece, it continues
+  // the rim's cone for half a radius. Then come rings at 60 %, 20 % and 6 % of the radius (the last one
+  // keeps Phong tessellation from rounding the point) and three quads meeting at the tip on the axis.
+  // The cross-section at 95 % of the length is under 5 % of the rim's.
   Builder b("Cap");
   const Ring root = b.rim(glm::mat4(1.0f));
   const Ring r1 = b.ring(glm::mat4(1.0f), 0.5f, 1.0f - 0.5f * kTanCone);

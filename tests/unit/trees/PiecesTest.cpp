@@ -32,8 +32,8 @@ TEST(Pieces, StandardSetValidatesAndHasTheNamedPieces) {
 }
 
 TEST(Pieces, TheCapTapersToAPointWithoutABulge) {
-  // Twig tips close to a point (issue 29: at most 5 % of the base radius), not in a rounded stub: sample the
-  // Phong-tessellated surface of every quad and take the widest point in each band of height.
+  // Twig tips close to a point (issue 29: at most 5 % of the base radius), not in a rounded stub.
+  // Samples the Phong-tessellated surface of every quad and takes the widest point in each band of height.
   const Piece cap = makeCap();
   constexpr int kBands = 20;
   std::array<float, kBands> widest{};
