@@ -22,8 +22,8 @@ SYLVA_GPU_BEGIN
 // Storage bindings of the tree surface, foliage and far-field passes. They reuse numbers of the grass
 // simulation's compute passes (never bound in one program together); every pass binds its buffers before use.
 #define SYLVA_TREE_QUAD_BINDING                                                                              \
-  16 // storage: uvec2[] per piece type per quad: x tile class | rotation << 8,
-     // y its four edge ids (8 bits each; 255: a rim edge)
+  16 // storage: uvec2[] per piece type per quad: x tile class | rotation << 8 | side flips << 10 | tile
+     // repeat ratio << 16 | its growth << 24 (1/16), y its four edge ids (8 bits each; 255: a rim edge)
 #define SYLVA_TREE_CENTRE_BINDING 17   // storage: vec4[] per tree: base (world xyz, m), crown height (w, m)
 #define SYLVA_TREE_FOLIAGE_BINDING 18  // storage: foliage anchors (FoliageRenderer)
 #define SYLVA_TREE_IMPOSTOR_BINDING 19 // storage: far-field impostor instances (ImpostorRenderer)
@@ -33,6 +33,7 @@ SYLVA_GPU_BEGIN
 #define SYLVA_TREE_FOLIAGE_UNIT 10    // sampler2D: the 2.5D leaf-cloud impostor (rgb colour, a depth)
 #define SYLVA_TREE_IMPOSTOR_UNIT 11   // sampler2DArray: far-field octahedral atlas (first of the units used)
 #define SYLVA_TREE_MAX_TILE_CLASSES 4 // bark tile classes (the pieces use 0: plain, 1: by a fork, 2: crotch)
+#define SYLVA_TREE_MAX_TILE_REPEAT 32 // most bark tiles along one quad's grain (sylva::trees::kMaxTileRepeat)
 
 /**
  * A joint's world frame as three rows of a 3x4 matrix: world = (dot(x, p1), dot(y, p1), dot(z, p1)) with
@@ -46,12 +47,18 @@ struct JointFrame {
 SYLVA_ASSERT_SIZE(JointFrame, 48);
 
 /** One piece instance: x = root joint index, y = first terminal joint index, z = rim rotation (0 … 5) |
- * piece type << 8 | stretch reach << 16 (how far its stretch moves its leaf rims up the root axis, model
- * units in 8.8 fixed point; 0 unstretched), w = tree index | species << 24. */
+ * piece type << 4 | tile stretch << 8 (TreeNode::stretch × 16, rounded, 1 … 255: how many bark tiles its
+ * quads take along the grain, sylva::trees::tileRepeat) | stretch reach << 16 (how far its stretch moves its
+ * leaf rims up the root axis, model units in 8.8 fixed point; 0 unstretched), w = tree index | species << 24.
+ * Read the fields of z with the macros below. */
 struct TreeInstanceGpu {
   uvec4 joints;
 };
 SYLVA_ASSERT_SIZE(TreeInstanceGpu, 16);
+#define SYLVA_TREE_INSTANCE_ROTATION(z) ((z)&15u)
+#define SYLVA_TREE_INSTANCE_TYPE(z) (((z) >> 4) & 15u)
+#define SYLVA_TREE_INSTANCE_STRETCH(z) (((z) >> 8) & 255u)
+#define SYLVA_TREE_INSTANCE_REACH(z) ((z) >> 16)
 
 /**
  * Per piece type: bounding sphere in model space (xyz centre, w radius, rim units), commands and list (x

@@ -27,14 +27,14 @@ void main() {
       farBlend(crownDistance(inst.w & 0xffffffu, frame.cameraPos.xyz), trees.far.xy) >= 1.0) {
     return;
   }
-  uint type = (inst.z >> 8) & 255u;
+  uint type = SYLVA_TREE_INSTANCE_TYPE(inst.z);
   TreePieceGpu piece = pieceTable[type];
   JointFrame root = joints[inst.x];
   // Rotation about the rim axis moves the sphere's centre around it: take the axis point and widen the radius.
   // A stretched piece reaches `reach` model units further up its axis: centre half-way, widen by half.
   vec3 c = piece.sphere.xyz;
   float scale = length(vec3(root.x.x, root.y.x, root.z.x));
-  float reach = float(inst.z >> 16) / 256.0;
+  float reach = float(SYLVA_TREE_INSTANCE_REACH(inst.z)) / 256.0;
   vec3 centre = framePoint(root, vec3(0.0, c.y + 0.5 * reach, 0.0));
   float radius = (piece.sphere.w + length(c.xz) + 0.5 * reach) * scale * trees.cull.x;
   for (int p = 0; p < 6; ++p) {

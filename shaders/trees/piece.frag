@@ -17,8 +17,9 @@ in float fRootWeight;
 flat in uint fInstance;
 flat in uint fPatch;
 flat in float fLevel;
-in vec2 fTile;
-flat in uint fTileClass; // class | rotation << 8
+in vec2 fTile;             // x across the quad in [0, 1], y along its grain in [0, fTileRepeat]
+flat in uint fTileRepeat;  // tiles stacked along the grain
+flat in uint fTileClass; // the quad table entry x (piece.tese)
 flat in uint fTileEdges;
 
 /** The tangent-space normal `tn` (x along the tile's x, y along its y) in world space: the cotangent frame of
@@ -69,7 +70,7 @@ void main() {
       outColour = vec4(1.0, 0.0, 1.0, 1.0);
       return;
     }
-    albedo = kTypeColours[(inst.z >> 8) & 7u];
+    albedo = kTypeColours[SYLVA_TREE_INSTANCE_TYPE(inst.z) & 7u];
   } else if (view == 2u) {
     albedo = vec3(fRootWeight);
   } else if (view == 3u) {
@@ -77,21 +78,30 @@ void main() {
     float t = clamp(log2(max(fLevel, 1.0)) / 6.0, 0.0, 1.0);
     albedo = mix(vec3(0.15, 0.3, 0.9), vec3(0.95, 0.2, 0.1), t);
   } else if (view == 4u) {
-    uint tile = trees.bark.x > 0.0 ? barkTile(inst.x, fPatch, fTileClass, fTileEdges) : 0u;
-    outColour = vec4(float(tile & 255u), float(fPatch & 255u), float(fInstance & 255u),
-                     float(1u + min(fInstance >> 8, 254u))) / 255.0;
+    // Tile ids: tile, quad, the sub-tile along the grain (high 3 bits) with the instance's low 5 bits, and
+    // 1 + the instance's high bits (0: nothing drawn).
+    uint sub = subTileOf(fTile.y, fTileRepeat);
+    uint tile = trees.bark.x > 0.0 ? barkTile(inst.x, fPatch, fTileClass, fTileEdges, sub, fTileRepeat) : 0u;
+    outColour = vec4(float(tile & 255u), float(fPatch & 255u), float((fInstance & 31u) | ((sub & 7u) << 5)),
+                     float(1u + min(fInstance >> 5, 254u))) / 255.0;
     return;
   } else if (trees.bark.x > 0.0) {
-    // Bark tiles: this quad's tile in its class with its edge colours, per piece instance (seed 000 §5.1).
+    // Bark tiles: this quad's sub-tile in its class with its edge colours, per piece instance (seed 000
+    // §5.1); quads take as many tiles along their grain as keep the tiles' shape (tileRepeat).
     uint species = min(inst.w >> 24, uint(SYLVA_TREE_MAX_SPECIES - 1));
-    uint tile = barkTile(inst.x, fPatch, fTileClass, fTileEdges);
+    uint sub = subTileOf(fTile.y, fTileRepeat);
+    uint tile = barkTile(inst.x, fPatch, fTileClass, fTileEdges, sub, fTileRepeat);
     float layer = trees.colours[species].w * trees.bark.x + float(tile);
-    // Edge lines of the quad sample the tiles' shared outermost texels.
+    // Edge lines of the quad sample the tiles' shared outermost texels. The gradients are the continuous
+    // coordinate's, so the mip level does not jump where one sub-tile ends and the next begins.
     float size = trees.bark.y;
-    vec3 st = vec3((fTile * (size - 1.0) + 0.5) / size, layer);
-    albedo = texture(barkColour, st).rgb;
+    vec2 scale = vec2((size - 1.0) / size);
+    vec3 st = vec3((vec2(fTile.x, fTile.y - float(sub)) * (size - 1.0) + 0.5) / size, layer);
+    vec2 gx = dFdx(fTile) * scale;
+    vec2 gy = dFdy(fTile) * scale;
+    albedo = textureGrad(barkColour, st, gx, gy).rgb;
     if (trees.bark.z > 0.0) {
-      n = perturb(n, texture(barkNormal, st).xyz * 2.0 - 1.0);
+      n = perturb(n, textureGrad(barkNormal, st, gx, gy).xyz * 2.0 - 1.0);
     }
   } else {
     uint h = lowbias32(fPatch * 747796405u ^ lowbias32((inst.w & 0xffffffu) * 2891336453u + fInstance));

@@ -22,8 +22,9 @@ out float fRootWeight;
 flat out uint fInstance;
 flat out uint fPatch;
 flat out float fLevel;
-out vec2 fTile;         // tile coordinates (x across, y along the branch) in [0, 1]^2
-flat out uint fTileClass; // class | rotation << 8
+out vec2 fTile;         // tile coordinates: x across in [0, 1], y along the branch in [0, repeat]
+flat out uint fTileRepeat; // tiles along the quad's grain (tileRepeat)
+flat out uint fTileClass; // the quad table entry x: class | rotation << 8 | side flips << 10 | repeat
 flat out uint fTileEdges; // the quad's four edge ids
 
 const float kAlpha = 0.75;
@@ -52,8 +53,10 @@ void main() {
   // The quad's stable id within its piece (gl_PrimitiveID restarts with every command and instance).
   fPatch = teQuadBase[0] + uint(gl_PrimitiveID);
   fLevel = gl_TessLevelInner[0];
-  uvec2 entry = quadTileEntry((instances[teInstance[0]].joints.z >> 8) & 255u, fPatch);
-  fTile = tileCoord(vec2(u, v), (entry.x >> 8) & 3u);
+  uint z = instances[teInstance[0]].joints.z;
+  uvec2 entry = quadTileEntry(SYLVA_TREE_INSTANCE_TYPE(z), fPatch);
+  fTileRepeat = tileRepeat(entry.x, SYLVA_TREE_INSTANCE_STRETCH(z));
+  fTile = tileCoord(vec2(u, v), (entry.x >> 8) & 3u) * vec2(1.0, float(fTileRepeat));
   fTileClass = entry.x;
   fTileEdges = entry.y;
   gl_Position = frame.viewProj * vec4(world, 1.0);

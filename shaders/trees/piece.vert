@@ -28,8 +28,8 @@ uint globalJoint(uvec4 inst, uint j) { return j == 0u ? inst.x : inst.y + j - 1u
 
 void main() {
   uvec4 inst = instances[aInstance].joints;
-  uint rotation = inst.z & 255u;
-  uint type = (inst.z >> 8) & 255u;
+  uint rotation = SYLVA_TREE_INSTANCE_ROTATION(inst.z);
+  uint type = SYLVA_TREE_INSTANCE_TYPE(inst.z);
   vec3 world;
   vec3 normal;
   if (aRim >= 0) {

@@ -61,6 +61,31 @@ uint chooseTile(uint seed, uint quad, uint first, uint count) {
   return first + lowbias32(seed ^ (quad * 0x85ebca6bu + 0x27d4eb2fu)) % count;
 }
 
+/** tileRepeat of sylva/trees/Bark.hpp: tiles along the grain of a quad (its table entry x) in an instance of
+ * tile stretch `stretch` (SYLVA_TREE_INSTANCE_STRETCH), in the same integer arithmetic. */
+uint tileRepeat(uint entry, uint stretch) {
+  int ratio = int((entry >> 16) & 255u);
+  int growth = int(entry >> 24);
+  int scaled = ratio * 16 + (int(stretch) - 16) * growth + 128;
+  return scaled <= 0 ? 1u : uint(clamp(scaled / 256, 1, SYLVA_TREE_MAX_TILE_REPEAT));
+}
+
+/** sideEdgeColour of sylva/trees/Bark.hpp: part `part` of an edge along the grain (rim edges: colour 0). */
+uint sideEdgeColour(uint seed, uint edge, uint part, uint colours) {
+  if (edge == 255u || colours <= 1u) {
+    return 0u;
+  }
+  return lowbias32(seed ^ (edge * 0x9e3779b9u + 0x165667b1u + part * 0x68e31da4u)) % colours;
+}
+
+/** innerEdgeColour of sylva/trees/Bark.hpp: the edge between sub-tiles `sub` − 1 and `sub` of a quad. */
+uint innerEdgeColour(uint seed, uint quad, uint sub, uint colours) {
+  if (colours <= 1u) {
+    return 0u;
+  }
+  return lowbias32(seed ^ (quad * 0x2c1b3c6du + sub * 0x297a2d39u + 0x1b873593u)) % colours;
+}
+
 /** edgeColour of sylva/trees/Bark.hpp: rim edges (id 255) have colour 0. */
 uint edgeColour(uint seed, uint edge, uint colours) {
   if (edge == 255u || colours <= 1u) {
@@ -69,8 +94,9 @@ uint edgeColour(uint seed, uint edge, uint colours) {
   return lowbias32(seed ^ (edge * 0x9e3779b9u + 0x165667b1u)) % colours;
 }
 
-/** barkTile of sylva/trees/Bark.hpp: the layer within a bark set of a quad (class, rotation, edge ids). */
-uint barkTile(uint rootJoint, uint quad, uint classRotation, uint edges) {
+/** barkTile of sylva/trees/Bark.hpp: the layer within a bark set of sub-tile `sub` of `repeat` of a quad
+ * (class, rotation, edge ids). */
+uint barkTile(uint rootJoint, uint quad, uint classRotation, uint edges, uint sub, uint repeat) {
   uint cls = min(classRotation & 255u, uint(SYLVA_TREE_MAX_TILE_CLASSES - 1));
   uint rotation = (classRotation >> 8) & 3u;
   uint seed = instanceTileSeed(rootJoint);
@@ -79,12 +105,26 @@ uint barkTile(uint rootJoint, uint quad, uint classRotation, uint edges) {
   uint weight = 1u;
   for (uint k = 0u; k < 4u; ++k) {
     uint e = (rotation + k) & 3u;
-    block += edgeColour(seed, (edges >> (8u * e)) & 255u, colours) * weight;
+    uint colour;
+    if (k == 0u && sub > 0u) {
+      colour = innerEdgeColour(seed, quad, sub, colours);
+    } else if (k == 2u && sub + 1u < repeat) {
+      colour = innerEdgeColour(seed, quad, sub + 1u, colours);
+    } else if ((k & 1u) == 1u) {
+      bool flip = ((classRotation >> (10u + k / 2u)) & 1u) != 0u;
+      colour = sideEdgeColour(seed, (edges >> (8u * e)) & 255u, flip ? repeat - 1u - sub : sub, colours);
+    } else {
+      colour = edgeColour(seed, (edges >> (8u * e)) & 255u, colours);
+    }
+    block += colour * weight;
     weight *= colours;
   }
   uint variants = max(trees.tileCount[cls], 1u);
-  return chooseTile(seed, quad, trees.tileFirst[cls] + block * variants, variants);
+  return chooseTile(seed, quad + 256u * sub, trees.tileFirst[cls] + block * variants, variants);
 }
+
+/** subTile of sylva/trees/Bark.hpp: the sub-tile of grain coordinate `along` (tile y × repeat). */
+uint subTileOf(float along, uint repeat) { return min(uint(max(floor(along), 0.0)), max(repeat, 1u) - 1u); }
 
 /** A point through a frame (three rows of a 3x4 matrix). */
 vec3 framePoint(JointFrame f, vec3 p) {

@@ -6,6 +6,8 @@
 #include <sylva/texsynth/Procedural.hpp>
 #include <sylva/texsynth/TileSetIo.hpp>
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -145,6 +147,109 @@ void validate(const BarkSet& set, const std::string& where) {
   }
 }
 
+namespace {
+
+/** How far vertex `v` moves along the model y axis per unit of stretch − 1 (leafBind: leaf joints' binds move
+ * up by their height × (stretch − 1); linear blend skinning carries the vertex with its weights). */
+float stretchRate(const Piece& piece, const PieceVertex& v) {
+  float rate = 0.0f;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::size_t j = v.joints[k];
+    if (j < piece.joints.size()) {
+      rate += v.weights[static_cast<int>(k)] * piece.joints[j].bind[3].y;
+    }
+  }
+  return rate;
+}
+
+/** PieceTiling::repeat: groups of quads joined over side edges (union-find), each group's mean ratio and
+ * growth, or one tile where a side edge of the group is a rim or not a side of its other quad. */
+std::vector<std::array<std::uint8_t, 2>>
+quadRepeats(const Piece& piece, const PieceTiling& tiling,
+            const std::map<std::pair<std::uint32_t, std::uint32_t>, int>& uses) {
+  const std::size_t count = piece.quads.size();
+  std::vector<std::size_t> parent(count);
+  for (std::size_t q = 0; q < count; ++q) {
+    parent[q] = q;
+  }
+  auto find = [&](std::size_t q) {
+    while (parent[q] != q) {
+      parent[q] = parent[parent[q]];
+      q = parent[q];
+    }
+    return q;
+  };
+  auto key = [](std::uint32_t a, std::uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  // Tile side k of quad q is quad edge (rotation + k) mod 4; sides 1 and 3 run along the grain.
+  auto side = [&](std::size_t q, std::size_t e) { return ((e + 4 - tiling.rotation[q]) % 4) % 2 == 1; };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::size_t, std::size_t>>> owners;
+  for (std::size_t q = 0; q < count; ++q) {
+    for (std::size_t e = 0; e < 4; ++e) {
+      owners[key(piece.quads[q][e], piece.quads[q][(e + 1) % 4])].push_back({q, e});
+    }
+  }
+  // An edge along the grain of both its quads joins their groups (they split it alike). One along the grain
+  // of one quad only, or on a rim, keeps that quad's group to one tile: the other side sees one tile's line.
+  std::vector<bool> single(count, false);
+  for (const auto& [edge, list] : owners) {
+    const bool shared = list.size() == 2 && uses.at(edge) == 2;
+    const bool both = shared && side(list[0].first, list[0].second) && side(list[1].first, list[1].second);
+    if (both) {
+      parent[find(list[0].first)] = find(list[1].first);
+      continue;
+    }
+    for (const auto& o : list) {
+      if (side(o.first, o.second)) {
+        single[o.first] = true;
+      }
+    }
+  }
+  // Per group: summed side-edge lengths and growth rates, and summed widths (the tile-x edges).
+  struct Sums {
+    double length = 0.0, growth = 0.0, width = 0.0;
+    int sides = 0, widths = 0;
+    bool single = false;
+  };
+  std::vector<Sums> groups(count);
+  for (std::size_t q = 0; q < count; ++q) {
+    Sums& g = groups[find(q)];
+    g.single = g.single || single[q];
+    const int r = tiling.rotation[q];
+    auto corner = [&](int c) -> const PieceVertex& {
+      return piece.vertices[piece.quads[q][static_cast<std::size_t>((r + c) % 4)]];
+    };
+    // The tile's y runs corner r → r + 3 and r + 1 → r + 2; its x runs r → r + 1 and r + 3 → r + 2.
+    for (const auto& [from, to] : {std::pair{0, 3}, std::pair{1, 2}}) {
+      const glm::vec3 d = corner(to).position - corner(from).position;
+      const float length = glm::length(d);
+      g.length += length;
+      if (length > 0.0f) {
+        g.growth += (stretchRate(piece, corner(to)) - stretchRate(piece, corner(from))) * d.y / length;
+      }
+      ++g.sides;
+    }
+    for (const auto& [from, to] : {std::pair{0, 1}, std::pair{3, 2}}) {
+      g.width += glm::length(corner(to).position - corner(from).position);
+      ++g.widths;
+    }
+  }
+  std::vector<std::array<std::uint8_t, 2>> out(count, {16, 0});
+  for (std::size_t q = 0; q < count; ++q) {
+    const Sums& g = groups[find(q)];
+    const double width = g.width / std::max(g.widths, 1);
+    if (g.single || !(width > 1e-4)) {
+      continue;
+    }
+    auto fixed = [](double x) {
+      return static_cast<std::uint8_t>(std::clamp(std::lround(x * 16.0), 0L, 255L));
+    };
+    out[q] = {fixed(g.length / g.sides / width), fixed(std::max(g.growth / g.sides, 0.0) / width)};
+  }
+  return out;
+}
+
+} // namespace
+
 PieceTiling pieceTiling(const Piece& piece) {
   PieceTiling tiling;
   tiling.rotation = quadTileRotations(piece);
@@ -173,7 +278,55 @@ PieceTiling pieceTiling(const Piece& piece) {
     }
     tiling.edges.push_back(e);
   }
+  tiling.repeat = quadRepeats(piece, tiling, uses);
+  for (std::size_t q = 0; q < piece.quads.size(); ++q) {
+    const auto& quad = piece.quads[q];
+    const std::size_t r = tiling.rotation[q];
+    // Side 1 runs corner r + 1 → r + 2 along the tile's y, side 3 corner r → r + 3.
+    const bool flip1 = quad[(r + 1) % 4] > quad[(r + 2) % 4];
+    const bool flip3 = quad[r] > quad[(r + 3) % 4];
+    tiling.sideFlip.push_back(static_cast<std::uint8_t>((flip1 ? 1 : 0) | (flip3 ? 2 : 0)));
+  }
   return tiling;
+}
+
+std::uint32_t tileStretch(float stretch) {
+  return static_cast<std::uint32_t>(std::clamp(std::lround(stretch * 16.0f), 1L, 255L));
+}
+
+std::uint32_t tileRepeat(const PieceTiling& tiling, std::size_t quad, std::uint32_t stretch) {
+  if (quad >= tiling.repeat.size()) {
+    return 1;
+  }
+  const int ratio = tiling.repeat[quad][0];
+  const int growth = tiling.repeat[quad][1];
+  // (ratio + (stretch / 16 − 1) · growth) / 16, rounded, in integers: both sides compute the same bits.
+  const int scaled = ratio * 16 + (static_cast<int>(stretch) - 16) * growth + 128;
+  const int n = scaled <= 0 ? 1 : scaled / 256;
+  return static_cast<std::uint32_t>(std::clamp(n, 1, static_cast<int>(kMaxTileRepeat)));
+}
+
+std::pair<std::uint32_t, float> subTile(float y, std::uint32_t repeat) {
+  const float along = y * static_cast<float>(repeat);
+  const auto sub =
+      std::min(static_cast<std::uint32_t>(std::max(std::floor(along), 0.0f)), std::max(repeat, 1u) - 1u);
+  return {sub, along - static_cast<float>(sub)};
+}
+
+std::uint32_t sideEdgeColour(std::uint32_t seed, std::uint8_t edge, std::uint32_t part,
+                             std::uint32_t colours) {
+  if (edge == kRimEdge || colours <= 1) {
+    return 0;
+  }
+  return lowbias32(seed ^ (std::uint32_t{edge} * 0x9e3779b9u + 0x165667b1u + part * 0x68e31da4u)) % colours;
+}
+
+std::uint32_t innerEdgeColour(std::uint32_t seed, std::uint32_t quad, std::uint32_t sub,
+                              std::uint32_t colours) {
+  if (colours <= 1) {
+    return 0;
+  }
+  return lowbias32(seed ^ (quad * 0x2c1b3c6du + sub * 0x297a2d39u + 0x1b873593u)) % colours;
 }
 
 std::uint32_t edgeColour(std::uint32_t seed, std::uint8_t edge, std::uint32_t colours) {
@@ -184,12 +337,24 @@ std::uint32_t edgeColour(std::uint32_t seed, std::uint8_t edge, std::uint32_t co
 }
 
 std::uint32_t quadColouring(const PieceTiling& tiling, std::size_t quad, std::uint32_t seed,
-                            std::uint32_t colours) {
+                            std::uint32_t colours, std::uint32_t sub, std::uint32_t repeat) {
+  const auto q = static_cast<std::uint32_t>(quad);
   std::uint32_t index = 0;
   std::uint32_t weight = 1;
   for (std::size_t k = 0; k < 4; ++k) {
     const std::size_t e = (tiling.rotation[quad] + k) % 4;
-    index += edgeColour(seed, tiling.edges[quad][e], colours) * weight;
+    std::uint32_t colour = 0;
+    if (k == 0 && sub > 0) {
+      colour = innerEdgeColour(seed, q, sub, colours);
+    } else if (k == 2 && sub + 1 < repeat) {
+      colour = innerEdgeColour(seed, q, sub + 1, colours);
+    } else if (k % 2 == 1) {
+      const bool flip = quad < tiling.sideFlip.size() && ((tiling.sideFlip[quad] >> (k / 2)) & 1u) != 0;
+      colour = sideEdgeColour(seed, tiling.edges[quad][e], flip ? repeat - 1 - sub : sub, colours);
+    } else {
+      colour = edgeColour(seed, tiling.edges[quad][e], colours);
+    }
+    index += colour * weight;
     weight *= colours;
   }
   return index;
@@ -201,7 +366,7 @@ std::uint32_t colourings(int edgeColours) {
 }
 
 std::uint32_t barkTile(const BarkSet& set, const Piece& piece, const PieceTiling& tiling,
-                       std::uint32_t rootJoint, std::uint32_t quad) {
+                       std::uint32_t rootJoint, std::uint32_t quad, std::uint32_t sub, std::uint32_t repeat) {
   const std::uint32_t cls = quad < piece.tileClass.size() ? piece.tileClass[quad] : 0u;
   std::size_t c = std::min<std::size_t>(cls, SYLVA_TREE_MAX_TILE_CLASSES - 1);
   if (set.classCount[c] == 0) {
@@ -209,9 +374,9 @@ std::uint32_t barkTile(const BarkSet& set, const Piece& piece, const PieceTiling
   }
   const std::uint32_t seed = instanceTileSeed(rootJoint);
   const std::uint32_t variants = std::max(set.classCount[c] / colourings(set.edgeColours), 1u);
-  const std::uint32_t block =
-      quadColouring(tiling, quad, seed, static_cast<std::uint32_t>(std::max(set.edgeColours, 1)));
-  return chooseTile(seed, quad, set.classFirst[c] + block * variants, variants);
+  const std::uint32_t block = quadColouring(
+      tiling, quad, seed, static_cast<std::uint32_t>(std::max(set.edgeColours, 1)), sub, repeat);
+  return chooseTile(seed, quad + 256u * sub, set.classFirst[c] + block * variants, variants);
 }
 
 BarkSet barkSetFromTiles(const texsynth::TileSet& tiles, const std::string& name) {
@@ -413,7 +578,8 @@ std::vector<glm::uvec2> quadTileTable(const Piece& piece) {
   for (std::size_t q = 0; q < out.size(); ++q) {
     const std::uint32_t cls = q < piece.tileClass.size() ? piece.tileClass[q] : 0u;
     out[q].x = std::min<std::uint32_t>(cls, SYLVA_TREE_MAX_TILE_CLASSES - 1) |
-               (std::uint32_t{tiling.rotation[q]} << 8);
+               (std::uint32_t{tiling.rotation[q]} << 8) | (std::uint32_t{tiling.sideFlip[q]} << 10) |
+               (std::uint32_t{tiling.repeat[q][0]} << 16) | (std::uint32_t{tiling.repeat[q][1]} << 24);
     for (std::size_t e = 0; e < 4; ++e) {
       out[q].y |= std::uint32_t{tiling.edges[q][e]} << (8 * e);
     }

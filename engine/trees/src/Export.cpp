@@ -182,92 +182,115 @@ void tessellate(const PieceSet& pieces, const TreeTopology& tree,
         p[c] = corners[c]->position;
         nn[c] = corners[c]->normal;
       }
-      std::array<glm::vec2, 4> uv{};
+      QuadUvs uvs;
       if (options.barkUv) {
-        uv = options.barkUv(n, q);
+        uvs = options.barkUv(n, q);
+        if (uvs.strips.empty() || uvs.strips.size() > 1024) {
+          fail("{}: {} texture strips for quad {} of piece instance {} (1 … 1024)", where, uvs.strips.size(),
+               q, n);
+        }
       } else {
         // The piece's own (u, v), unwrapped across the seam where u goes round from 1 to 0.
         float top = 0.0f;
         for (std::size_t c = 0; c < 4; ++c) {
           top = std::max(top, piece.vertices[quad[c]].u);
         }
+        std::array<glm::vec2, 4> uv{};
         for (std::size_t c = 0; c < 4; ++c) {
           const PieceVertex& v = piece.vertices[quad[c]];
           uv[c] = glm::vec2(v.u < top - 0.5f ? v.u + 1.0f : v.u, 1.0f - v.v);
         }
+        uvs.strips.push_back(uv);
       }
-      for (std::uint32_t j = 0; j <= L; ++j) {
-        for (std::uint32_t i = 0; i <= L; ++i) {
-          // The grid point's key when it lies on the quad's boundary (shared with the neighbouring quad).
-          std::optional<GridKey> key;
-          auto edge = [&](std::uint32_t from, std::uint32_t to, std::uint32_t s) {
-            const std::uint32_t a = quad[from];
-            const std::uint32_t b = quad[to];
-            if (s == 0) {
-              return GridKey{a, a, 0};
+      // Strips cut the quad's domain along s or t; each is an L × L grid, so the quad is (strips · L) × L.
+      const auto strips = static_cast<std::uint32_t>(uvs.strips.size());
+      const std::uint32_t cellsS = uvs.alongS ? L * strips : L;
+      const std::uint32_t cellsT = uvs.alongS ? L : L * strips;
+      // The grid point's key when it lies on the quad's boundary (shared with the neighbouring quad): edge
+      // from corner `from` to `to`, `s` of its `cells` steps from `from`.
+      auto edge = [&](std::uint32_t from, std::uint32_t to, std::uint32_t s, std::uint32_t cells) {
+        const std::uint32_t a = quad[from];
+        const std::uint32_t b = quad[to];
+        if (s == 0) {
+          return GridKey{a, a, 0};
+        }
+        if (s == cells) {
+          return GridKey{b, b, 0};
+        }
+        return a < b ? GridKey{a, b, s} : GridKey{b, a, cells - s};
+      };
+      for (std::uint32_t strip = 0; strip < strips; ++strip) {
+        const std::uint32_t firstS = uvs.alongS ? strip * L : 0;
+        const std::uint32_t firstT = uvs.alongS ? 0 : strip * L;
+        for (std::uint32_t j = 0; j <= L; ++j) {
+          for (std::uint32_t i = 0; i <= L; ++i) {
+            const std::uint32_t gs = firstS + i;
+            const std::uint32_t gt = firstT + j;
+            std::optional<GridKey> key;
+            if (gt == 0) {
+              key = edge(0, 1, gs, cellsS);
+            } else if (gt == cellsT) {
+              key = edge(3, 2, gs, cellsS);
+            } else if (gs == 0) {
+              key = edge(0, 3, gt, cellsT);
+            } else if (gs == cellsS) {
+              key = edge(1, 2, gt, cellsT);
             }
-            if (s == L) {
-              return GridKey{b, b, 0};
-            }
-            return a < b ? GridKey{a, b, s} : GridKey{b, a, L - s};
-          };
-          if (j == 0) {
-            key = edge(0, 1, i);
-          } else if (j == L) {
-            key = edge(3, 2, i);
-          } else if (i == 0) {
-            key = edge(0, 3, j);
-          } else if (i == L) {
-            key = edge(1, 2, j);
-          }
-          const float s = i == L ? 1.0f : static_cast<float>(i) * step;
-          const float t = j == L ? 1.0f : static_cast<float>(j) * step;
-          const std::array<float, 4> w{(1.0f - s) * (1.0f - t), s * (1.0f - t), s * t, (1.0f - s) * t};
-          const glm::vec2 texcoord = bilinear(uv, w);
-          std::uint32_t index = 0;
-          std::optional<std::uint32_t> same;
-          if (key) {
-            if (const auto it = shared.find(*key); it != shared.end()) {
-              same = it->second;
-            }
-          }
-          if (same && glm::all(glm::lessThanEqual(glm::abs(lod.uvs[*same] - texcoord), glm::vec2(1e-6f)))) {
-            index = *same;
-          } else {
-            if (lod.positions.size() >= std::numeric_limits<std::uint32_t>::max()) {
-              fail("{}: level {} makes over 2^32 vertices", where, level);
-            }
-            index = static_cast<std::uint32_t>(lod.positions.size());
-            if (same) {
-              // Same point, another texture coordinate: a copy of the shared vertex (watertight).
-              lod.positions.push_back(lod.positions[*same]);
-              lod.normals.push_back(lod.normals[*same]);
-              lod.joints.push_back(lod.joints[*same]);
-              lod.weights.push_back(lod.weights[*same]);
-            } else {
-              lod.positions.push_back(phongQuad(p, nn, s, t));
-              lod.normals.push_back(phongQuadNormal(nn, s, t));
-              std::array<std::uint16_t, 4> joints{};
-              glm::vec4 weights{};
-              blendInfluences(corners, w, joints, weights);
-              lod.joints.push_back(joints);
-              lod.weights.push_back(weights);
-              if (key) {
-                shared.emplace(*key, index);
+            // The same grid point computes the same (s, t) in every strip and quad that has it.
+            const float s =
+                gs == cellsS ? 1.0f : static_cast<float>(gs) * (1.0f / static_cast<float>(cellsS));
+            const float t =
+                gt == cellsT ? 1.0f : static_cast<float>(gt) * (1.0f / static_cast<float>(cellsT));
+            const std::array<float, 4> w{(1.0f - s) * (1.0f - t), s * (1.0f - t), s * t, (1.0f - s) * t};
+            const float ls = i == L ? 1.0f : static_cast<float>(i) * step;
+            const float lt = j == L ? 1.0f : static_cast<float>(j) * step;
+            const glm::vec2 texcoord = bilinear(
+                uvs.strips[strip], {(1.0f - ls) * (1.0f - lt), ls * (1.0f - lt), ls * lt, (1.0f - ls) * lt});
+            std::uint32_t index = 0;
+            std::optional<std::uint32_t> same;
+            if (key) {
+              if (const auto it = shared.find(*key); it != shared.end()) {
+                same = it->second;
               }
             }
-            lod.uvs.push_back(texcoord);
+            if (same && glm::all(glm::lessThanEqual(glm::abs(lod.uvs[*same] - texcoord), glm::vec2(1e-6f)))) {
+              index = *same;
+            } else {
+              if (lod.positions.size() >= std::numeric_limits<std::uint32_t>::max()) {
+                fail("{}: level {} makes over 2^32 vertices", where, level);
+              }
+              index = static_cast<std::uint32_t>(lod.positions.size());
+              if (same) {
+                // Same point, another texture coordinate: a copy of the shared vertex (watertight).
+                lod.positions.push_back(lod.positions[*same]);
+                lod.normals.push_back(lod.normals[*same]);
+                lod.joints.push_back(lod.joints[*same]);
+                lod.weights.push_back(lod.weights[*same]);
+              } else {
+                lod.positions.push_back(phongQuad(p, nn, s, t));
+                lod.normals.push_back(phongQuadNormal(nn, s, t));
+                std::array<std::uint16_t, 4> joints{};
+                glm::vec4 weights{};
+                blendInfluences(corners, w, joints, weights);
+                lod.joints.push_back(joints);
+                lod.weights.push_back(weights);
+                if (key) {
+                  shared.emplace(*key, index);
+                }
+              }
+              lod.uvs.push_back(texcoord);
+            }
+            grid[j * (L + 1) + i] = index;
           }
-          grid[j * (L + 1) + i] = index;
         }
-      }
-      for (std::uint32_t j = 0; j < L; ++j) {
-        for (std::uint32_t i = 0; i < L; ++i) {
-          const std::uint32_t a = grid[j * (L + 1) + i];
-          const std::uint32_t b = grid[j * (L + 1) + i + 1];
-          const std::uint32_t c = grid[(j + 1) * (L + 1) + i + 1];
-          const std::uint32_t d = grid[(j + 1) * (L + 1) + i];
-          lod.indices.insert(lod.indices.end(), {a, b, c, a, c, d});
+        for (std::uint32_t j = 0; j < L; ++j) {
+          for (std::uint32_t i = 0; i < L; ++i) {
+            const std::uint32_t a = grid[j * (L + 1) + i];
+            const std::uint32_t b = grid[j * (L + 1) + i + 1];
+            const std::uint32_t c = grid[(j + 1) * (L + 1) + i + 1];
+            const std::uint32_t d = grid[(j + 1) * (L + 1) + i];
+            lod.indices.insert(lod.indices.end(), {a, b, c, a, c, d});
+          }
         }
       }
     }
@@ -824,9 +847,19 @@ void useRendererBark(TreeExportOptions& options, const BarkSet& bark, const Piec
     const TreeNode& n = tree.nodes[node];
     const Piece& piece = pieces[static_cast<std::size_t>(n.piece)];
     const PieceTiling& tiling = mapping->tilings[static_cast<std::size_t>(n.piece)];
-    const std::uint32_t tile =
-        barkTile(mapping->bark, piece, tiling, n.rootJoint, static_cast<std::uint32_t>(quad));
-    return barkAtlasUv(mapping->atlas, tile, tiling.rotation[quad]);
+    const std::uint32_t repeat = tileRepeat(tiling, quad, tileStretch(n.stretch));
+    const int rotation = tiling.rotation[quad];
+    // The tile's y runs along t (rotations 0 and 2) or s (1 and 3), against the strips' order for 1 and 2.
+    QuadUvs uvs;
+    uvs.alongS = rotation == 1 || rotation == 3;
+    const bool reversed = rotation == 1 || rotation == 2;
+    for (std::uint32_t strip = 0; strip < repeat; ++strip) {
+      const std::uint32_t sub = reversed ? repeat - 1 - strip : strip;
+      const std::uint32_t tile =
+          barkTile(mapping->bark, piece, tiling, n.rootJoint, static_cast<std::uint32_t>(quad), sub, repeat);
+      uvs.strips.push_back(barkAtlasUv(mapping->atlas, tile, rotation));
+    }
+    return uvs;
   };
 }
 

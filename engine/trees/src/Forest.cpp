@@ -3,6 +3,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Random.hpp>
 #include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/trees/Bark.hpp>
 #include <sylva/trees/FarField.hpp>
 #include <sylva/wind/Wind.hpp>
 
@@ -264,8 +265,8 @@ PackedInstances packInstances(const Forest& forest) {
       const auto reachBits = static_cast<std::uint32_t>(std::clamp(reach, 0.0f, 65535.0f));
       out.instances[cursor[type]++].joints = glm::uvec4(
           offset + n.rootJoint, offset + n.jointBase,
-          static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 8) |
-              (reachBits << 16),
+          static_cast<std::uint32_t>(n.rotation) | (static_cast<std::uint32_t>(n.piece) << 4) |
+              (tileStretch(n.stretch) << 8) | (reachBits << 16),
           static_cast<std::uint32_t>(ti) | (static_cast<std::uint32_t>(std::min(t.species, 255)) << 24));
     }
   }
@@ -397,13 +398,13 @@ cullInstances(const PackedInstances& packed, std::span<const gpu::TreePieceGpu> 
         continue;
       }
     }
-    const std::uint32_t type = (inst.z >> 8) & 255u;
+    const std::uint32_t type = SYLVA_TREE_INSTANCE_TYPE(inst.z);
     const gpu::TreePieceGpu& piece = pieces[type];
     const gpu::JointFrame& root = frames[inst.x];
     const glm::vec3 c(piece.sphere);
     const float scale = glm::length(glm::vec3(root.x.x, root.y.x, root.z.x));
     // A stretched piece reaches `reach` further up its axis: centre the sphere half-way and widen it by half.
-    const float reach = static_cast<float>(inst.z >> 16) / 256.0f;
+    const float reach = static_cast<float>(SYLVA_TREE_INSTANCE_REACH(inst.z)) / 256.0f;
     const glm::vec3 centre = framePoint(root, glm::vec3(0.0f, c.y + 0.5f * reach, 0.0f));
     const float radius = (piece.sphere.w + glm::length(glm::vec2(c.x, c.z)) + 0.5f * reach) * scale * slack;
     bool inside = true;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <tuple>
 #include <set>
@@ -94,7 +95,10 @@ TEST(BarkTest, QuadTablePacksClassAndRotation) {
   int rimEdges = 0;
   for (std::size_t q = 0; q < table.size(); ++q) {
     EXPECT_EQ(table[q].x & 255u, y.tileClass[q]);
-    EXPECT_EQ(table[q].x >> 8, tiling.rotation[q]);
+    EXPECT_EQ((table[q].x >> 8) & 3u, tiling.rotation[q]);
+    EXPECT_EQ((table[q].x >> 10) & 3u, tiling.sideFlip[q]);
+    EXPECT_EQ((table[q].x >> 16) & 255u, tiling.repeat[q][0]);
+    EXPECT_EQ(table[q].x >> 24, tiling.repeat[q][1]);
     classes.insert(table[q].x & 255u);
     for (std::uint32_t e = 0; e < 4; ++e) {
       const std::uint32_t id = (table[q].y >> (8 * e)) & 255u;
@@ -112,6 +116,43 @@ TEST(BarkTest, QuadTablePacksClassAndRotation) {
     EXPECT_EQ(n, 2) << "edge " << id;
   }
   EXPECT_EQ(rimEdges, 3 * kRimCorners);
+}
+
+TEST(BarkTest, TilesStackAlongTheGrainAsPiecesStretch) {
+  EXPECT_EQ(tileStretch(1.0f), 16u);
+  EXPECT_EQ(tileStretch(0.5f), 8u);
+  EXPECT_EQ(tileStretch(16.0f), 255u);
+  EXPECT_EQ(tileStretch(0.0f), 1u);
+  for (const Piece& piece : standardPieces().pieces) {
+    const PieceTiling tiling = pieceTiling(piece);
+    ASSERT_EQ(tiling.repeat.size(), piece.quads.size());
+    ASSERT_EQ(tiling.sideFlip.size(), piece.quads.size());
+    for (std::size_t q = 0; q < piece.quads.size(); ++q) {
+      std::uint32_t previous = 1;
+      for (std::uint32_t stretch = 8; stretch <= 255; ++stretch) {
+        const std::uint32_t n = tileRepeat(tiling, q, stretch);
+        ASSERT_GE(n, previous) << piece.name << " quad " << q << ": longer pieces never take fewer tiles";
+        ASSERT_LE(n, kMaxTileRepeat);
+        previous = n;
+      }
+    }
+  }
+  // The I piece: its quads are about 1.7 times as long as wide, each ring stretches with the piece.
+  const Piece i = makeI();
+  const PieceTiling tiling = pieceTiling(i);
+  for (std::size_t q = 0; q < i.quads.size(); ++q) {
+    EXPECT_EQ(tileRepeat(tiling, q, tileStretch(1.0f)), 2u) << q;
+    EXPECT_GE(tileRepeat(tiling, q, tileStretch(5.0f)), 7u) << q;
+    EXPECT_LE(tileRepeat(tiling, q, tileStretch(5.0f)), 12u) << q;
+  }
+  // A quad without a repeat (x = 16, y = 0) keeps one tile at any stretch.
+  PieceTiling one = tiling;
+  one.repeat[0] = {16, 0};
+  EXPECT_EQ(tileRepeat(one, 0, 255), 1u);
+  EXPECT_EQ(subTile(0.0f, 4).first, 0u);
+  EXPECT_EQ(subTile(0.5f, 4).first, 2u);
+  EXPECT_EQ(subTile(1.0f, 4).first, 3u) << "the last row belongs to the last sub-tile";
+  EXPECT_FLOAT_EQ(subTile(1.0f, 4).second, 1.0f);
 }
 
 TEST(BarkTest, ValidationNamesTheProblem) {
@@ -132,25 +173,12 @@ TEST(BarkTest, ValidationNamesTheProblem) {
   }
 }
 
-/** Colour texels of `tile` along the quad edge from corner `from` to corner `to` (adjacent), rotation `r`. */
-std::vector<std::array<int, 3>> edgeTexels(const Image& tile, int r, int from, int to) {
-  const int size = tile.width();
-  std::vector<std::array<int, 3>> out;
-  for (int j = 0; j < size; ++j) {
-    const float s = static_cast<float>(j) / static_cast<float>(size - 1);
-    const glm::vec2 uv =
-        glm::mix(kCorners[static_cast<std::size_t>(from)], kCorners[static_cast<std::size_t>(to)], s);
-    const glm::ivec2 t = tileTexel(tileCoord(uv, r), size);
-    out.push_back({static_cast<int>(std::lround(tile.get(t.x, t.y, 0) * 255.0f)),
-                   static_cast<int>(std::lround(tile.get(t.x, t.y, 1) * 255.0f)),
-                   static_cast<int>(std::lround(tile.get(t.x, t.y, 2) * 255.0f))});
-  }
-  return out;
-}
-
 /** Shared edges compared, those whose texels differ, and the distinct edge lines seen. */
 struct SeamCount {
   std::size_t edges = 0;
+  /** Of them, edges between sub-tiles stacked along a quad's grain. */
+  std::size_t inner = 0;
+  std::size_t tileSize = 0;
   std::size_t mismatches = 0;
   std::set<std::vector<std::array<int, 3>>> lines;
 };
@@ -177,39 +205,88 @@ std::vector<std::size_t> quadsWithEdge(const Piece& piece, std::uint32_t a, std:
   return out;
 }
 
-/** One piece instance: the piece, its tiling, its root joint (the tile seed). */
+/** One piece instance: the piece, its tiling, its root joint (the tile seed), its stretch (tileStretch). */
 struct Instance {
   const Piece* piece;
   const PieceTiling* tiling;
   std::uint32_t rootJoint;
+  std::uint32_t stretch = 16;
 };
 
-/** The texels along edge a → b (vertex ids) in the tile quad `q` of instance `in` shows. */
+/** The colour texel (column, row) of sub-tile `sub` of quad `q` of `in`, 8-bit as uploaded. */
+std::array<int, 3> subTileTexel(const BarkSet& set, const Instance& in, std::size_t q, std::uint32_t sub,
+                                int column, int row) {
+  const std::uint32_t repeat = tileRepeat(*in.tiling, q, in.stretch);
+  const Image& tile = set.colour[barkTile(set, *in.piece, *in.tiling, in.rootJoint,
+                                          static_cast<std::uint32_t>(q), sub, repeat)];
+  return {static_cast<int>(std::lround(tile.get(column, row, 0) * 255.0f)),
+          static_cast<int>(std::lround(tile.get(column, row, 1) * 255.0f)),
+          static_cast<int>(std::lround(tile.get(column, row, 2) * 255.0f))};
+}
+
+/**
+ * The texels along edge a → b (vertex ids) that quad `q` of instance `in` shows, at the edge's resolution: a
+ * tile side along the grain crosses the quad's `repeat` sub-tiles ((T − 1) · repeat + 1 texels), the other
+ * edges are one sub-tile's first or last row (T texels).
+ */
 std::vector<std::array<int, 3>> seamTexels(const BarkSet& set, const Instance& in, std::size_t q,
                                            std::uint32_t a, std::uint32_t b) {
-  const std::uint32_t tile =
-      barkTile(set, *in.piece, *in.tiling, in.rootJoint, static_cast<std::uint32_t>(q));
   const auto& quad = in.piece->quads[q];
-  return edgeTexels(set.colour[tile], in.tiling->rotation[q], cornerOf(quad, a), cornerOf(quad, b));
+  const int r = in.tiling->rotation[q];
+  const glm::vec2 from = tileCoord(kCorners[static_cast<std::size_t>(cornerOf(quad, a))], r);
+  const glm::vec2 to = tileCoord(kCorners[static_cast<std::size_t>(cornerOf(quad, b))], r);
+  const std::uint32_t repeat = tileRepeat(*in.tiling, q, in.stretch);
+  const int last = set.tileSize - 1;
+  std::vector<std::array<int, 3>> out;
+  if (from.x == to.x) {
+    // Along the grain: row `along` counted from the tile's y = 0 across all the sub-tiles.
+    const int column = from.x > 0.5f ? last : 0;
+    const int steps = last * static_cast<int>(repeat);
+    for (int j = 0; j <= steps; ++j) {
+      const int along = from.y < to.y ? j : steps - j;
+      const auto sub = std::min(static_cast<std::uint32_t>(along / last), repeat - 1);
+      out.push_back(subTileTexel(set, in, q, sub, column, along - static_cast<int>(sub) * last));
+    }
+  } else {
+    const bool top = from.y > 0.5f;
+    for (int j = 0; j <= last; ++j) {
+      out.push_back(
+          subTileTexel(set, in, q, top ? repeat - 1 : 0, from.x < to.x ? j : last - j, top ? last : 0));
+    }
+  }
+  return out;
 }
 
 void compare(const std::vector<std::array<int, 3>>& a, const std::vector<std::array<int, 3>>& b,
              SeamCount& count) {
   ++count.edges;
   count.mismatches += a != b ? 1 : 0;
-  count.lines.insert(a);
+  // The lines of single tiles (a side along the grain of several tiles strings their lines together).
+  if (a.size() == count.tileSize) {
+    count.lines.insert(a);
+  }
 }
 
+/** Stretches (tileStretch units) the proof's instances take in turn: unstretched, the presets' range, the
+ * most. */
+constexpr std::array<std::uint32_t, 6> kStretches{16, 24, 40, 77, 200, 255};
+
 /**
- * Every shared edge inside every piece (16 instances of each) and across every rim (every parent and child,
- * all six rotations, 3 parent × 3 child instances), each quad showing the tile barkTile() picks for it.
+ * Every shared edge inside every piece (16 instances of each, at every stretch of kStretches), the edges
+ * between the sub-tiles stacked along a quad's grain, and every rim (every parent and child, all six
+ * rotations, 3 parent × 3 child instances), each quad showing the tiles barkTile() picks for it.
  */
-SeamCount countSeams(const BarkSet& set) {
+SeamCount countSeams(const BarkSet& set,
+                     const std::function<void(std::vector<PieceTiling>&)>& tamper = nullptr) {
   SeamCount count;
+  count.tileSize = static_cast<std::size_t>(set.tileSize);
   const PieceSet pieces = standardPieces();
   std::vector<PieceTiling> tilings;
   for (const Piece& piece : pieces.pieces) {
     tilings.push_back(pieceTiling(piece));
+  }
+  if (tamper) {
+    tamper(tilings);
   }
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const Piece& piece = pieces[p];
@@ -220,11 +297,25 @@ SeamCount countSeams(const BarkSet& set) {
       }
     }
     for (std::uint32_t joint = 0; joint < 16; ++joint) {
-      const Instance in{&piece, &tilings[p], 1000 * static_cast<std::uint32_t>(p) + joint};
+      const Instance in{&piece, &tilings[p], 1000 * static_cast<std::uint32_t>(p) + joint,
+                        kStretches[joint % kStretches.size()]};
       for (const auto& [a, b] : edges) {
         const std::vector<std::size_t> both = quadsWithEdge(piece, a, b);
         if (both.size() == 2) {
           compare(seamTexels(set, in, both[0], a, b), seamTexels(set, in, both[1], a, b), count);
+        }
+      }
+      for (std::size_t q = 0; q < piece.quads.size(); ++q) {
+        const std::uint32_t repeat = tileRepeat(tilings[p], q, in.stretch);
+        for (std::uint32_t sub = 1; sub < repeat; ++sub) {
+          std::vector<std::array<int, 3>> below;
+          std::vector<std::array<int, 3>> above;
+          for (int x = 0; x < set.tileSize; ++x) {
+            below.push_back(subTileTexel(set, in, q, sub - 1, x, set.tileSize - 1));
+            above.push_back(subTileTexel(set, in, q, sub, x, 0));
+          }
+          compare(below, above, count);
+          ++count.inner;
         }
       }
     }
@@ -240,8 +331,8 @@ SeamCount countSeams(const BarkSet& set) {
           continue;
         }
         for (std::uint32_t seeds = 0; seeds < 9; ++seeds) {
-          const Instance a{&parent, &tilings[pp], 7 + seeds / 3};
-          const Instance b{&child, &tilings[pc], 50 + seeds % 3};
+          const Instance a{&parent, &tilings[pp], 7 + seeds / 3, kStretches[seeds % kStretches.size()]};
+          const Instance b{&child, &tilings[pc], 50 + seeds % 3, kStretches[(seeds + 3) % kStretches.size()]};
           for (int rot = 0; rot < kRimCorners; ++rot) {
             for (int k = 0; k < kRimCorners; ++k) {
               // Parent leaf corner k meets child root corner k − rot; both read from corner k to k + 1.
@@ -284,6 +375,7 @@ TEST(BarkTest, AdjacentQuadsMeetTexelForTexelOnEveryPieceAndAcrossEveryRim) {
     ASSERT_EQ(set.normal.size(), set.colour.size());
     const SeamCount count = countSeams(set);
     EXPECT_GT(count.edges, 10000u);
+    EXPECT_GT(count.inner, 2000u);
     EXPECT_EQ(count.mismatches, 0u) << colours << " colours: of " << count.edges << " edges";
     // One border for all with one colour; with two, edges show both lines.
     EXPECT_EQ(count.lines.size(), static_cast<std::size_t>(colours)) << colours << " colours";
@@ -298,6 +390,15 @@ TEST(BarkTest, TheSeamCheckFindsABrokenEdge) {
     tile.set(0, set.tileSize / 3, 0, 1.0f - tile.get(0, set.tileSize / 3, 0));
   }
   EXPECT_GT(countSeams(set).mismatches, 100u);
+}
+
+TEST(BarkTest, TheSeamCheckFindsSubTilesThatDoNotLineUp) {
+  // One quad of the I piece takes one more tile along its grain than its ring: its sides no longer meet its
+  // neighbours' sub-tiles.
+  const BarkSet set = synthesisedSet(2);
+  const SeamCount count =
+      countSeams(set, [](std::vector<PieceTiling>& tilings) { tilings[0].repeat[7][0] += 16; });
+  EXPECT_GT(count.mismatches, 10u);
 }
 
 TEST(BarkTest, SpeciesShareOneSetPerBarkSourceAndMissingPhotosFallBackToProcedural) {

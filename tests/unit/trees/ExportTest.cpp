@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iostream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -359,8 +360,7 @@ TEST(TreeExport, AtlasesUvCallbackAndImpostor) {
   options.barkUv = [&](std::size_t n, std::size_t q) {
     ++calls;
     const glm::vec2 o(static_cast<float>(q % 4) * 0.25f, static_cast<float>(n % 4) * 0.25f);
-    return std::array<glm::vec2, 4>{o, o + glm::vec2(0.25f, 0.0f), o + glm::vec2(0.25f),
-                                    o + glm::vec2(0.0f, 0.25f)};
+    return QuadUvs{{{o, o + glm::vec2(0.25f, 0.0f), o + glm::vec2(0.25f), o + glm::vec2(0.0f, 0.25f)}}};
   };
   ImpostorAtlas impostor;
   impostor.image = pattern(64, 64, 2);
@@ -401,6 +401,79 @@ TEST(TreeExport, AtlasesUvCallbackAndImpostor) {
   EXPECT_EQ(m.accessors.at(static_cast<std::size_t>(quad.primitives[0].indices)).count, 6u);
   EXPECT_EQ(quad.primitives[0].material, 1);
   EXPECT_EQ(m.nodes[0].extras.Get("MSFT_screencoverage").ArrayLen(), 3u);
+}
+
+TEST(TreeExport, RendererBarkKeepsTheTilesShapeOnStretchedPieces) {
+  // useRendererBark stacks tileRepeat() tiles along every quad's grain, so a larch whose branch
+  // pieces are stretched to about five times their modelled length shows its bark tiles about as long as
+  // wide, as the renderer does (one tile per quad stretched them up to 9 times).
+  const Fixture f("european-larch", 3);
+  BarkSet set;
+  set.name = "solid";
+  set.tileSize = 8;
+  set.edgeColours = 2;
+  for (int i = 0; i < 48; ++i) {
+    set.colour.emplace_back(8, 8, 3, PixelType::U8);
+  }
+  set.classFirst = {0, 16, 32, 0};
+  set.classCount = {16, 16, 16, 0};
+  TreeExportOptions options;
+  options.levels = {1};
+  useRendererBark(options, set, f.pieces, f.tree);
+  const TreeMesh mesh = buildTreeMesh(f.pieces, f.tree, f.species, options);
+  const TreeMeshLod& lod = mesh.lods.at(0);
+  std::vector<PieceTiling> tilings;
+  for (const Piece& piece : f.pieces.pieces) {
+    tilings.push_back(pieceTiling(piece));
+  }
+  std::size_t strips = 0;
+  std::size_t stretched = 0;
+  for (const TreeNode& node : f.tree.nodes) {
+    const PieceTiling& tiling = tilings[static_cast<std::size_t>(node.piece)];
+    stretched += node.stretch > 2.0f ? 1 : 0;
+    for (std::size_t q = 0; q < tiling.rotation.size(); ++q) {
+      strips += tileRepeat(tiling, q, tileStretch(node.stretch));
+    }
+  }
+  ASSERT_GT(stretched, 10u);
+  EXPECT_EQ(lod.indices.size() / 3, 2 * strips) << "two triangles per tile at level 1";
+  // The share of the bark's area whose tiles are within 2:1: per triangle, metres per texel along the tile's
+  // y over those along its x (atlas u runs along the tile's x and v along its y).
+  auto squareShare = [](const TreeMeshLod& mesh) {
+    double square = 0.0;
+    double total = 0.0;
+    for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
+      const glm::vec3 p0 = mesh.positions[mesh.indices[i]];
+      const glm::vec2 t0 = mesh.uvs[mesh.indices[i]];
+      const glm::vec3 e1 = mesh.positions[mesh.indices[i + 1]] - p0;
+      const glm::vec3 e2 = mesh.positions[mesh.indices[i + 2]] - p0;
+      const glm::vec2 d1 = mesh.uvs[mesh.indices[i + 1]] - t0;
+      const glm::vec2 d2 = mesh.uvs[mesh.indices[i + 2]] - t0;
+      const float det = d1.x * d2.y - d2.x * d1.y;
+      const float area = 0.5f * glm::length(glm::cross(e1, e2));
+      if (std::abs(det) < 1e-12f || !(area > 0.0f)) {
+        continue;
+      }
+      const glm::vec3 alongU = (e1 * d2.y - e2 * d1.y) / det;
+      const glm::vec3 alongV = (e2 * d1.x - e1 * d2.x) / det;
+      const double aspect = glm::length(alongV) / glm::length(alongU);
+      total += area;
+      square += aspect > 0.5 && aspect < 2.0 ? area : 0.0;
+    }
+    return square / total;
+  };
+  const double share = squareShare(lod);
+  EXPECT_GT(share, 0.85);
+  // The control: one tile per quad (the first strip's tile over the whole quad), as before tileRepeat.
+  QuadUvFunction tiles = options.barkUv;
+  options.barkUv = [&tiles](std::size_t node, std::size_t quad) {
+    QuadUvs uvs = tiles(node, quad);
+    uvs.strips.resize(1);
+    return uvs;
+  };
+  const double oneTile = squareShare(buildTreeMesh(f.pieces, f.tree, f.species, options).lods.at(0));
+  EXPECT_LT(oneTile, 0.6);
+  std::cout << "bark area with tiles within 2:1: " << share << " (one tile per quad: " << oneTile << ")\n";
 }
 
 // An atlas baked around a bounding sphere (sylva tree export --impostor): the quad is the sphere's square

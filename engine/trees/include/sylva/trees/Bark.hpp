@@ -1,6 +1,7 @@
 #pragma once
-// Bark from tiles (docs/trees.md "Bark", seed 000 §5.1): every quad of every piece instance shows one tile of
-// a texture array, chosen per instance and per quad. Tile edges carry symmetric edge colours (texsynth: a
+// Bark from tiles (docs/trees.md "Bark", seed 000 §5.1): every quad of every piece instance shows tiles of a
+// texture array, chosen per instance and per quad, as many stacked along its grain as keep them about square
+// (tileRepeat: a stretched piece takes more). Tile edges carry symmetric edge colours (texsynth: a
 // palindromic line, the same on any side), so two quads meet seamlessly whatever their orientations when
 // their shared edge has one colour. Rim edges all have colour 0 (any of a rim's six rotations is valid);
 // every interior edge of a piece instance gets a colour by a hash of the instance and the edge (Wang tiles,
@@ -22,6 +23,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sylva::trees {
@@ -56,19 +58,57 @@ constexpr std::uint8_t kRimEdge = 255;
 struct PieceTiling {
   std::vector<std::uint8_t> rotation;
   std::vector<std::array<std::uint8_t, 4>> edges;
+  /**
+   * Per quad, how many tiles its grain takes (tileRepeat): x the quad's length along the tile's y over its
+   * width at stretch 1, y how much that ratio grows per unit of TreeNode::stretch − 1, both in 1/16 (0 …
+   * 255). Quads whose side edges (tile x = 0 or 1) are not side edges of their neighbours too, or lie on a
+   * rim, keep one tile: x = 16, y = 0 (their whole group: every quad reachable over side edges).
+   */
+  std::vector<std::array<std::uint8_t, 2>> repeat;
+  /**
+   * Per quad, bit 0 (tile side 1) and bit 1 (tile side 3): the side's tile y runs from its higher vertex id
+   * to its lower. A side along the grain of several sub-tiles has a colour per part, counted from its lower
+   * vertex id, so the two quads sharing it agree whichever way each runs.
+   */
+  std::vector<std::uint8_t> sideFlip;
 };
 /** Throws sylva::Error naming the piece when it has more than 255 interior edges. */
 PieceTiling pieceTiling(const Piece& piece);
 
+/** Most tiles one quad takes along its grain. */
+constexpr std::uint32_t kMaxTileRepeat = SYLVA_TREE_MAX_TILE_REPEAT;
+
+/** A piece instance's stretch as tiling reads it: round(stretch · 16), clamped to 1 … 255 (8 bits). */
+std::uint32_t tileStretch(float stretch);
+
+/**
+ * Tiles stacked along the grain of quad `quad` in an instance of stretch `stretch` (tileStretch units):
+ * round(x + (stretch / 16 − 1) · y) of PieceTiling::repeat in 1/16, clamped to 1 … kMaxTileRepeat, in integer
+ * arithmetic (the shaders compute the same bits). Tiles then keep their shape however long a piece grows;
+ * every quad of a group takes the same count, so neighbours' sub-tile edges meet.
+ */
+std::uint32_t tileRepeat(const PieceTiling& tiling, std::size_t quad, std::uint32_t stretch);
+
 /** The colour (0 … colours − 1) of edge `edge` of the piece instance with tile seed `seed`. */
 std::uint32_t edgeColour(std::uint32_t seed, std::uint8_t edge, std::uint32_t colours);
 
+/** The colour of part `part` (0 … repeat − 1, from its lower vertex id) of an edge along the grain of a quad
+ * with `repeat` sub-tiles: part 0 is edgeColour(). */
+std::uint32_t sideEdgeColour(std::uint32_t seed, std::uint8_t edge, std::uint32_t part,
+                             std::uint32_t colours);
+
+/** The colour of the edge between sub-tiles `sub` − 1 and `sub` (1 … repeat − 1) of quad `quad`. */
+std::uint32_t innerEdgeColour(std::uint32_t seed, std::uint32_t quad, std::uint32_t sub,
+                              std::uint32_t colours);
+
 /**
- * The edge colouring index of a quad's tile, e0 + K·e1 + K²·e2 + K³·e3 over the TILE's edges 0 … 3 (tile edge
- * k is quad edge (rotation + k) mod 4), K = colours.
+ * The edge colouring index of sub-tile `sub` of `repeat` along quad `quad`'s grain, e0 + K·e1 + K²·e2 + K³·e3
+ * over the TILE's edges 0 … 3 (tile edge k is quad edge (rotation + k) mod 4), K = colours. Tile edges 1 and
+ * 3 take the colour of their part of the quad edge (sideEdgeColour); edge 0 of sub-tile 0 and edge 2 of the
+ * last are the quad's, the others innerEdgeColour().
  */
 std::uint32_t quadColouring(const PieceTiling& tiling, std::size_t quad, std::uint32_t seed,
-                            std::uint32_t colours);
+                            std::uint32_t colours, std::uint32_t sub = 0, std::uint32_t repeat = 1);
 
 /**
  * The texel (column, row) a tile coordinate samples in a T × T tile: edge lines (x or y = 0 or 1) are the
@@ -101,12 +141,19 @@ void validate(const BarkSet& set, const std::string& where);
 std::uint32_t colourings(int edgeColours);
 
 /**
- * The tile (index into set.colour) of quad `quad` of `piece` in the piece instance with root joint
- * `rootJoint`: in the quad's class (classes without tiles use class 0's, as the renderer does), the block of
- * its edge colouring, the variant by chooseTile().
+ * The tile (index into set.colour) of sub-tile `sub` of `repeat` (tileRepeat) of quad `quad` of `piece` in
+ * the piece instance with root joint `rootJoint`: in the quad's class (classes without tiles use class 0's,
+ * as the renderer does), the block of its edge colouring, the variant by chooseTile() of quad + 256 · sub.
  */
 std::uint32_t barkTile(const BarkSet& set, const Piece& piece, const PieceTiling& tiling,
-                       std::uint32_t rootJoint, std::uint32_t quad);
+                       std::uint32_t rootJoint, std::uint32_t quad, std::uint32_t sub = 0,
+                       std::uint32_t repeat = 1);
+
+/**
+ * Where tile coordinate `y` along the grain (0 … 1 over the quad) falls among `repeat` stacked sub-tiles:
+ * the sub-tile (0 … repeat − 1) and the coordinate within it (0 … 1).
+ */
+std::pair<std::uint32_t, float> subTile(float y, std::uint32_t repeat);
 
 /**
  * A bark set from a texsynth tile set (texsynth::barkTileSet or a loaded tile-set directory): 8-bit colour
@@ -172,8 +219,9 @@ BarkAtlas barkAtlas(const BarkSet& set);
 std::array<glm::vec2, 4> barkAtlasUv(const BarkAtlas& atlas, std::uint32_t tile, int rotation);
 
 /**
- * The quad table of `piece` as the renderer uploads it, per quad x: tile class | rotation << 8, y: its four
- * edge ids (quad edge e in bits 8e … 8e + 7).
+ * The quad table of `piece` as the renderer uploads it, per quad x: tile class | rotation << 8 | side flips
+ * << 10 | repeat ratio << 16 | its growth << 24 (PieceTiling), y: its four edge ids (quad edge e in bits
+ * 8e … 8e + 7).
  */
 std::vector<glm::uvec2> quadTileTable(const Piece& piece);
 

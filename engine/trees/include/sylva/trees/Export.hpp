@@ -52,11 +52,19 @@
 namespace sylva::trees {
 
 /**
- * Atlas UVs of the four corners of quad `quad` of piece instance `pieceInstance` (the TreeTopology node
- * index), in the corner order of Piece::quads. Texture space as glTF's: (0, 0) is the top left of the image
- * (its row 0), v grows downwards.
+ * Texture coordinates of one quad: its (s, t) domain (s from corner 0 to 1, t from corner 0 to 3) cut into
+ * strips.size() equal strips along s (`alongS`) or t, in order of increasing s or t, each with the atlas UVs
+ * of its four corners in the corner order of Piece::quads (corner 0 at the strip's smallest s and t). One
+ * strip: the whole quad. Texture space as glTF's: (0, 0) is the top left of the image (its row 0), v grows
+ * downwards.
  */
-using QuadUvFunction = std::function<std::array<glm::vec2, 4>(std::size_t pieceInstance, std::size_t quad)>;
+struct QuadUvs {
+  std::vector<std::array<glm::vec2, 4>> strips;
+  bool alongS = false;
+};
+
+/** The UVs of quad `quad` of piece instance `pieceInstance` (the TreeTopology node index). */
+using QuadUvFunction = std::function<QuadUvs(std::size_t pieceInstance, std::size_t quad)>;
 
 /** A pre-rendered impostor atlas: viewsPerSide × viewsPerSide equal views of the tree. */
 struct ImpostorAtlas {
@@ -98,8 +106,9 @@ struct TreeExportOptions {
 
 /**
  * Makes the export show the bark as the renderer draws it: `options.barkAtlas` becomes `bark`'s tiles packed
- * in one atlas, and `options.barkUv` gives each quad its tile (per piece instance by its root joint, per
- * quad, with the tile's rotation). `pieces` and `tree` must outlive the export.
+ * in one atlas, and `options.barkUv` gives each quad its tiles (per piece instance by its root joint, per
+ * quad, with the tile's rotation, tileRepeat() strips along its grain for the node's stretch). `pieces` and
+ * `tree` must outlive the export.
  */
 void useRendererBark(TreeExportOptions& options, const BarkSet& bark, const PieceSet& pieces,
                      const TreeTopology& tree);

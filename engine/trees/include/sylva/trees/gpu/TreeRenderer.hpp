@@ -38,8 +38,8 @@ enum class TreeView : int {
   LodLevels = 3,
   /**
    * Bark tiles as ids, unlit, for tests and debugging: red = the tile (layer within the bark set), green =
-   * the quad id (patch), blue and alpha = the piece instance index: blue its low byte, alpha 1 + the rest
-   * (so alpha 0 is background), each / 255.
+   * the quad id (patch), blue = the piece instance index's low 5 bits | the sub-tile along the quad's grain
+   * (mod 8) << 5, alpha = 1 + the instance index >> 5 (so alpha 0 is background), each / 255.
    */
   Tiles = 4,
   /**
