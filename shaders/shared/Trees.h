@@ -141,6 +141,9 @@ SYLVA_ASSERT_SIZE(JointWindStepGpu, 32);
 // the uniform block binding of TreeUniforms (never bound in one program together; each pass binds its own).
 #define SYLVA_TREE_FOLIAGE_UNIFORM_BINDING SYLVA_TREE_BINDING // uniform block FoliageUniforms
 #define SYLVA_TREE_LEAF_UNIT 15 // sampler2D: the leaf texture the bake draws (sRGB8_ALPHA8, mipmapped)
+// sampler2D: the needle cloud's baked texture, as the leaf cloud's at SYLVA_TREE_FOLIAGE_UNIT (the draw reads
+// it for species whose leafColours[s].w is 1); shares a unit with the impostor bake's resolve (never together)
+#define SYLVA_TREE_NEEDLE_UNIT 14
 
 /** One foliage billboard, carried by a joint. */
 struct FoliageAnchorGpu {
@@ -159,7 +162,8 @@ struct FoliageUniforms {
   vec4 sun;     // xyz: towards the sun (world, unit); w: sun intensity (bake lighting)
   vec4 far;     // xy: far-field range (m, TreeLod::farRange; y <= x: none); z: draw distance (m,
                 // TreeLod::drawDistance; 0: none); w: unused
-  vec4 leafColours[SYLVA_TREE_MAX_SPECIES]; // rgb: species leaf colour / leaf texture mean (linear)
+  vec4 leafColours[SYLVA_TREE_MAX_SPECIES]; // rgb: species leaf colour / leaf texture mean (linear; needles:
+                                            // the colour itself); w: 1 needles, 0 broad leaves
 };
 SYLVA_ASSERT_SIZE(FoliageUniforms, 272);
 

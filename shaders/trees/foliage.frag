@@ -12,6 +12,7 @@
 layout(depth_greater) out float gl_FragDepth;
 
 layout(binding = SYLVA_TREE_FOLIAGE_UNIT) uniform sampler2D cloud;
+layout(binding = SYLVA_TREE_NEEDLE_UNIT) uniform sampler2D needleCloud;
 
 in vec3 fWorld;
 in vec2 fUv;
@@ -26,7 +27,7 @@ void main() {
   if (!piecesKeep(fBlend, uvec2(gl_FragCoord.xy), fTree)) {
     discard;
   }
-  vec4 texel = texture(cloud, fUv);
+  vec4 texel = foliage.leafColours[fSpecies].w > 0.5 ? texture(needleCloud, fUv) : texture(cloud, fUv);
   uint code = uint(round(texel.a * 255.0));
   if (code == 0u) {
     discard;

@@ -60,7 +60,34 @@ private:
   GLboolean mColourMask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
 };
 
+/** Points `vao` at a buffer of LeafVertex. */
+void formatCloud(const gl::VertexArray& vao, const gl::Buffer& vertices) {
+  const GLuint id = vao.id();
+  glVertexArrayVertexBuffer(id, 0, vertices.id(), 0, sizeof(LeafVertex));
+  glVertexArrayAttribFormat(id, 0, 3, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, position));
+  glVertexArrayAttribFormat(id, 1, 3, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, normal));
+  glVertexArrayAttribFormat(id, 2, 2, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, uv));
+  glVertexArrayAttribFormat(id, 3, 3, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, tint));
+  for (GLuint a = 0; a < 4; ++a) {
+    glVertexArrayAttribBinding(id, a, 0);
+    glEnableVertexArrayAttrib(id, a);
+  }
+}
+
 } // namespace
+
+FoliageRenderer::CloudTarget::CloudTarget(int size, const char* label) {
+  colour = gl::Texture::create2D(GL_RGBA8, size, size);
+  // Nearest texels: the alpha is a depth code, and blending codes of neighbours (or with empty texels) would
+  // invent depths no leaf has.
+  colour.setSampler({GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE});
+  depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size);
+  target = gl::Framebuffer{};
+  target.attachColor(0, colour);
+  target.attachDepth(depth);
+  target.checkComplete();
+  gl::setLabel(GL_TEXTURE, colour.id(), label);
+}
 
 FoliageRenderer::FoliageRenderer(const shader::Library& library, std::shared_ptr<const Forest> forest,
                                  const FoliageSettings& settings)
@@ -78,17 +105,18 @@ FoliageRenderer::FoliageRenderer(const shader::Library& library, std::shared_ptr
   mAnchorBuffer = gl::Buffer{std::span<const gpu::FoliageAnchorGpu>(packed)};
   gl::setLabel(GL_BUFFER, mAnchorBuffer.id(), "foliage anchors");
 
+  for (const Species& species : mForest->species) {
+    (species.foliage == FoliageKind::Needles ? mHasNeedles : mHasLeaves) = true;
+  }
+  mHasLeaves = mHasLeaves || mForest->species.empty();
   const int size = mSettings.textureSize;
-  mCloud = gl::Texture::create2D(GL_RGBA8, size, size);
-  // Nearest texels: the alpha is a depth code, and blending codes of neighbours (or with empty texels) would
-  // invent depths no leaf has.
-  mCloud.setSampler({GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE});
-  mCloudDepth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, size, size);
-  mTarget = gl::Framebuffer{};
-  mTarget.attachColor(0, mCloud);
-  mTarget.attachDepth(mCloudDepth);
-  mTarget.checkComplete();
-  gl::setLabel(GL_TEXTURE, mCloud.id(), "foliage cloud");
+  mLeaves = CloudTarget(size, "foliage cloud");
+  // Conifers' needle sprays: baked only when a species has them (the texture stays for the sampler).
+  mNeedles = CloudTarget(mHasNeedles ? size : 1, "foliage needles");
+  const LeafCloud needles = makeNeedleCloud(mSettings.needles);
+  mNeedleVertices = gl::Buffer{std::span<const LeafVertex>(needles.vertices)};
+  mNeedleCount = needles.vertices.size();
+  formatCloud(mNeedleVao, mNeedleVertices);
 
   setLeafCloud(makeLeafCloud(mSettings.cloud));
   setLeafTexture(makeLeafImage(128));
@@ -126,33 +154,26 @@ void FoliageRenderer::setLeafCloud(const LeafCloud& cloud) {
   validate(cloud, "leaf cloud");
   mVertices = gl::Buffer{std::span<const LeafVertex>(cloud.vertices)};
   mVertexCount = cloud.vertices.size();
-  const GLuint vao = mCloudVao.id();
-  glVertexArrayVertexBuffer(vao, 0, mVertices.id(), 0, sizeof(LeafVertex));
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, position));
-  glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, normal));
-  glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, uv));
-  glVertexArrayAttribFormat(vao, 3, 3, GL_FLOAT, GL_FALSE, offsetof(LeafVertex, tint));
-  for (GLuint a = 0; a < 4; ++a) {
-    glVertexArrayAttribBinding(vao, a, 0);
-    glEnableVertexArrayAttrib(vao, a);
-  }
+  formatCloud(mCloudVao, mVertices);
   mDirty = true;
 }
 
-void FoliageRenderer::uploadUniforms(const render::Environment& environment, const TreeLod& lod) {
+void FoliageRenderer::uploadUniforms(const render::Environment& environment, const TreeLod& lod,
+                                     bool leafImage) {
   gpu::FoliageUniforms& u = mLast;
   u.bake = foliageBakeMatrix(mBasis);
   u.forward = glm::vec4(mBasis.forward, static_cast<float>(mAnchors.size()));
   u.right = glm::vec4(mBasis.right, kColourScale);
-  u.up = glm::vec4(mBasis.up, 1.0f);
+  u.up = glm::vec4(mBasis.up, leafImage ? 1.0f : 0.0f);
   u.sun = glm::vec4(glm::normalize(environment.sunDirection), environment.sunIntensity);
   u.far = glm::vec4(lod.farRange, lod.drawDistance, 0.0f);
   const std::vector<Species>& species = mForest->species;
   for (std::size_t k = 0; k < SYLVA_TREE_MAX_SPECIES; ++k) {
     // Species beyond the table share its last colour (the shader clamps the index the same way).
-    const glm::vec3 colour =
-        species.empty() ? Species{}.leafColour : species[std::min(k, species.size() - 1)].leafColour;
-    u.leafColours[k] = glm::vec4(colour / mLeafMean, 0.0f);
+    const Species& s = species.empty() ? Species{} : species[std::min(k, species.size() - 1)];
+    // Needles are cards of their own (no leaf image to divide out); w tells the draw which cloud to read.
+    const bool needles = s.foliage == FoliageKind::Needles;
+    u.leafColours[k] = glm::vec4(needles ? s.leafColour : s.leafColour / mLeafMean, needles ? 1.0f : 0.0f);
   }
   mUniforms.setSubData(0, sizeof(u), &u);
 }
@@ -173,10 +194,8 @@ bool FoliageRenderer::bake(const render::Camera& camera, const render::Environme
   mBasis = basis;
   mBakedSun = sun;
   mBakedSunIntensity = environment.sunIntensity;
-  uploadUniforms(environment, TreeLod{});
   {
     const SavedState saved;
-    mTarget.bindForDraw(mSettings.textureSize, mSettings.textureSize);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -185,13 +204,23 @@ bool FoliageRenderer::bake(const render::Camera& camera, const render::Environme
     // A bake can run inside a depth-only pass (a shadow cascade turns colour writes off): the cloud texture
     // must be written whatever the caller's mask, or it keeps an older view's leaves.
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    mTarget.clearColor(0, glm::vec4(0.0f));
-    mTarget.clearDepth(1.0f);
     mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TREE_FOLIAGE_UNIFORM_BINDING);
     mLeaf.bind(SYLVA_TREE_LEAF_UNIT);
     mBake.use();
-    mCloudVao.bind();
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(mVertexCount));
+    auto pass = [&](CloudTarget& cloud, const gl::VertexArray& vao, std::size_t vertices, bool leafImage) {
+      uploadUniforms(environment, TreeLod{}, leafImage);
+      cloud.target.bindForDraw(mSettings.textureSize, mSettings.textureSize);
+      cloud.target.clearColor(0, glm::vec4(0.0f));
+      cloud.target.clearDepth(1.0f);
+      vao.bind();
+      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices));
+    };
+    if (mHasLeaves) {
+      pass(mLeaves, mCloudVao, mVertexCount, true);
+    }
+    if (mHasNeedles) {
+      pass(mNeedles, mNeedleVao, mNeedleCount, false);
+    }
   }
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
   mDirty = false;
@@ -225,7 +254,8 @@ void FoliageRenderer::draw(const render::Camera& camera, int width, int height, 
     trees.framesBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_JOINT_BINDING);
     trees.centresBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_CENTRE_BINDING);
     mAnchorBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TREE_FOLIAGE_BINDING);
-    mCloud.bind(SYLVA_TREE_FOLIAGE_UNIT);
+    mLeaves.colour.bind(SYLVA_TREE_FOLIAGE_UNIT);
+    mNeedles.colour.bind(SYLVA_TREE_NEEDLE_UNIT);
     mDraw.use();
     mEmptyVao.bind();
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(mAnchors.size()));
@@ -233,14 +263,15 @@ void FoliageRenderer::draw(const render::Camera& camera, int width, int height, 
 }
 
 FoliageStats FoliageRenderer::stats() const {
-  return FoliageStats{mAnchors.size(), mSettings.textureSize, mVertexCount / 3, mBakes};
+  return FoliageStats{mAnchors.size(), mSettings.textureSize,
+                      (mHasLeaves ? mVertexCount / 3 : 0) + (mHasNeedles ? mNeedleCount / 3 : 0), mBakes};
 }
 
 std::size_t FoliageRenderer::gpuBytes() const {
   const auto side = static_cast<std::size_t>(mSettings.textureSize);
   // Cloud colour and its depth buffer; the leaf image with its mip chain (4/3 of the base level).
   const std::size_t leaf = mLeafTexels * 4 * 4 / 3;
-  return side * side * 8 + leaf + mVertexCount * sizeof(LeafVertex) +
+  return side * side * 8 * (mHasNeedles ? 2 : 1) + leaf + (mVertexCount + mNeedleCount) * sizeof(LeafVertex) +
          std::max<std::size_t>(mAnchors.size(), 1) * sizeof(gpu::FoliageAnchorGpu) +
          sizeof(gpu::FoliageUniforms);
 }

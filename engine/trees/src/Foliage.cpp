@@ -193,6 +193,72 @@ LeafCloud makeLeafCloud(const LeafCloudSettings& s) {
   return cloud;
 }
 
+void validate(const NeedleCloudSettings& s, const std::string& where) {
+  if (s.shoots < 1 || s.shoots > 1000) {
+    fail("{}.shoots: {} is out of range [1, 1000]", where, s.shoots);
+  }
+  if (s.needles < 1 || s.needles > 1000) {
+    fail("{}.needles: {} is out of range [1, 1000]", where, s.needles);
+  }
+  if (!(std::isfinite(s.shootLength) && s.shootLength > 0.0f && s.shootLength <= 2.0f)) {
+    fail("{}.shootLength: must be in (0, 2] cloud radii", where);
+  }
+  if (!(std::isfinite(s.needleLength) && s.needleLength > 0.0f && s.needleLength <= 1.0f)) {
+    fail("{}.needleLength: must be in (0, 1] cloud radii", where);
+  }
+  if (!(std::isfinite(s.needleWidth) && s.needleWidth > 0.0f && s.needleWidth <= 1.0f)) {
+    fail("{}.needleWidth: must be in (0, 1] cloud radii", where);
+  }
+  if (!(std::isfinite(s.tintVariation) && s.tintVariation >= 0.0f && s.tintVariation <= 1.0f)) {
+    fail("{}.tintVariation: must be in [0, 1]", where);
+  }
+}
+
+LeafCloud makeNeedleCloud(const NeedleCloudSettings& s) {
+  validate(s, "needle cloud");
+  Rng rng(hash64(s.seed ^ 0x6e656564ULL), hash64(s.seed + 5));
+  std::vector<LeafCard> cards;
+  cards.reserve(static_cast<std::size_t>(s.shoots) * static_cast<std::size_t>(s.needles));
+  for (int shoot = 0; shoot < s.shoots; ++shoot) {
+    // A shoot starts inside the sphere and reaches outwards, level or drooping a little.
+    const glm::vec3 out = randomUnit(rng);
+    const glm::vec3 start = out * rng.uniform(0.05f, 0.45f);
+    glm::vec3 axis = out + randomUnit(rng) * 0.35f - glm::vec3(0.0f, 0.25f, 0.0f);
+    axis = glm::length(axis) > 1e-4f ? glm::normalize(axis) : out;
+    const float length = s.shootLength * rng.uniform(0.7f, 1.1f);
+    // Two directions across the shoot.
+    const glm::vec3 helper =
+        std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 side = glm::normalize(glm::cross(axis, helper));
+    const glm::vec3 other = glm::cross(side, axis);
+    const float shootTint = 1.0f + s.tintVariation * rng.uniform(-1.0f, 1.0f);
+    for (int n = 0; n < s.needles; ++n) {
+      const float along = (static_cast<float>(n) + rng.uniform()) / static_cast<float>(s.needles);
+      // All round the shoot (a golden-angle spiral with jitter), leaning towards the shoot's tip.
+      const float turn = 2.39996f * static_cast<float>(n) + rng.uniform(-0.3f, 0.3f);
+      const glm::vec3 radial = std::cos(turn) * side + std::sin(turn) * other;
+      const float lean = rng.uniform(0.35f, 0.85f); // 40–70° from the shoot
+      const glm::vec3 dir = glm::normalize(std::sin(lean + 0.35f) * radial + std::cos(lean + 0.35f) * axis);
+      const float needle = s.needleLength * rng.uniform(0.8f, 1.15f);
+      LeafCard card;
+      card.centre = start + axis * (along * length) + dir * (0.5f * needle);
+      card.up = dir;
+      // The card's face turned to the shoot's sides, so needles read as lines from most directions.
+      glm::vec3 normal = glm::cross(dir, axis);
+      card.normal = glm::length(normal) > 1e-4f ? glm::normalize(normal) : side;
+      card.size = glm::vec2(s.needleWidth, needle);
+      const float yellow = s.tintVariation * rng.uniform(-1.0f, 1.0f);
+      // Younger needles towards the shoot's tip are lighter.
+      const float brightness = shootTint * (0.85f + 0.3f * along);
+      card.tint = brightness * glm::vec3(1.0f + 0.4f * yellow, 1.0f, 1.0f - 0.5f * yellow);
+      cards.push_back(card);
+    }
+  }
+  LeafCloud cloud = leafCloudFromCards(cards);
+  normaliseLeafCloud(cloud, "needle cloud");
+  return cloud;
+}
+
 LeafCloud loadLeafCloud(const fs::path& file, std::size_t maxTriangles) {
   const std::string name = file.filename().string();
   Assimp::Importer importer;
@@ -462,6 +528,7 @@ void validate(const FoliageSettings& s, const std::string& where) {
     fail("{}.lift: must be in [-1, 1] radii", where);
   }
   validate(s.cloud, where + ".cloud");
+  validate(s.needles, where + ".needles");
 }
 
 bool carriesLeaves(const Piece& piece, const TreeNode& node, const Species& species) {

@@ -250,6 +250,7 @@ std::optional<SpeciesTargets> speciesTargets(const std::string& name) {
       {"black-tupelo", {{12, 30}, {50, 120}, {0.25f, 0.7f}, {0.15f, 0.6f}, {0.2f, 0.8f}}},
       {"california-black-oak", {{9, 25}, {30, 80}, {0.8f, 1.6f}, {0.15f, 0.45f}, {0.2f, 0.8f}}},
       {"european-larch", {{20, 45}, {50, 120}, {0.25f, 0.6f}, {0.05f, 0.35f}, {0.3f, 0.9f}}},
+      {"norway-spruce", {{20, 45}, {50, 130}, {0.25f, 0.55f}, {0.0f, 0.25f}, {0.4f, 1.0f}}},
       {"lombardy-poplar", {{15, 30}, {35, 100}, {0.1f, 0.3f}, {0.05f, 0.3f}, {0.0f, 0.1f}}},
       {"quaking-aspen", {{12, 20}, {50, 120}, {0.25f, 0.7f}, {0.15f, 0.6f}, {0.1f, 0.7f}}},
       {"sassafras", {{6, 18}, {25, 80}, {0.4f, 1.5f}, {0.15f, 0.6f}, {0.0f, 0.6f}}},

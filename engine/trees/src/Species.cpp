@@ -52,6 +52,29 @@ const std::map<std::string, std::function<Species()>>& presets() {
          s.leafCluster = 1.1f;
          return s;
        }},
+      {"norway-spruce",
+       [] {
+         Species s = base("norway-spruce");
+         s.maxOrder = 2;
+         s.maxDepth = 64;
+         s.trunkRadius = 0.35f;
+         s.minRadius = 0.012f;
+         // A straight leader with whorls of three branches and a long internode between them; the branches
+         // reach out nearly level, their shoots hang (the comb form), needles all along.
+         s.orders = {order(1, 1, 0.0f, 0.0f, 1.0f, 0.0f, 0.015f, 0.0f, 2.7f, 0.22f),
+                     order(1, 3, 0.0f, 0.0f, 0.7f, 0.0f, 0.05f, 0.1f, 4.0f, 0.5f),
+                     order(1, 2, 0.0f, 0.0f, 0.0f, 0.0f, 0.08f, 0.25f, 3.0f, 0.5f)};
+         s.orders[0].whorl = 3;
+         s.foliage = FoliageKind::Needles;
+         s.barkColour = {0.3f, 0.2f, 0.15f};
+         s.leafColour = {0.1f, 0.22f, 0.09f};
+         // Evergreen: the needles keep their colour through autumn.
+         s.autumnColour = s.leafColour;
+         s.leafCluster = 0.7f;
+         s.woodDensity = 450.0f;
+         s.youngModulus = 1.0e10f;
+         return s;
+       }},
       {"paper-alternate",
        [] {
          Species s = base("paper-alternate");
@@ -178,6 +201,8 @@ const std::map<std::string, std::function<Species()>>& presets() {
          s.leafColour = {0.33f, 0.47f, 0.2f};
          s.autumnColour = {0.8f, 0.58f, 0.12f};
          s.leafCluster = 1.0f;
+         // Soft needles in tufts on the shoots (a deciduous conifer: they turn golden in autumn).
+         s.foliage = FoliageKind::Needles;
          return s;
        }},
       {"silver-birch",
@@ -295,6 +320,7 @@ void validate(const Species& s, const std::string& file) {
     check(std::isfinite(o.droop) && std::abs(o.droop) <= 0.5f, w, "droop", "must be in [-0.5, 0.5] radians");
     check(std::isfinite(o.stretch) && o.stretch >= 0.5f && o.stretch <= 12.0f, w, "stretch",
           "must be in [0.5, 12]");
+    check(o.whorl >= 0 && o.whorl <= 6, w, "whorl", "must be in [0, 6]");
     check(o.sideRadius == 0.0f || (o.sideRadius >= 0.05f && o.sideRadius <= 0.95f), w, "sideRadius",
           "must be 0 (the piece's own) or in [0.05, 0.95]");
   }
@@ -340,11 +366,9 @@ Species speciesPreset(const std::string& name) {
   Species s = it->second();
   // Bark photos by the look of the real bark: smooth pale (birch, aspen), furrowed (oaks and most), scaly
   // (larch), deeply ridged (willow, poplar).
-  static const std::map<std::string, std::string> kBark{{"quaking-aspen", "birch"},
-                                                        {"silver-birch", "birch"},
-                                                        {"european-larch", "pine"},
-                                                        {"weeping-willow", "willow"},
-                                                        {"lombardy-poplar", "willow"}};
+  static const std::map<std::string, std::string> kBark{
+      {"quaking-aspen", "birch"}, {"silver-birch", "birch"},    {"european-larch", "pine"},
+      {"norway-spruce", "pine"},  {"weeping-willow", "willow"}, {"lombardy-poplar", "willow"}};
   if (const auto b = kBark.find(name); b != kBark.end()) {
     s.bark = b->second;
   }
@@ -371,7 +395,8 @@ nlohmann::json toJson(const Species& s) {
                       {"bend", o.bend},
                       {"droop", o.droop},
                       {"stretch", o.stretch},
-                      {"sideRadius", o.sideRadius}});
+                      {"sideRadius", o.sideRadius},
+                      {"whorl", o.whorl}});
   }
   return {{"version", 1},
           {"name", s.name},
@@ -388,6 +413,7 @@ nlohmann::json toJson(const Species& s) {
           {"autumnColour", {s.autumnColour.r, s.autumnColour.g, s.autumnColour.b}},
           {"leafCluster", s.leafCluster},
           {"leafOrder", s.leafOrder},
+          {"foliage", s.foliage == FoliageKind::Needles ? "needles" : "broadleaf"},
           {"bark", s.bark},
           {"youngModulus", s.youngModulus},
           {"woodDensity", s.woodDensity},
@@ -397,9 +423,10 @@ nlohmann::json toJson(const Species& s) {
 Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, 1, where);
   const JsonNode root(json, where, "");
-  root.object({"version", "name", "rule", "maxOrder", "maxDepth", "maxPieces", "minRadius", "trunkRadius",
-               "sizeVariation", "orders", "barkColour", "leafColour", "autumnColour", "leafCluster",
-               "leafOrder", "bark", "youngModulus", "woodDensity", "damping"});
+  root.object({"version",    "name",       "rule",         "maxOrder",      "maxDepth",
+               "maxPieces",  "minRadius",  "trunkRadius",  "sizeVariation", "orders",
+               "barkColour", "leafColour", "autumnColour", "leafCluster",   "leafOrder",
+               "foliage",    "bark",       "youngModulus", "woodDensity",   "damping"});
   Species s;
   s.name = root["name"].string();
   if (root.has("rule")) {
@@ -430,6 +457,9 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     s.leafCluster = static_cast<float>(root["leafCluster"].number(0, 10));
   if (root.has("leafOrder"))
     s.leafOrder = root["leafOrder"].integer(0, 16);
+  if (root.has("foliage"))
+    s.foliage = root["foliage"].choice({"broadleaf", "needles"}) == "needles" ? FoliageKind::Needles
+                                                                              : FoliageKind::Broadleaf;
   if (root.has("bark"))
     s.bark = root["bark"].choice({"oak", "birch", "pine", "willow", "procedural"});
   if (root.has("youngModulus"))
@@ -445,7 +475,7 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     for (std::size_t i = 0; i < n; ++i) {
       const JsonNode o = orders[i];
       o.object({"minSegments", "maxSegments", "fork", "trifurcation", "sideBranch", "asymmetry", "bend",
-                "droop", "stretch", "sideRadius"});
+                "droop", "stretch", "sideRadius", "whorl"});
       OrderParams p;
       if (o.has("minSegments"))
         p.minSegments = o["minSegments"].integer(0, 64);
@@ -470,6 +500,8 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
         p.droop = static_cast<float>(o["droop"].number(-0.5, 0.5));
       if (o.has("stretch"))
         p.stretch = static_cast<float>(o["stretch"].number(0.5, 12));
+      if (o.has("whorl"))
+        p.whorl = o["whorl"].integer(0, 6);
       if (o.has("sideRadius")) {
         p.sideRadius = static_cast<float>(o["sideRadius"].number(0, 0.95));
         if (p.sideRadius != 0.0f && p.sideRadius < 0.05f)

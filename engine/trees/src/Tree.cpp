@@ -25,9 +25,10 @@ struct Open {
   int node;
   int rim;
   int order;
-  int segment;  // I pieces so far on this axis
-  float radius; // rim radius in trunk radii
-  float scale;  // bone scale of the terminal joint it belongs to
+  int segment;   // I pieces so far on this axis
+  float radius;  // rim radius in trunk radii
+  float scale;   // bone scale of the terminal joint it belongs to
+  int whorl = 0; // Branch pieces still to come in the whorl this stem rim is part of
 };
 
 float rimScale(const Piece& piece, int rim) {
@@ -106,7 +107,14 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
           species.rule == AssemblyRule::Alternate ? (node.depth * 2) % 6 : static_cast<int>(rng.below(6));
     }
     const OrderParams& params = species.order(order);
-    if ((piece == ids.i || piece == ids.branch) && params.stretch != 1.0f) {
+    // A whorl: Branch pieces on a whorled order, short, each turned a whorl step from the last.
+    const bool whorl = piece == ids.branch && params.whorl >= 2 && species.rule == AssemblyRule::Grammar;
+    if (whorl) {
+      node.stretch = kMinStretch;
+      if (at != nullptr && at->whorl > 0) {
+        node.rotation = std::max(1, static_cast<int>(std::lround(6.0 / params.whorl)));
+      }
+    } else if ((piece == ids.i || piece == ids.branch) && params.stretch != 1.0f) {
       // ±15 % per piece from a hash of (seed, node), so the assembly's random stream is untouched.
       const std::uint64_t h = hash64(seed * 0x9E3779B97F4A7C15ULL ^ (tree.nodes.size() + 0x5bd1e995ULL));
       const float jitter = static_cast<float>(h >> 40) / 16777216.0f * 2.0f - 1.0f;
@@ -116,12 +124,16 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
     const int index = static_cast<int>(tree.nodes.size() - 1);
     const Piece& p = pieces[static_cast<std::size_t>(piece)];
     for (int r = 1; r < static_cast<int>(p.rims.size()); ++r) {
-      Open o{index, r, order, segment + 1, radius * rimScale(p, r), 1.0f};
+      Open o{index, r, order, segment + 1, radius * rimScale(p, r), 1.0f, 0};
       if (piece == ids.y || piece == ids.psi) {
         o.order = order + 1;
         o.segment = 0;
       } else if (piece == ids.branch && r == 2) {
         o.order = order + 1;
+        o.segment = 0;
+      } else if (whorl && r == 1) {
+        // The stem goes on with the rest of the whorl, then grows a new internode.
+        o.whorl = at != nullptr && at->whorl > 0 ? at->whorl - 1 : params.whorl - 1;
         o.segment = 0;
       }
       open.push_back(o);
@@ -172,6 +184,8 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
         const float u = rng.uniform();
         if (at.order > species.maxOrder) {
           piece = ids.cap;
+        } else if (at.whorl > 0 && canSplit) {
+          piece = ids.branch;
         } else if (at.segment < p.minSegments) {
           piece = ids.i;
         } else if (!canSplit) {

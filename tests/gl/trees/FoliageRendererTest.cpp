@@ -425,6 +425,58 @@ TEST_F(FoliageRendererTest, BakeRunsAgainOnlyForANewViewDirection) {
   EXPECT_TRUE(foliage.bake(a, evening));
 }
 
+TEST_F(FoliageRendererTest, ConifersShowTheNeedleCloud) {
+  // A species with needles bakes the needle cloud as well and its billboards show it: the share of a
+  // billboard's pixels the leaves cover follows the texture its species reads, leaves or needles.
+  auto forest = capForest({glm::vec3(0.0f)});
+  FoliageSettings settings = unitSettings();
+  auto coverage = [](const Image& image) {
+    int n = 0;
+    for (int y = 0; y < image.height(); ++y) {
+      for (int x = 0; x < image.width(); ++x) {
+        n += image.get(x, y, 3) > 0.0f ? 1 : 0;
+      }
+    }
+    return static_cast<double>(n) / (image.width() * image.height());
+  };
+  const render::Camera camera = lookingAlongMinusZ(glm::vec3(0.0f, 1.0f, 0.0f), 6.0f);
+  auto drawn = [&](FoliageRenderer& foliage, TreeRenderer& trees) {
+    render::RenderTarget target(kSize, kSize);
+    target.begin(glm::vec4(0.0f));
+    foliage.bake(camera, noFog());
+    foliage.draw(camera, kSize, kSize, 0.0, trees, TreeLod{}, nullptr, noFog());
+    const Image frame = target.readColor();
+    int n = 0;
+    for (int y = 0; y < frame.height(); ++y) {
+      for (int x = 0; x < frame.width(); ++x) {
+        n += frame.get(x, y, 0) + frame.get(x, y, 1) + frame.get(x, y, 2) > 0.0f ? 1 : 0;
+      }
+    }
+    return n;
+  };
+  TreeRenderer leafTrees(shaders(), forest);
+  FoliageRenderer leaves(shaders(), forest, settings);
+  const int leafPixels = drawn(leaves, leafTrees);
+  const double leafCover = coverage(leaves.cloudTexture().download(4, PixelType::U8));
+  EXPECT_EQ(leaves.needleTexture().width(), 1) << "no conifer, no needle bake";
+
+  forest->species[0].foliage = FoliageKind::Needles;
+  TreeRenderer needleTrees(shaders(), forest);
+  FoliageRenderer needles(shaders(), forest, settings);
+  const int needlePixels = drawn(needles, needleTrees);
+  const double needleCover = coverage(needles.needleTexture().download(4, PixelType::U8));
+  EXPECT_GT(needleCover, 0.05);
+  EXPECT_GT(leafPixels, 500);
+  EXPECT_GT(needlePixels, 200);
+  // Drawn coverage follows the baked coverage of the species' cloud (within 20 %).
+  const double drawnRatio = static_cast<double>(needlePixels) / leafPixels;
+  EXPECT_NEAR(drawnRatio / (needleCover / leafCover), 1.0, 0.2)
+      << needlePixels << " needle pixels, " << leafPixels << " leaf pixels; texture cover " << needleCover
+      << " against " << leafCover;
+  EXPECT_EQ(needles.stats().leafTriangles,
+            static_cast<std::size_t>(2 * settings.needles.shoots * settings.needles.needles));
+}
+
 TEST_F(FoliageRendererTest, RealLeafTextureIsAlphaTested) {
   // ez-tree's oak leaves (scripts/fetch-sample-data.sh): a palette PNG with transparency.
   const auto path = test::externalData("ez-tree/leaves/oak_color.png");

@@ -143,6 +143,43 @@ TEST(LeafCloud, ProceduralCloudIsDeterministicAndFillsTheUnitSphere) {
   EXPECT_THROW((void)makeLeafCloud(bad), Error);
 }
 
+TEST(LeafCloud, NeedleCloudIsShootsOfNarrowNeedles) {
+  NeedleCloudSettings settings;
+  settings.shoots = 10;
+  settings.needles = 30;
+  const LeafCloud a = makeNeedleCloud(settings);
+  const LeafCloud b = makeNeedleCloud(settings);
+  ASSERT_EQ(a.triangles(), 2u * 10u * 30u);
+  EXPECT_EQ(std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(LeafVertex)), 0);
+  EXPECT_NO_THROW(validate(a, "needles"));
+  float farthest = 0.0f;
+  for (const LeafVertex& v : a.vertices) {
+    farthest = std::max(farthest, glm::length(v.position));
+  }
+  EXPECT_LE(farthest, 1.0f + 1e-5f);
+  EXPECT_GE(farthest, 0.999f);
+  // Every card (two triangles, six vertices) is a needle: several times longer than wide.
+  int needles = 0;
+  for (std::size_t i = 0; i + 5 < a.vertices.size(); i += 6) {
+    float longest = 0.0f;
+    float shortest = 1e9f;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float edge = glm::length(a.vertices[i + k].position - a.vertices[i + (k + 1) % 3].position);
+      longest = std::max(longest, edge);
+      shortest = std::min(shortest, edge);
+    }
+    needles += shortest > 0.0f && longest / shortest > 4.0f ? 1 : 0;
+  }
+  EXPECT_EQ(needles, 300);
+  settings.needleWidth = 0.0f;
+  try {
+    (void)makeNeedleCloud(settings);
+    ADD_FAILURE() << "a zero needle width was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("needleWidth"), std::string::npos) << e.what();
+  }
+}
+
 TEST(LeafCloud, CardsKeepTheirOrientationAndNormalisationFitsTheSphere) {
   LeafCard card;
   card.centre = glm::vec3(4.0f, 0.0f, 0.0f);

@@ -315,9 +315,89 @@ TEST(Species, PresetsValidateAndJsonRoundTrips) {
   EXPECT_THROW(speciesPreset("baobab"), Error);
 }
 
+TEST(Species, SpruceBranchesGrowInWhorls) {
+  // The spruce's trunk carries its side branches in whorls of three: three Branch pieces in a row, short,
+  // each turned two rim steps (120°) from the last, so the three branches leave at one height all round;
+  // then an internode of I pieces. Other presets have no whorls.
+  const PieceSet pieces = standardPieces();
+  const int branch = pieces.find("Branch");
+  const int i = pieces.find("I");
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    SCOPED_TRACE(seed);
+    const TreeTopology tree = generateTree(pieces, speciesPreset("norway-spruce"), seed);
+    // Walk the trunk: from the foot, always the stem's rim (rim 1).
+    std::vector<int> trunk;
+    int node = 0;
+    for (;;) {
+      int next = -1;
+      for (std::size_t c = 0; c < tree.nodes.size(); ++c) {
+        if (tree.nodes[c].parent == node && tree.nodes[c].parentRim == 1 && tree.nodes[c].order == 0) {
+          next = static_cast<int>(c);
+        }
+      }
+      if (next < 0) {
+        break;
+      }
+      trunk.push_back(next);
+      node = next;
+    }
+    int whorls = 0;
+    for (std::size_t k = 0; k + 3 < trunk.size(); ++k) {
+      const TreeNode& a = tree.nodes[static_cast<std::size_t>(trunk[k])];
+      if (a.piece != branch ||
+          (k > 0 && tree.nodes[static_cast<std::size_t>(trunk[k - 1])].piece == branch)) {
+        continue;
+      }
+      // A whorl starts here: two more Branch pieces turned 120°, all short, then an I.
+      const TreeNode& b = tree.nodes[static_cast<std::size_t>(trunk[k + 1])];
+      const TreeNode& c = tree.nodes[static_cast<std::size_t>(trunk[k + 2])];
+      const TreeNode& d = tree.nodes[static_cast<std::size_t>(trunk[k + 3])];
+      EXPECT_EQ(b.piece, branch);
+      EXPECT_EQ(c.piece, branch);
+      EXPECT_EQ(b.rotation, 2);
+      EXPECT_EQ(c.rotation, 2);
+      EXPECT_EQ(a.stretch, kMinStretch);
+      EXPECT_EQ(c.stretch, kMinStretch);
+      EXPECT_EQ(d.piece, i);
+      ++whorls;
+    }
+    EXPECT_GE(whorls, 8) << "of " << trunk.size() << " trunk pieces";
+  }
+  for (const std::string& n : realSpeciesPresetNames()) {
+    const Species s = speciesPreset(n);
+    for (const OrderParams& o : s.orders) {
+      EXPECT_TRUE(o.whorl == 0 || n == "norway-spruce") << n;
+    }
+  }
+  nlohmann::json j = toJson(speciesPreset("norway-spruce"));
+  EXPECT_EQ(j["orders"][0]["whorl"], 3);
+  j["orders"][0]["whorl"] = 7;
+  EXPECT_THROW((void)speciesFromJson(j, "spruce.json"), Error);
+}
+
+TEST(Species, ConifersCarryNeedles) {
+  // The larch is a conifer: needle sprays, not broad-leaf clusters; the broad-leaved presets keep leaves.
+  EXPECT_EQ(speciesPreset("european-larch").foliage, FoliageKind::Needles);
+  EXPECT_EQ(speciesPreset("norway-spruce").foliage, FoliageKind::Needles);
+  EXPECT_EQ(speciesPreset("california-black-oak").foliage, FoliageKind::Broadleaf);
+  nlohmann::json j = toJson(speciesPreset("almond"));
+  EXPECT_EQ(j["foliage"], "broadleaf");
+  j["foliage"] = "needles";
+  EXPECT_EQ(speciesFromJson(j, "fir.json").foliage, FoliageKind::Needles);
+  j["foliage"] = "scales";
+  try {
+    (void)speciesFromJson(j, "cypress.json");
+    ADD_FAILURE() << "an unknown foliage kind was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("foliage"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cypress.json"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Species, LeavesTurnToTheirAutumnColour) {
   // Every real species has its own autumn colour, warmer than its summer green (red over green rises: the
   // tupelo turns scarlet, the birch and the aspen yellow), and the season blends linearly between them.
+  int evergreen = 0;
   for (const std::string& n : realSpeciesPresetNames()) {
     SCOPED_TRACE(n);
     const Species s = speciesPreset(n);
@@ -325,12 +405,19 @@ TEST(Species, LeavesTurnToTheirAutumnColour) {
     const glm::vec3 autumn = seasonalLeafColour(s, 1.0f);
     EXPECT_EQ(summer, s.leafColour);
     EXPECT_EQ(autumn, s.autumnColour);
+    if (s.autumnColour == s.leafColour) {
+      // Evergreen: only a conifer keeps its colour (the spruce); the larch, a conifer too, turns golden.
+      EXPECT_EQ(s.foliage, FoliageKind::Needles);
+      ++evergreen;
+      continue;
+    }
     EXPECT_GT(autumn.r / autumn.g, 1.0f);
     EXPECT_LT(summer.r / summer.g, 1.0f);
     const glm::vec3 half = seasonalLeafColour(s, 0.5f);
     EXPECT_NEAR(half.r, 0.5f * (summer.r + autumn.r), 1e-6f);
     EXPECT_EQ(seasonalLeafColour(s, 3.0f), autumn); // clamped
   }
+  EXPECT_EQ(evergreen, 1);
   EXPECT_GT(speciesPreset("black-tupelo").autumnColour.r / speciesPreset("black-tupelo").autumnColour.g,
             4.0f);
   // A species file may give its own; a bad one names the field.

@@ -100,6 +100,32 @@ void validate(const LeafCloudSettings& settings, const std::string& where);
  */
 LeafCloud makeLeafCloud(const LeafCloudSettings& settings);
 
+/** How makeNeedleCloud grows a conifer's needle sprays. */
+struct NeedleCloudSettings {
+  /** Shoots (twigs with needles all round), 1 … 1,000. */
+  int shoots = 22;
+  /** Needles per shoot, 1 … 1,000. */
+  int needles = 44;
+  /** Shoot length, in units of the cloud's radius, (0, 2]. */
+  float shootLength = 0.75f;
+  /** Needle length and width, in units of the cloud's radius, (0, 1]. */
+  float needleLength = 0.13f;
+  float needleWidth = 0.02f;
+  /** Random brightness and hue variation of the needles, [0, 1]. */
+  float tintVariation = 0.15f;
+  std::uint64_t seed = 1;
+};
+/** Throws sylva::Error "<where>.<field>: …" for values out of range. */
+void validate(const NeedleCloudSettings& settings, const std::string& where);
+
+/**
+ * A procedural needle cloud: `shoots` twigs spread through the sphere (reaching outwards and drooping a
+ * little at their tips), each set all round with `needles` narrow cards that leave the shoot at 40–70°
+ * towards its tip (a bottle brush, as spruce and fir shoots are), normalised into the unit sphere. Drawn
+ * without a leaf image: a needle is a card of its own. Deterministic in the settings.
+ */
+LeafCloud makeNeedleCloud(const NeedleCloudSettings& settings);
+
 /**
  * Reads a leaf cloud from a model (any format Assimp reads: OBJ, glTF, Collada, FBX, …): every triangle of
  * every mesh (polygons triangulated, node transforms applied), texture coordinates from channel 0, normals
@@ -202,7 +228,10 @@ struct FoliageSettings {
   /** Moves each cloud centre this fraction of its radius outwards along the branch tip (+y of the joint). */
   float lift = 0.35f;
   std::uint64_t seed = 1;
+  /** The broad-leaf cloud (species with FoliageKind::Broadleaf). */
   LeafCloudSettings cloud;
+  /** The needle cloud (species with FoliageKind::Needles). */
+  NeedleCloudSettings needles;
 };
 /** Throws sylva::Error "<where>.<field>: …" for values out of range. */
 void validate(const FoliageSettings& settings, const std::string& where);

@@ -53,6 +53,21 @@ struct OrderParams {
    * conserved).
    */
   float sideRadius = 0.0f;
+  /**
+   * Side branches per whorl (conifers: spruce, fir, pine), 0 or 1: none (side branches one at a time), 2 … 6:
+   * a side branch on this order starts a whorl of that many Branch pieces, each short (stretch 0.5) and
+   * turned 6 / whorl rim steps from the last, so their side branches leave at one height all round; the stem
+   * then grows minSegments … maxSegments I pieces (the internode) before the next whorl.
+   */
+  int whorl = 0;
+};
+
+/** What a species' leaf clusters are made of. */
+enum class FoliageKind {
+  /** Broad leaves: the leaf image on FoliageSettings::cloud's cards. */
+  Broadleaf,
+  /** Needle sprays (conifers): FoliageSettings::needles' shoots of needles. */
+  Needles,
 };
 
 /** A species: rule, limits, per-order grammar, size and colours. */
@@ -86,6 +101,8 @@ struct Species {
    * (hanging willow shoots, birch twigs), not only the twig tips; 0: tips only.
    */
   int leafOrder = 0;
+  /** Broad leaves or needle sprays (JSON "foliage": "broadleaf" or "needles"). */
+  FoliageKind foliage = FoliageKind::Broadleaf;
   /**
    * Bark photos the bark tiles are synthesised from (docs/trees.md "Bark"): one of barkPhotoNames()
    * (ez-tree's oak, birch, pine, willow) or "procedural" (no photos needed).

@@ -1,13 +1,14 @@
 #pragma once
 // Foliage on the GPU (seed 000 §6, docs/trees.md "Foliage"): 2.5D leaf-cloud impostors in two passes.
-// Pass 1 (bake) renders the one leaf cloud orthographically along the camera's view direction into an RGBA8
-// texture: lit colour in RGB, the depth across the cloud's unit sphere in A (Foliage.hpp: encodeFoliageDepth;
-// the nearest leaf wins through the bake's own depth buffer); it runs again only when the view direction (or
-// the sun) changes. Pass 2 (draw) draws one camera-facing billboard per anchor, instanced, on the front plane
-// of the anchor's sphere, positioned from the joint frames the trees draw with (so it moves in the wind);
-// each fragment writes the depth of the leaf its texel shows (layout(depth_greater)), so billboards are
-// depth-tested against each other and against the bark, and dissolves in the far field exactly like its
-// tree's pieces. Needs a current GL context.
+// Pass 1 (bake) renders the leaf cloud (and the needle cloud when a species is a conifer: FoliageKind)
+// orthographically along the camera's view direction into an RGBA8 texture each: lit colour in RGB, the depth
+// across the cloud's unit sphere in A (Foliage.hpp: encodeFoliageDepth; the nearest leaf wins through the
+// bake's own depth buffer); it runs again only when the view direction (or the sun) changes. Pass 2 (draw)
+// draws one camera-facing billboard per anchor, instanced, on the front plane of the anchor's sphere,
+// positioned from the joint frames the trees draw with (so it moves in the wind); each fragment writes the
+// depth of the leaf its texel shows (layout(depth_greater)), so billboards are depth-tested against each
+// other and against the bark, and dissolves in the far field exactly like its tree's pieces. Needs a current
+// GL context.
 
 #include <sylva/core/Image.hpp>
 #include <sylva/gl/Buffer.hpp>
@@ -78,7 +79,9 @@ public:
 
   /** The cloud texture (rgb: lit colour code, a: depth code; nearest filtering), e.g. for tests and panels.
    */
-  const gl::Texture& cloudTexture() const { return mCloud; }
+  const gl::Texture& cloudTexture() const { return mLeaves.colour; }
+  /** The needle cloud's texture, the same way (1 × 1 and never baked when no species has needles). */
+  const gl::Texture& needleTexture() const { return mNeedles.colour; }
   /** The basis of the last bake. */
   const FoliageBasis& basis() const { return mBasis; }
   const std::vector<FoliageAnchor>& anchors() const { return mAnchors; }
@@ -88,7 +91,16 @@ public:
   std::size_t gpuBytes() const;
 
 private:
-  void uploadUniforms(const render::Environment& environment, const TreeLod& lod);
+  void uploadUniforms(const render::Environment& environment, const TreeLod& lod, bool leafImage = true);
+
+  /** A cloud's baked texture and the target it is baked in. */
+  struct CloudTarget {
+    CloudTarget() = default;
+    CloudTarget(int size, const char* label);
+    gl::Texture colour{gl::NoCreate};
+    gl::Texture depth{gl::NoCreate};
+    gl::Framebuffer target{gl::NoCreate};
+  };
 
   std::shared_ptr<const Forest> mForest;
   FoliageSettings mSettings;
@@ -102,9 +114,13 @@ private:
   gl::Texture mLeaf{gl::NoCreate};
   std::size_t mLeafTexels = 0;
   glm::vec3 mLeafMean{1.0f};
-  gl::Texture mCloud{gl::NoCreate};
-  gl::Texture mCloudDepth{gl::NoCreate};
-  gl::Framebuffer mTarget{gl::NoCreate};
+  CloudTarget mLeaves;
+  CloudTarget mNeedles;
+  gl::Buffer mNeedleVertices{gl::NoCreate};
+  std::size_t mNeedleCount = 0;
+  gl::VertexArray mNeedleVao;
+  bool mHasLeaves = false;
+  bool mHasNeedles = false;
   gl::VertexArray mCloudVao;
   gl::VertexArray mEmptyVao;
   render::FrameBinding mFrame; ///< the frame path's block, or its own when drawn alone
