@@ -158,6 +158,25 @@ const std::map<std::string, std::function<Species()>>& presets() {
          s.woodDensity = 850.0f;
          return s;
        }},
+      {"oak-sapling",
+       [] {
+         Species s = base("oak-sapling");
+         s.maxOrder = 3;
+         s.trunkRadius = 0.02f;
+         s.minRadius = 0.15f;
+         // A young oak as nurseries sell it (a standard): a clear, straight stem about half its height, then
+         // a small crown of a few ascending branches.
+         s.orders = {order(2, 3, 0.0f, 0.0f, 0.7f, 0.0f, 0.03f, 0.0f, 8.0f, 0.4f),
+                     order(1, 3, 0.3f, 0.0f, 0.4f, 0.2f, 0.15f, 0.02f, 10.0f, 0.5f),
+                     order(1, 2, 0.2f, 0.0f, 0.4f, 0.2f, 0.2f, 0.04f, 5.0f, 0.5f)};
+         s.barkColour = {0.36f, 0.33f, 0.29f};
+         s.leafColour = {0.22f, 0.38f, 0.13f};
+         s.autumnColour = {0.58f, 0.4f, 0.13f};
+         s.leafCluster = 0.35f;
+         s.youngModulus = 11e9f;
+         s.woodDensity = 850.0f;
+         return s;
+       }},
       {"sassafras",
        [] {
          Species s = base("sassafras");
