@@ -55,6 +55,12 @@ void TreeFlags::add(CLI::App& command) {
                   "Season of the leaves: 0 summer green to 1 each species' full autumn colour")
       ->check(finiteRange(0.0, 1.0))
       ->capture_default_str();
+  command
+      .add_option("--trees-leaf-fall", forest.leafFall,
+                  "Share of the deciduous species' leaves fallen: 0 none to 1 bare winter crowns (evergreens "
+                  "keep theirs)")
+      ->check(finiteRange(0.0, 1.0))
+      ->capture_default_str();
   command.add_option("--trees-pixels", lod.pixelsPerSegment, "Tessellation target: pixels per segment")
       ->check(finiteRange(0.5, 100.0))
       ->capture_default_str();
@@ -187,6 +193,7 @@ scene::ForestDesc TreeFlags::forestDesc() const {
   f.spacing = forest.spacing;
   f.maxSlope = forest.maxSlope;
   f.autumn = forest.autumn;
+  f.leafFall = forest.leafFall;
   f.clusterSize = forest.clusterSize;
   f.bare = forest.bare;
   f.regionRadius = forest.regionRadius;

@@ -54,7 +54,7 @@ struct TreeFlags {
   /** Bark, foliage and far field as the flags say (the engine's description, trees::ForestLook). */
   trees::ForestLook look() const;
   /** Adds --trees, --trees-species, --trees-count, --trees-seed, --trees-spacing, --trees-max-slope,
-   * --trees-autumn,
+   * --trees-autumn, --trees-leaf-fall,
    * --trees-pixels, --trees-max-level, --trees-level, --trees-distance, --trees-min-pixels,
    * --trees-min-width, --trees-view, --trees-wind. */
   void add(CLI::App& command);

@@ -412,6 +412,7 @@ void TreesPanel::resetPending() {
   pendingSeed = static_cast<int>(std::min<std::uint64_t>(desc.seed, 0x7fffffff));
   pendingSpacing = desc.spacing;
   pendingAutumn = desc.autumn;
+  pendingLeafFall = desc.leafFall;
 }
 
 void TreesPanel::resetPendingFar() {
@@ -505,8 +506,11 @@ void TreesPanel::show(scene::SceneWorld& world, const render::GpuTimers& timers)
   ImGui::SliderFloat("spacing (m)", &pendingSpacing, 0.0f, 100.0f, "%.1f", kClamp);
   ImGui::SliderFloat("autumn", &pendingAutumn, 0.0f, 1.0f, "%.2f", kClamp);
   ui::disabledTooltip("leaves: 0 summer green, 1 each species' autumn colour");
+  ImGui::SliderFloat("leaf fall", &pendingLeafFall, 0.0f, 1.0f, "%.2f", kClamp);
+  ui::disabledTooltip("deciduous leaves fallen: 0 none, 1 bare winter crowns (evergreens keep theirs)");
   const bool edited = pendingCount != desc.count || static_cast<std::uint64_t>(pendingSeed) != desc.seed ||
-                      pendingSpacing != desc.spacing || pendingAutumn != desc.autumn;
+                      pendingSpacing != desc.spacing || pendingAutumn != desc.autumn ||
+                      pendingLeafFall != desc.leafFall;
   ImGui::BeginDisabled(!edited && built);
   if (ImGui::Button("Rebuild")) {
     scene::ForestDesc next = desc;
@@ -514,6 +518,7 @@ void TreesPanel::show(scene::SceneWorld& world, const render::GpuTimers& timers)
     next.seed = static_cast<std::uint64_t>(pendingSeed);
     next.spacing = pendingSpacing;
     next.autumn = pendingAutumn;
+    next.leafFall = pendingLeafFall;
     rebuild(world, next);
   }
   ImGui::EndDisabled();

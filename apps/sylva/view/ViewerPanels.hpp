@@ -93,6 +93,7 @@ struct TreesPanel {
   int pendingSeed = 0;
   float pendingSpacing = 0.0f;
   float pendingAutumn = 0.0f;
+  float pendingLeafFall = 0.0f;
   std::string buildError;
   std::string surfaceError;
   /** A tile-set directory given as --trees-bark (the bark combo's fourth choice), else empty. */

@@ -228,7 +228,7 @@ GrassLayer readGrass(const Node& n) {
 ForestDesc readForest(const Node& n) {
   n.object({"species", "count", "seed", "spacing", "max_slope", "min_height", "max_height", "density_map",
             "cluster_size", "bare", "region", "bark", "foliage", "far_distance", "far_band", "far_count",
-            "autumn"});
+            "autumn", "leaf_fall"});
   ForestDesc f;
   {
     const Node s = n["species"];
@@ -286,6 +286,9 @@ ForestDesc readForest(const Node& n) {
   }
   if (n.has("autumn")) {
     f.autumn = static_cast<float>(n["autumn"].real(0.0, 1.0));
+  }
+  if (n.has("leaf_fall")) {
+    f.leafFall = static_cast<float>(n["leaf_fall"].real(0.0, 1.0));
   }
   if (n.has("region")) {
     const Node r = n["region"];

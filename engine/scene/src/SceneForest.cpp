@@ -35,6 +35,7 @@ trees::ForestSettings forestSettings(const ForestDesc& f, float exaggeration, st
   s.spacing = f.spacing;
   s.maxSlope = f.maxSlope;
   s.autumn = f.autumn;
+  s.leafFall = f.leafFall;
   s.clusterSize = f.clusterSize;
   s.bare = f.bare;
   s.verticalScale = 1.0f; // placement reads the drawn (already exaggerated) heights

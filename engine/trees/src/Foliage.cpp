@@ -556,6 +556,15 @@ std::vector<FoliageAnchor> foliageAnchors(const Forest& forest, const FoliageSet
       }
       FoliageAnchor a;
       a.joint = forest.jointOffset[ti] + node.rootJoint;
+      // The species' leaf density keeps this share of its clusters, the same ones at any season (a cluster
+      // stays while its hash is under the density, so thinning only ever removes).
+      if (species.leafDensity < 1.0f) {
+        const std::uint64_t h =
+            hash64(static_cast<std::uint64_t>(a.joint) * 0xd6e8feb86659fd93ULL ^ 0x1eaff411ULL);
+        if (static_cast<float>(h >> 40) / 16777216.0f >= species.leafDensity) {
+          continue;
+        }
+      }
       a.tree = static_cast<std::uint32_t>(ti);
       a.species = static_cast<std::uint32_t>(std::max(tree.species, 0));
       const gpu::JointFrame& f = frames[a.joint];

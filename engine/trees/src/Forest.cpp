@@ -60,6 +60,9 @@ void validate(const ForestSettings& s, const std::string& where) {
   if (!(std::isfinite(s.autumn) && s.autumn >= 0.0f && s.autumn <= 1.0f)) {
     fail("{}.autumn: must be in [0, 1] (0 summer, 1 full autumn colour)", where);
   }
+  if (!(std::isfinite(s.leafFall) && s.leafFall >= 0.0f && s.leafFall <= 1.0f)) {
+    fail("{}.leafFall: must be in [0, 1] (0 every leaf, 1 bare deciduous crowns)", where);
+  }
   if (std::isinf(s.minHeight) || std::isinf(s.maxHeight)) {
     fail("{}.minHeight/maxHeight: must be finite", where);
   }
@@ -134,6 +137,7 @@ Forest placeForest(const terrain::HeightField& terrain, const ForestSettings& se
   for (const std::string& name : settings.species) {
     forest.species.push_back(resolveSpecies(name));
     forest.species.back().leafColour = seasonalLeafColour(forest.species.back(), settings.autumn);
+    forest.species.back().leafDensity = seasonalLeafDensity(forest.species.back(), settings.leafFall);
   }
   Rng rng(hash64(settings.seed ^ 0xf0e57ULL));
   const float cell = std::max(settings.spacing, 0.5f);

@@ -68,8 +68,9 @@ const std::map<std::string, std::function<Species()>>& presets() {
          s.foliage = FoliageKind::Needles;
          s.barkColour = {0.3f, 0.2f, 0.15f};
          s.leafColour = {0.1f, 0.22f, 0.09f};
-         // Evergreen: the needles keep their colour through autumn.
+         // Evergreen: the needles keep their colour through autumn and stay through winter.
          s.autumnColour = s.leafColour;
+         s.evergreen = true;
          s.leafCluster = 0.7f;
          s.woodDensity = 450.0f;
          s.youngModulus = 1.0e10f;
@@ -311,6 +312,8 @@ void validate(const Species& s, const std::string& file) {
   check(std::isfinite(s.leafCluster) && s.leafCluster >= 0.0f && s.leafCluster <= 10.0f, where, "leafCluster",
         "must be in [0, 10] metres");
   check(s.leafOrder >= 0 && s.leafOrder <= 16, where, "leafOrder", "must be in [0, 16]");
+  check(std::isfinite(s.leafDensity) && s.leafDensity >= 0.0f && s.leafDensity <= 1.0f, where, "leafDensity",
+        "must be in [0, 1]");
   check(std::find(barkPhotoNames().begin(), barkPhotoNames().end(), s.bark) != barkPhotoNames().end(), where,
         "bark", "must be one of oak, birch, pine, willow, procedural");
   check(std::isfinite(s.youngModulus) && s.youngModulus >= 1e6f && s.youngModulus <= 1e12f, where,
@@ -361,6 +364,11 @@ std::vector<std::string> realSpeciesPresetNames() {
     }
   }
   return names;
+}
+
+float seasonalLeafDensity(const Species& species, float leafFall) {
+  const float fall = std::isfinite(leafFall) ? std::clamp(leafFall, 0.0f, 1.0f) : 0.0f;
+  return species.evergreen ? species.leafDensity : species.leafDensity * (1.0f - fall);
 }
 
 glm::vec3 seasonalLeafColour(const Species& species, float autumn) {
@@ -433,6 +441,8 @@ nlohmann::json toJson(const Species& s) {
           {"leafCluster", s.leafCluster},
           {"leafOrder", s.leafOrder},
           {"foliage", s.foliage == FoliageKind::Needles ? "needles" : "broadleaf"},
+          {"leafDensity", s.leafDensity},
+          {"evergreen", s.evergreen},
           {"bark", s.bark},
           {"youngModulus", s.youngModulus},
           {"woodDensity", s.woodDensity},
@@ -442,10 +452,10 @@ nlohmann::json toJson(const Species& s) {
 Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
   requireJsonVersion(json, 1, where);
   const JsonNode root(json, where, "");
-  root.object({"version",    "name",       "rule",         "maxOrder",      "maxDepth",
-               "maxPieces",  "minRadius",  "trunkRadius",  "sizeVariation", "orders",
-               "barkColour", "leafColour", "autumnColour", "leafCluster",   "leafOrder",
-               "foliage",    "bark",       "youngModulus", "woodDensity",   "damping"});
+  root.object({"version",      "name",         "rule",          "maxOrder", "maxDepth",    "maxPieces",
+               "minRadius",    "trunkRadius",  "sizeVariation", "orders",   "barkColour",  "leafColour",
+               "autumnColour", "leafCluster",  "leafOrder",     "foliage",  "leafDensity", "evergreen",
+               "bark",         "youngModulus", "woodDensity",   "damping"});
   Species s;
   s.name = root["name"].string();
   if (root.has("rule")) {
@@ -476,6 +486,10 @@ Species speciesFromJson(const nlohmann::json& json, const std::string& where) {
     s.leafCluster = static_cast<float>(root["leafCluster"].number(0, 10));
   if (root.has("leafOrder"))
     s.leafOrder = root["leafOrder"].integer(0, 16);
+  if (root.has("leafDensity"))
+    s.leafDensity = static_cast<float>(root["leafDensity"].number(0, 1));
+  if (root.has("evergreen"))
+    s.evergreen = root["evergreen"].boolean();
   if (root.has("foliage"))
     s.foliage = root["foliage"].choice({"broadleaf", "needles"}) == "needles" ? FoliageKind::Needles
                                                                               : FoliageKind::Broadleaf;

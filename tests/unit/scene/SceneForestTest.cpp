@@ -32,6 +32,7 @@ TEST(SceneForest, EveryFieldReachesThePlacementOrTheLook) {
   f.clusterSize = 44.0f;
   f.bare = 0.5f;
   f.autumn = 0.75f;
+  f.leafFall = 0.4f;
   f.regionCentre = glm::vec2(100.0f, 200.0f);
   f.regionRadius = 60.0f;
   f.bark = "procedural";
@@ -53,6 +54,7 @@ TEST(SceneForest, EveryFieldReachesThePlacementOrTheLook) {
   EXPECT_FLOAT_EQ(s.clusterSize, 44.0f);
   EXPECT_FLOAT_EQ(s.bare, 0.5f);
   EXPECT_FLOAT_EQ(s.autumn, 0.75f);
+  EXPECT_FLOAT_EQ(s.leafFall, 0.4f);
   EXPECT_EQ(s.regionCentre, glm::vec2(100.0f, 200.0f));
   EXPECT_FLOAT_EQ(s.regionRadius, 60.0f);
   EXPECT_FLOAT_EQ(s.verticalScale, 1.0f); // placement reads drawn heights

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <cstring>
 #include <string>
 
@@ -262,6 +263,30 @@ TEST(FoliageAnchors, OnePerFoliageBearingPieceInstance) {
   FoliageSettings bad;
   bad.maxRadius = 0.1f;
   EXPECT_THROW((void)foliageAnchors(forest, bad), Error);
+}
+
+TEST(FoliageAnchors, LeafDensityThinsTheCrownAndLeafFallOnlyEverRemoves) {
+  // A species' leafDensity keeps that share of its clusters; a lower density keeps a subset of a higher
+  // one's (leaves fall, none grow back), and a bare crown (0) keeps none.
+  Forest forest = gridForest({"california-black-oak"}, 2, 8.0f, 4);
+  const FoliageSettings settings;
+  auto joints = [&](float density) {
+    forest.species[0].leafDensity = density;
+    std::set<std::uint32_t> out;
+    for (const FoliageAnchor& a : foliageAnchors(forest, settings)) {
+      out.insert(a.joint);
+    }
+    return out;
+  };
+  const std::set<std::uint32_t> all = joints(1.0f);
+  const std::set<std::uint32_t> most = joints(0.7f);
+  const std::set<std::uint32_t> few = joints(0.3f);
+  ASSERT_GT(all.size(), 200u);
+  EXPECT_NEAR(static_cast<double>(most.size()) / all.size(), 0.7, 0.08);
+  EXPECT_NEAR(static_cast<double>(few.size()) / all.size(), 0.3, 0.08);
+  EXPECT_TRUE(std::includes(most.begin(), most.end(), few.begin(), few.end()));
+  EXPECT_TRUE(std::includes(all.begin(), all.end(), most.begin(), most.end()));
+  EXPECT_TRUE(joints(0.0f).empty());
 }
 
 TEST(LeafCloudLoader, ReadsTrianglesWithUvsIntoTheUnitSphere) {

@@ -375,6 +375,34 @@ TEST(Species, SpruceBranchesGrowInWhorls) {
   EXPECT_THROW((void)speciesFromJson(j, "spruce.json"), Error);
 }
 
+TEST(Species, DeciduousLeavesFallAndEvergreensKeepTheirs) {
+  const Species oak = speciesPreset("california-black-oak");
+  const Species spruce = speciesPreset("norway-spruce");
+  EXPECT_FALSE(oak.evergreen);
+  EXPECT_FALSE(speciesPreset("european-larch").evergreen) << "the larch drops its needles";
+  EXPECT_TRUE(spruce.evergreen);
+  EXPECT_FLOAT_EQ(seasonalLeafDensity(oak, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(seasonalLeafDensity(oak, 0.25f), 0.75f);
+  EXPECT_FLOAT_EQ(seasonalLeafDensity(oak, 1.0f), 0.0f);
+  EXPECT_FLOAT_EQ(seasonalLeafDensity(oak, 5.0f), 0.0f); // clamped
+  EXPECT_FLOAT_EQ(seasonalLeafDensity(spruce, 1.0f), 1.0f);
+  Species sparse = oak;
+  sparse.leafDensity = 0.5f;
+  EXPECT_FLOAT_EQ(seasonalLeafDensity(sparse, 0.5f), 0.25f);
+  // Species JSON carries both; a density out of range names the field.
+  nlohmann::json j = toJson(spruce);
+  EXPECT_EQ(j["evergreen"], true);
+  j["leafDensity"] = 0.6;
+  EXPECT_FLOAT_EQ(speciesFromJson(j, "spruce.json").leafDensity, 0.6f);
+  j["leafDensity"] = 1.5;
+  try {
+    (void)speciesFromJson(j, "dense.json");
+    ADD_FAILURE() << "a leaf density over 1 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("leafDensity"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Species, ConifersCarryNeedles) {
   // The larch is a conifer: needle sprays, not broad-leaf clusters; the broad-leaved presets keep leaves.
   EXPECT_EQ(speciesPreset("european-larch").foliage, FoliageKind::Needles);

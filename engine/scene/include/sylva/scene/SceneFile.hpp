@@ -99,6 +99,7 @@ struct ForestDesc {
   float spacing = 4.0f;                  ///< minimum distance between trunks, metres
   float maxSlope = 30.0f;                ///< degrees
   float autumn = 0.0f;                   ///< leaves: 0 summer … 1 each species' full autumn colour
+  float leafFall = 0.0f;                 ///< deciduous leaves fallen: 0 none … 1 bare (winter)
   std::optional<float> minHeight;        ///< metres (world heights, after exaggeration)
   std::optional<float> maxHeight;        ///< metres
   std::string densityMap;                ///< resolved PNG over the terrain extent (white dense); empty: none

@@ -73,6 +73,11 @@ struct ForestSettings {
   /** Season of the leaves: 0 summer (each species' leafColour) … 1 full autumn colour (autumnColour). */
   float autumn = 0.0f;
   /**
+   * Share of the deciduous species' leaf clusters fallen, 0 … 1 (1: bare winter crowns; evergreen species
+   * keep theirs): each species' leafDensity becomes seasonalLeafDensity().
+   */
+  float leafFall = 0.0f;
+  /**
    * Density map over the terrain's footprint: `densityWidth` × `densityHeight` values in [0, 1], row 0 at
    * z = 0 (north), stretched over [0, extentX] × [0, extentZ]; a candidate at p survives with the map's
    * bilinear value there. Empty: no map.

@@ -103,6 +103,12 @@ struct Species {
   int leafOrder = 0;
   /** Broad leaves or needle sprays (JSON "foliage": "broadleaf" or "needles"). */
   FoliageKind foliage = FoliageKind::Broadleaf;
+  /** Share of the leaf clusters the crown carries, 0 … 1 (1: every twig tip; ForestSettings::leafFall thins
+   * it). */
+  float leafDensity = 1.0f;
+  /** Keeps its leaves through the year (the spruce); deciduous species lose them to ForestSettings::leafFall.
+   */
+  bool evergreen = false;
   /**
    * Bark photos the bark tiles are synthesised from (docs/trees.md "Bark"): one of barkPhotoNames()
    * (ez-tree's oak, birch, pine, willow) or "procedural" (no photos needed).
@@ -129,6 +135,13 @@ void validate(const Species& species, const std::string& where);
  * season's turn; values outside are clamped).
  */
 glm::vec3 seasonalLeafColour(const Species& species, float autumn);
+
+/**
+ * The share of leaf clusters a species carries after `leafFall` ∈ [0, 1] of the season's leaves have fallen:
+ * leafDensity × (1 − leafFall) for deciduous species, leafDensity for evergreen ones (values outside are
+ * clamped).
+ */
+float seasonalLeafDensity(const Species& species, float leafFall);
 
 /** Valid values of Species::bark: oak, birch, pine, willow, procedural. */
 const std::vector<std::string>& barkPhotoNames();
