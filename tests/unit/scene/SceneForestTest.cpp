@@ -128,6 +128,29 @@ TEST(SceneForest, WithoutATopTheForestStopsBelowTheSnow) {
   EXPECT_GT(highest(unbounded), *line * exaggeration);
 }
 
+TEST(SceneForest, TheSeasonReachesEachSpeciesOfThePlacedForest) {
+  // Autumn colours and leaf fall apply to the forest's copies of its species: a deciduous oak turns and goes
+  // bare, the evergreen spruce keeps its green needles.
+  ForestDesc f;
+  f.species = {{"california-black-oak", 1.0f}, {"norway-spruce", 1.0f}};
+  f.count = 4;
+  f.autumn = 1.0f;
+  f.leafFall = 1.0f;
+  terrain::HeightField field(33, 33, 4.0f, 4.0f);
+  const trees::Forest forest = trees::placeForest(field, forestSettings(f, 1.0f, std::nullopt, kName));
+  ASSERT_EQ(forest.species.size(), 2u);
+  const trees::Species& oak = forest.species[0];
+  const trees::Species& spruce = forest.species[1];
+  ASSERT_EQ(oak.name, "california-black-oak");
+  EXPECT_EQ(oak.leafColour, trees::speciesPreset("california-black-oak").autumnColour);
+  EXPECT_FLOAT_EQ(oak.leafDensity, 0.0f);
+  EXPECT_EQ(spruce.leafColour, trees::speciesPreset("norway-spruce").leafColour);
+  EXPECT_FLOAT_EQ(spruce.leafDensity, 1.0f);
+  f.leafFall = 0.25f;
+  const trees::Forest early = trees::placeForest(field, forestSettings(f, 1.0f, std::nullopt, kName));
+  EXPECT_FLOAT_EQ(early.species[0].leafDensity, 0.75f);
+}
+
 TEST(SceneForest, ErrorsNameTheFileAndField) {
   ForestDesc f;
   f.species = {{"no-such-tree", 1.0f}};
