@@ -164,9 +164,7 @@ float stretchRate(const Piece& piece, const PieceVertex& v) {
 
 /** PieceTiling::repeat: groups of quads joined over side edges (union-find), each group's mean ratio and
  * growth, or one tile where a side edge of the group is a rim or not a side of its other quad. */
-std::vector<std::array<std::uint8_t, 2>>
-quadRepeats(const Piece& piece, const PieceTiling& tiling,
-            const std::map<std::pair<std::uint32_t, std::uint32_t>, int>& uses) {
+std::vector<std::array<std::uint8_t, 2>> quadRepeats(const Piece& piece, const PieceTiling& tiling) {
   const std::size_t count = piece.quads.size();
   std::vector<std::size_t> parent(count);
   for (std::size_t q = 0; q < count; ++q) {
@@ -192,8 +190,8 @@ quadRepeats(const Piece& piece, const PieceTiling& tiling,
   // of one quad only, or on a rim, keeps that quad's group to one tile: the other side sees one tile's line.
   std::vector<bool> single(count, false);
   for (const auto& [edge, list] : owners) {
-    const bool shared = list.size() == 2 && uses.at(edge) == 2;
-    const bool both = shared && side(list[0].first, list[0].second) && side(list[1].first, list[1].second);
+    const bool both =
+        list.size() == 2 && side(list[0].first, list[0].second) && side(list[1].first, list[1].second);
     if (both) {
       parent[find(list[0].first)] = find(list[1].first);
       continue;
@@ -278,7 +276,7 @@ PieceTiling pieceTiling(const Piece& piece) {
     }
     tiling.edges.push_back(e);
   }
-  tiling.repeat = quadRepeats(piece, tiling, uses);
+  tiling.repeat = quadRepeats(piece, tiling);
   for (std::size_t q = 0; q < piece.quads.size(); ++q) {
     const auto& quad = piece.quads[q];
     const std::size_t r = tiling.rotation[q];
