@@ -143,6 +143,24 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
                   0, ""});
   rows.push_back({"demo ground view: whole frame (wall)", render::Stats::of(demoSamples.frame).median, "ms",
                   std::nan(""), true, 0, "with sun shadows, sky and flare"});
+  // What the near tufts cost: the same view with them off.
+  rows.push_back({"demo ground view: of which near tufts", static_cast<double>(demoCounters.overflow.w),
+                  "blades", std::nan(""), false, 0,
+                  fmt::format("{} layers within {} m", demoGrass.cullSettings().nearLayers,
+                              grass::nearReach(demoGrass.cullSettings()))});
+  {
+    const grass::CullSettings withTufts = demoGrass.cullSettings();
+    grass::CullSettings noTufts = withTufts;
+    noTufts.nearLayers = 1;
+    demoGrass.setCullSettings(noTufts);
+    const Samples plainSamples = measure(o, [&](render::GpuTimers& timers, int i, Samples&) {
+      frame(demoWorld, ground, 1.0 + i / 60.0, &timers);
+    });
+    demoGrass.setCullSettings(withTufts);
+    rows.push_back({"demo ground view without near tufts: grass cull + draw",
+                    wallOf(plainSamples, "grass cull") + wallOf(plainSamples, "grass"), "ms", std::nan(""),
+                    true, 0, "--grass-near-layers 1"});
+  }
 
   // 3. Popping: the camera stays; the LOD boundaries move by 0.25 m (what a 0.25 m step of the camera does
   // to the blades near them, without the parallax). Pixels changing by more than 5 % in any channel.
@@ -165,6 +183,12 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
     s.maxDistance -= 1.0f;
     return s;
   };
+  // The near tufts' reach moved by 0.25 m: each layer dissolves over the last quarter of its reach.
+  const auto nearerTufts = [](grass::CullSettings s) {
+    s.nearDistance -= 0.25f;
+    return s;
+  };
+  const double tuftsFaded = terrain::changedPixelFraction(still(base), still(nearerTufts(base)), 0.05f);
   grass::CullSettings cut = base;
   cut.farFade = 0.0f;
   const double farFaded = terrain::changedPixelFraction(still(base), still(nearer(base)), 0.05f);
@@ -193,6 +217,8 @@ void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohm
                   std::nan(""), true, 0, "changed > 5 %, camera still"});
   rows.push_back({"popping: boundary moved 0.25 m, hard switch", popped * 100.0, "% pixels", std::nan(""),
                   true, 0, "the same without cross-fade"});
+  rows.push_back({"popping: near tufts' reach moved 0.25 m (dithered)", tuftsFaded * 100.0, "% pixels",
+                  std::nan(""), true, 0, "changed > 5 %, camera still"});
   rows.push_back({"draw distance moved 1 m, far fade into the ground tint", farFaded * 100.0, "% pixels",
                   std::nan(""), true, 0, "changed > 5 %, camera still"});
   rows.push_back(

@@ -13,6 +13,7 @@ flat in vec3 vColour;
 flat in uint vInfo;
 flat in uvec2 vTile;
 flat in float vSimulated;
+in float vFlatten;
 
 layout(location = 0) out vec4 outColor;
 
@@ -57,6 +58,11 @@ void main() {
   float diffuse = max(dot(Nlit, L), 0.0);
   vec3 H = normalize(L + V);
   float specular = 0.1 * pow(max(dot(Nlit, H), 0.0), 24.0);
+  // A trampled blade lies on top of the sward: its whole length sees the sky (no root occlusion), its paler
+  // lower part and underside show, and its waxy face gives a broad sheen, so a path reads lighter.
+  float flat_ = smoothstep(0.0, 0.5, vFlatten);
+  albedo = mix(albedo, vColour * vec3(1.3, 1.3, 1.0), 0.75 * flat_);
+  specular += flat_ * 0.18 * pow(max(dot(normalize(mix(N, vec3(0.0, 1.0, 0.0), 0.5)), H), 0.0), 6.0);
   // Translucency: light through the blade when the sun is behind it, strongest looking towards the sun;
   // thinner (brighter) towards the tip.
   float through = max(dot(-N, L), 0.0);
@@ -65,7 +71,7 @@ void main() {
   float sky = 0.5 + 0.5 * Nlit.y;
   vec3 ambient = mix(vec3(0.18, 0.16, 0.14), vec3(0.32, 0.38, 0.48), sky);
   // Root occlusion: the field shades its own lower parts.
-  float occlusion = mix(0.3, 1.0, smoothstep(0.0, 0.55, vAlong));
+  float occlusion = mix(mix(0.3, 1.0, smoothstep(0.0, 0.55, vAlong)), 0.9, flat_);
   vec3 lit = (albedo * (diffuse * sun * vec3(1.0, 0.96, 0.88) + ambient) + (translucent + specular) * sun) * occlusion;
   outColor = vec4(toSrgb(applyAtmosphere(lit, vWorld)), 1.0);
 }

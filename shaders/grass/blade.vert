@@ -17,6 +17,7 @@ flat out vec3 vColour;
 flat out uint vInfo;
 flat out uvec2 vTile;
 flat out float vSimulated; // -1: procedural; else the release ramp 0..1 of a simulated blade
+out float vFlatten;        // 0 standing … 1 lying flat (simulated blades pressed down from their procedural pose)
 
 #ifdef SYLVA_GRASS_CAPTURE
 // Parity tests: each vertex as computed (position, along; normal, side), instance-major.
@@ -42,15 +43,83 @@ vec3 turnLike(vec3 a, vec3 b, vec3 v) {
   return v * d + cross(c, v) + c * (dot(c, v) / (1.0 + d));
 }
 
+// A blade's procedural pose around knot k: knots k − 1, k and k + 1 of its knot line bent downwind (the walk of
+// expandBlade), knot k's bend angle and length along the line, the line's length and the bend's axis.
+struct Walk {
+  vec3 before;
+  vec3 here;
+  vec3 after;
+  float angleHere;
+  float alongHere;
+  float total;
+  vec3 axis;
+};
+
+Walk walkBlade(GrassBlade b, uint type, vec3 root, int k, int n, int first) {
+  float scale = b.placement.w;
+  float cy = cos(b.placement.z);
+  float sy = sin(b.placement.z);
+  vec2 wind = windVelocity(grass.wind, root.xz);
+  float speed = length(wind);
+  float theta = min(1.3, 0.12 * abs(speed) / max(bladeTypes[type].colour.w, 0.05));
+  vec3 downwind = speed > 1e-6 ? vec3(wind.x, 0.0, wind.y) / speed : vec3(0.0);
+  Walk w;
+  w.axis = speed > 1e-6 ? normalize(cross(vec3(0.0, 1.0, 0.0), downwind)) : vec3(1.0, 0.0, 0.0);
+
+  float total = 0.0;
+  for (int m = 1; m < n; ++m) {
+    total += length(grassKnot(type, first + m) - grassKnot(type, first + m - 1));
+  }
+  w.total = max(total, 1e-9);
+  // Walk the bent knot line up to knot k + 1, keeping knots k - 1, k, k + 1 and knot k's bend and length.
+  int last = min(k + 1, n - 1);
+  vec3 centre = root;
+  w.before = root;
+  w.here = root;
+  w.after = root;
+  w.angleHere = 0.0;
+  w.alongHere = 0.0;
+  float along = 0.0;
+  for (int m = 1; m <= last; ++m) {
+    vec3 d = grassKnot(type, first + m) - grassKnot(type, first + m - 1);
+    vec3 segment = vec3(cy * d.x + sy * d.z, d.y, -sy * d.x + cy * d.z) * scale;
+    along += length(d);
+    float u = along / w.total;
+    float angle = theta * u * u;
+    centre = centre + grassRotate(segment, w.axis, angle);
+    if (m == k - 1) {
+      w.before = centre;
+    }
+    if (m == k) {
+      w.here = centre;
+      w.angleHere = angle;
+      w.alongHere = along;
+    }
+    w.after = centre;
+  }
+  if (k == 0) {
+    w.before = root;
+  }
+  return w;
+}
+
 void main() {
-  // A simulated blade: (marker, pool blade, packed bits, release ramp); its root is the pool's first knot.
-  bool simulated = aInstance.x == SYLVA_GRASS_SIMULATED;
-  uint poolBlade = aInstance.y;
-  vec3 root = simulated ? simKnots[poolBlade * uint(SYLVA_GRASS_SIM_KNOTS)].xyz : uintBitsToFloat(aInstance.xyz);
+  // A simulated blade: (marker, pool blade, packed bits, release ramp); its root is the pool's first knot. A
+  // tuft blade following one stands beside that root (forEachTuftBlade) on the terrain.
+  bool tuft = aInstance.x == SYLVA_GRASS_TUFT_SIMULATED;
+  bool simulated = aInstance.x == SYLVA_GRASS_SIMULATED || tuft;
+  uint poolBlade = aInstance.y & SYLVA_GRASS_POOL_MASK;
+  vec3 poolRoot = simulated ? simKnots[poolBlade * uint(SYLVA_GRASS_SIM_KNOTS)].xyz : vec3(0.0);
+  vec3 root = simulated ? poolRoot : uintBitsToFloat(aInstance.xyz);
   uint info = simulated ? aInstance.z : aInstance.w;
   uint index = info & SYLVA_GRASS_INDEX_MASK;
   int lod = int((info >> 22) & 3u);
   GrassBlade b = patchBlades[index];
+  if (tuft) {
+    vec2 xz = poolRoot.xz + (b.placement.xy / grass.orient.w - 0.5) * (2.0 * grass.near.z);
+    bool ok;
+    root = vec3(xz.x, grassTerrainHeight(xz, ok), xz.y);
+  }
   uint type = min(b.info.x, grass.options.z - 1u);
   int n = grassLodKnots(lod);
   int first = grassLodFirst(lod);
@@ -60,51 +129,18 @@ void main() {
   float scale = b.placement.w;
   float cy = cos(b.placement.z);
   float sy = sin(b.placement.z);
-  vec2 wind = windVelocity(grass.wind, root.xz);
-  float speed = length(wind);
-  float theta = min(1.3, 0.12 * abs(speed) / max(bladeTypes[type].colour.w, 0.05));
-  vec3 downwind = speed > 1e-6 ? vec3(wind.x, 0.0, wind.y) / speed : vec3(0.0);
-  vec3 axis = speed > 1e-6 ? normalize(cross(vec3(0.0, 1.0, 0.0), downwind)) : vec3(1.0, 0.0, 0.0);
-
-  float total = 0.0;
-  for (int m = 1; m < n; ++m) {
-    total += length(grassKnot(type, first + m) - grassKnot(type, first + m - 1));
-  }
-  total = max(total, 1e-9);
-  // Walk the bent knot line up to knot k + 1, keeping knots k - 1, k, k + 1 and knot k's bend and length.
-  int last = min(k + 1, n - 1);
-  vec3 centre = root;
-  vec3 before = root;
-  vec3 here = root;
-  vec3 after = root;
-  float angleHere = 0.0;
-  float alongHere = 0.0;
-  float along = 0.0;
-  for (int m = 1; m <= last; ++m) {
-    vec3 d = grassKnot(type, first + m) - grassKnot(type, first + m - 1);
-    vec3 segment = vec3(cy * d.x + sy * d.z, d.y, -sy * d.x + cy * d.z) * scale;
-    along += length(d);
-    float u = along / total;
-    float angle = theta * u * u;
-    centre = centre + grassRotate(segment, axis, angle);
-    if (m == k - 1) {
-      before = centre;
-    }
-    if (m == k) {
-      here = centre;
-      angleHere = angle;
-      alongHere = along;
-    }
-    after = centre;
-  }
-  if (k == 0) {
-    before = root;
-  }
-  vec3 face = grassRotate(vec3(sy, 0.0, cy), axis, angleHere);
+  Walk w = walkBlade(b, type, root, k, n, first);
+  vec3 before = w.before;
+  vec3 here = w.here;
+  vec3 after = w.after;
+  float alongHere = w.alongHere;
+  float total = w.total;
+  vec3 face = grassRotate(vec3(sy, 0.0, cy), w.axis, w.angleHere);
   vec3 tangent = normalize(after - before);
   vec3 side = cross(tangent, face);
   side = length(side) > 1e-9 ? normalize(side) : vec3(cy, 0.0, -sy);
   vec3 normal = normalize(cross(side, tangent));
+  float flatten = 0.0;
   if (simulated) {
     // The pool's knots, blended back to the procedural pose over the release ramp; the blade's width turns with
     // its simulated tangent.
@@ -113,6 +149,20 @@ void main() {
     vec3 simBefore = simKnots[knot0 + uint(max(k - 1, 0))].xyz;
     vec3 simHere = simKnots[knot0 + uint(k)].xyz;
     vec3 simAfter = simKnots[knot0 + uint(min(k + 1, n - 1))].xyz;
+    if (tuft) {
+      // Its own pose moved as far as its field blade's simulated knots are from that blade's procedural pose,
+      // scaled by their lengths: unmoved at activation (no pop), flattened where the field blade is trampled.
+      uint perTile = uint(grass.tiles.z);
+      uint patchSize = uint(grass.tiles.w);
+      uint guideIndex = (index + patchSize - ((aInstance.y >> 24) * perTile) % patchSize) % patchSize;
+      GrassBlade g = patchBlades[guideIndex];
+      uint guideType = min(g.info.x, grass.options.z - 1u);
+      Walk gw = walkBlade(g, guideType, poolRoot, k, n, first);
+      float ratio = (bladeTypes[type].size.x * scale) / max(bladeTypes[guideType].size.x * g.placement.w, 1e-6);
+      simBefore = before + (simBefore - gw.before) * ratio;
+      simHere = here + (simHere - gw.here) * ratio;
+      simAfter = after + (simAfter - gw.after) * ratio;
+    }
     simBefore = mix(simBefore, before, release);
     simHere = mix(simHere, here, release);
     simAfter = mix(simAfter, after, release);
@@ -120,6 +170,9 @@ void main() {
     simTangent = length(simTangent) > 1e-9 ? normalize(simTangent) : tangent;
     side = turnLike(tangent, simTangent, side);
     normal = normalize(cross(side, simTangent));
+    // How far the knot lies below where the procedural blade holds it, in half blade lengths: flattened
+    // blades are shaded as the sky-lit, glossy mat a trampled path is (blade.frag).
+    flatten = clamp((here.y - simHere.y) / max(0.5 * bladeTypes[type].size.x * scale, 1e-3), 0.0, 1.0);
     here = simHere;
   }
   float halfWidth = 0.5 * bladeTypes[type].knots[first + k].w * scale;
@@ -144,5 +197,6 @@ void main() {
   vInfo = info;
   vTile = uvec2(floor((root.xz - grass.field.xy) / grass.orient.w));
   vSimulated = simulated ? uintBitsToFloat(aInstance.w) : -1.0;
+  vFlatten = flatten;
   gl_Position = frame.viewProj * vec4(position, 1.0);
 }

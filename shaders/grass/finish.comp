@@ -23,6 +23,6 @@ void main() {
     for (int k = 0; k < 3; ++k) {
       commands[k * 4 + 1] = min(commands[k * 4 + 1], grass.lists[k]);
     }
-    commands[3 * 4 + 1] = min(commands[3 * 4 + 1], grass.options.x * grass.options.w);
+    commands[3 * 4 + 1] = min(commands[3 * 4 + 1], grass.simulated.x);
   }
 }

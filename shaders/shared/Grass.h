@@ -30,6 +30,8 @@ SYLVA_ASSERT_SIZE(GrassBlade, 32);
 #define SYLVA_GRASS_STATS_OFFSET 20    // uint index of the statistics (see GrassCounters)
 #define SYLVA_GRASS_COMMAND_UINTS 28
 #define SYLVA_GRASS_SIMULATED 0xffffffffu // instance.x of a simulated blade (drawn from the pool's knots)
+#define SYLVA_GRASS_TUFT_SIMULATED 0xfffffffeu // instance.x of a tuft blade following a simulated blade
+#define SYLVA_GRASS_POOL_MASK 0xffffffu     // instance.y of a simulated instance: pool blade (bits 0..23)
 #define SYLVA_GRASS_CAPTURE_BINDING 13 // storage: captured vertices (expansion parity tests)
 #define SYLVA_GRASS_TILE_GROUP 8       // tile pass: 8 x 8 tiles per work group
 #define SYLVA_GRASS_BLADE_GROUP 64     // blade pass: one work group per visible tile
@@ -47,7 +49,9 @@ SYLVA_ASSERT_SIZE(GrassTypeGpu, 480);
 /**
  * One drawn instance: root (world metres, as float bits) and packed bits: patch index (bits 0..21), level
  * (22..23), fade kind (24..25: 0 full, 1 fade out, 2 fade in), fade amount × 63 (26..31). A simulated blade
- * is (SYLVA_GRASS_SIMULATED, pool blade, packed bits, release ramp as float bits).
+ * is (SYLVA_GRASS_SIMULATED, pool blade, packed bits, release ramp as float bits); a tuft blade of a
+ * simulated tile (SYLVA_GRASS_TUFT_SIMULATED, its field blade's pool blade | near layer << 24, packed bits of
+ * its own patch blade, release ramp): drawn at its own root with its field blade's simulated bend.
  */
 #define SYLVA_GRASS_INDEX_MASK 0x3fffffu
 
@@ -61,7 +65,7 @@ struct GrassCounters {
   uvec4 dispatch;   // x: visible tiles; y, z: 1
   uvec4 blades;     // x: distinct blades drawn; y: culled by the frustum; z: by distance; w: by orientation
   uvec4 overflow;   // x: instances dropped because a list was full; y: visible tiles dropped (list full);
-                    // z: tiles found visible (before clamping to the list); w: unused
+                    // z: tiles found visible (before clamping to the list); w: tuft blades drawn (near layers)
 };
 SYLVA_ASSERT_SIZE(GrassCounters, 112);
 
@@ -83,9 +87,13 @@ struct GrassUniforms {
   vec4 ground;      // rgb: the field's average colour (linear) for the ground tint; w: unused
   ivec4 window;     // tiles the tile pass looks at: x0, z0, count along x, count along z (tileWindow)
   vec4 heights;     // x, y: the terrain's whole height range (tiles over too many samples use it); z, w: unused
+  vec4 near;        // x: near layers' reach (m, nearReach); y: near layers (nearLayerCount, ≥ 1); z: tuft
+                    // radius (m); w: unused
+  uvec4 simulated;  // x: capacity of the simulated blades' list (pool blades and the tufts that follow them);
+                    // y, z, w: unused
   WindUniforms wind;
 };
-SYLVA_ASSERT_SIZE(GrassUniforms, 352);
+SYLVA_ASSERT_SIZE(GrassUniforms, 384);
 
 SYLVA_GPU_END
 

@@ -83,6 +83,18 @@ void GrassFlags::add(CLI::App& command) {
       ->capture_default_str();
   command.add_option("--grass-lod", lod, "Distances (m) where blades drop to 8 and to 4 knots: A,B")
       ->capture_default_str();
+  command
+      .add_option(
+          "--grass-near-layers", cull.nearLayers,
+          "Tufts near the camera: up to this many blades per field blade, thinning out to the field's "
+          "own density at --grass-near-distance (1: off)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command
+      .add_option("--grass-near-distance", cull.nearDistance,
+                  "How far the near tufts reach, metres (never into the first LOD band)")
+      ->check(finiteRange(0.0, 1000.0))
+      ->capture_default_str();
   command.add_option("--grass-view", view, "Blade view: shaded, lod (level colours) or tiles")
       ->check(CLI::IsMember({"shaded", "lod", "tiles"}))
       ->capture_default_str();
@@ -161,6 +173,8 @@ scene::GrassLayer GrassFlags::layerDesc() const {
   l.maxSlope = maxSlope;
   l.extremeBlades = extremeBlades;
   l.distance = cull.maxDistance;
+  l.nearLayers = cull.nearLayers;
+  l.nearDistance = cull.nearDistance;
   l.patchBlades = field.patch.blades;
   l.tileSize = field.patch.tileSize;
   l.bladesPerTile = field.bladesPerTile;

@@ -218,6 +218,8 @@ void GrassPanel::show(scene::SceneWorld& world) {
       ImGui::SliderFloat("LOD 8 > 4 knots (m)", &cull.lodDistances[1], 0.0f, 400.0f, "%.1f", kClamp);
   cullChanged |= ImGui::SliderFloat("LOD cross-fade (m)", &cull.lodFade, 0.0f, 20.0f, "%.1f", kClamp);
   cullChanged |= ImGui::SliderFloat("far fade (m)", &cull.farFade, 0.0f, 125.0f, "%.1f", kClamp);
+  cullChanged |= ImGui::SliderInt("near tufts (blades per blade)", &cull.nearLayers, 1, 16, "%d", kClamp);
+  cullChanged |= ImGui::SliderFloat("near tufts reach (m)", &cull.nearDistance, 0.0f, 30.0f, "%.1f", kClamp);
   if (cullChanged) {
     attempt(cullError, [&] {
       if (world.grassCount() > 0) {

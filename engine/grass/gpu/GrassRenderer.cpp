@@ -163,13 +163,19 @@ void GrassRenderer::setCullSettings(const CullSettings& settings) {
   const auto perTile =
       static_cast<std::size_t>(std::min(layout.bladesPerTile, static_cast<int>(mField->patch().size())));
   const float half = 0.5f * settings.lodFade;
-  const std::array<std::size_t, 4> lists{tilesWithin(layout, settings.lodDistances[0] + half) * perTile,
-                                         tilesWithin(layout, settings.lodDistances[1] + half) * perTile,
-                                         tilesWithin(layout, settings.maxDistance) * perTile,
-                                         tilesWithin(layout, settings.maxDistance)};
+  // The near layers' tuft blades: (layers − 1) per field blade in the tiles within their reach, level 0.
+  const auto layers = static_cast<std::size_t>(
+      nearLayerCount(settings, layout, static_cast<std::uint32_t>(mField->patch().size())));
+  const std::size_t nearTiles = layers > 1 ? tilesWithin(layout, nearReach(settings)) : 0;
+  const std::size_t tufts = nearTiles * perTile * (layers - 1);
+  const std::array<std::size_t, 4> lists{
+      tilesWithin(layout, settings.lodDistances[0] + half) * perTile + tufts,
+      tilesWithin(layout, settings.lodDistances[1] + half) * perTile,
+      tilesWithin(layout, settings.maxDistance) * perTile, tilesWithin(layout, settings.maxDistance)};
+  const std::size_t slots = mSimulation != nullptr ? static_cast<std::size_t>(mSimulation->slots()) : 0;
   const std::size_t simulated = mSimulation != nullptr
-                                    ? static_cast<std::size_t>(mSimulation->slots()) *
-                                          static_cast<std::size_t>(mSimulation->bladesPerTile())
+                                    ? slots * static_cast<std::size_t>(mSimulation->bladesPerTile()) +
+                                          std::min(slots, nearTiles) * perTile * (layers - 1)
                                     : 0;
   const std::size_t instances = lists[0] + lists[1] + lists[2] + simulated;
   if (instances > (1u << 30) / sizeof(glm::uvec4)) {
@@ -177,6 +183,8 @@ void GrassRenderer::setCullSettings(const CullSettings& settings) {
          settings.maxDistance, perTile, instances);
   }
   mLast.lists = glm::uvec4(lists[0], lists[1], lists[2], lists[3]);
+  mLast.simulated = glm::uvec4(static_cast<unsigned>(simulated), 0u, 0u, 0u);
+  mLast.near = glm::vec4(nearReach(settings), static_cast<float>(layers), tuftRadius(layout), 0.0f);
   mCapacity = lists[2];
   if (!mInstances || mInstances.size() < instances * sizeof(glm::uvec4)) {
     mInstances = gl::Buffer(instances * sizeof(glm::uvec4), nullptr, 0);

@@ -186,7 +186,7 @@ void readTerrain(const Node& n, TerrainDesc& t) {
 
 GrassLayer readGrass(const Node& n) {
   n.object({"blades", "extreme_blades", "density", "coverage", "layer", "paint", "max_slope", "seed",
-            "simulate", "distance"});
+            "simulate", "distance", "near_layers", "near_distance"});
   GrassLayer g;
   if (n.has("blades")) {
     const Node b = n["blades"];
@@ -221,6 +221,12 @@ GrassLayer readGrass(const Node& n) {
   }
   if (n.has("distance")) {
     g.distance = n["distance"].realAbove(0.0, 1000.0);
+  }
+  if (n.has("near_layers")) {
+    g.nearLayers = static_cast<int>(n["near_layers"].integer(1, 64));
+  }
+  if (n.has("near_distance")) {
+    g.nearDistance = n["near_distance"].real(0.0, 1000.0);
   }
   return g;
 }

@@ -36,6 +36,8 @@ grass::CullSettings grassCullSettings(const GrassLayer& layer, const GrassFieldN
   } else {
     c.maxDistance = layer.distance;
     c.lodDistances = {0.2f * layer.distance, 0.55f * layer.distance};
+    c.nearLayers = layer.nearLayers;
+    c.nearDistance = layer.nearDistance;
   }
   c.farFade = std::min(c.farFade, 0.25f * c.maxDistance);
   c.orientationDistance = std::min(c.orientationDistance, c.maxDistance);

@@ -72,6 +72,11 @@ TEST_F(GrassGpu, CullingMatchesTheCpuReference) {
     const gpu::GrassCounters c = renderer.readCounters();
     EXPECT_GT(cpu.drawn(), 500u);
     EXPECT_EQ(c.overflow.x, 0u);
+    // The near tufts (the first camera stands in the grass; the others are too high for any).
+    expectNear(c.overflow.w, cpu.tuftBlades, "tuft blades");
+    if (&cam == &cameras.front()) {
+      EXPECT_GT(cpu.tuftBlades, 1000u);
+    }
     EXPECT_EQ(c.overflow.y, 0u);
     EXPECT_EQ(c.dispatch.x, cpu.tilesVisible) << "visible tiles";
     expectNear(c.blades.x, cpu.blades, "blades");

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sylva::grass {
@@ -159,6 +160,130 @@ TEST_F(GrassSimGpu, SimulatedTilesAreDrawnFromThePoolInTheSameDraw) {
         32ull * c.draws[0].y + 16ull * c.draws[1].y + 8ull * c.draws[2].y + 32ull * c.draws[3].y;
     EXPECT_EQ(static_cast<std::uint64_t>(renderer.lastVerticesSubmitted()), expected);
   }
+}
+
+/** Share of the pixels of two images that differ by more than 8 levels in some channel. */
+double changedShare(const Image& a, const Image& b) {
+  int changed = 0;
+  for (int y = 0; y < a.height(); ++y) {
+    for (int x = 0; x < a.width(); ++x) {
+      for (int c = 0; c < 3; ++c) {
+        if (std::abs(a.get(x, y, c) - b.get(x, y, c)) > 8.0f / 255.0f) {
+          ++changed;
+          break;
+        }
+      }
+    }
+  }
+  return static_cast<double>(changed) / static_cast<double>(a.width() * a.height());
+}
+
+TEST_F(GrassSimGpu, TuftBladesFollowTheirSimulatedBlades) {
+  const auto f = field();
+  PoolSettings pool;
+  pool.tiles = 160;
+  TileSimulation sim(f, pool, SolverSettings{});
+  CullSettings cull;
+  cull.maxDistance = 45.0f;
+  cull.farFade = 6.0f;
+  GrassRenderer withSim(shaders(), f, cull);
+  GrassRenderer plain(shaders(), f, cull);
+  GrassSimulator gpu(shaders(), withSim, sim);
+  sim.setBackend(&gpu);
+  withSim.setSimulation(&gpu);
+  // Over the grass, looking down at the path a heavy ball rolls along x at z = 20 (4 m ahead).
+  const float ground = terrain::heightAt(f->terrain(), 20.0f, 16.0f);
+  render::Camera camera;
+  camera.position = {20.0f, ground + 1.6f, 16.0f};
+  camera.target = {20.0f, terrain::heightAt(f->terrain(), 20.0f, 20.0f), 20.0f};
+  camera.nearPlane = 0.05f;
+  const int width = 320;
+  const int height = 180;
+  const wind::WindSettings calm{.speed = 0.0f};
+  const auto frame = [&](GrassRenderer& renderer, double time) {
+    const render::Camera& c = camera;
+    render::RenderTarget target(width, height);
+    target.begin(glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+    renderer.cull(c, target.aspect());
+    GrassDrawOptions options;
+    options.wind = calm;
+    renderer.draw(c, width, height, time, nullptr, options);
+    return std::pair(target.readColor(), renderer.readCounters());
+  };
+  // Every tile within 10 m simulated at its procedural pose: tufts and blades drawn where they were.
+  for (int tz = 0; tz < f->layout().tilesZ; ++tz) {
+    for (int tx = 0; tx < f->layout().tilesX; ++tx) {
+      const glm::vec2 centre = (glm::vec2(tx, tz) + 0.5f) * f->layout().tileSize;
+      if (glm::length(centre - glm::vec2(camera.position.x, camera.position.z)) < 10.0f) {
+        ASSERT_TRUE(sim.activateTile({tx, tz}, calm));
+      }
+    }
+  }
+  gpu.syncSlots(sim);
+  const auto [activated, activatedCounts] = frame(withSim, sim.time());
+  const auto [procedural, proceduralCounts] = frame(plain, sim.time());
+  EXPECT_GT(activatedCounts.draws[3].y, 3000u) << "blades and tufts drawn from the pool";
+  EXPECT_GT(activatedCounts.overflow.w, 2000u) << "tuft blades";
+  EXPECT_EQ(activatedCounts.overflow.x, 0u);
+  const double popped = changedShare(activated, procedural);
+  std::printf("activation: %.3f %% of pixels change by more than 8 levels\n", 100.0 * popped);
+  EXPECT_LT(popped, 0.002) << "simulated tiles must start where the procedural field was drawn";
+  // A 5 kg ball rolls across; a second later the path's blades lie flat, and the tufts beside them with them:
+  // the trampled frame differs from the standing one by several times what it does without tufts (tufts
+  // drawn standing would hide the flattened blades instead).
+  for (int i = 1; i <= 90; ++i) {
+    const double t = sim.time() + 1.0 / 60.0;
+    const float x = 16.0f + 8.0f * static_cast<float>(std::min(t, 1.0));
+    const float y = terrain::heightAt(f->terrain(), x, 20.0f) + 0.4f;
+    SimBody ball;
+    ball.shape = {glm::vec3(x, y, 20.0f), glm::vec3(x, y, 20.0f), 0.4f, 5.0f};
+    ball.box = {ball.shape.a - 0.4f, ball.shape.a + 0.4f};
+    sim.advance(t, {ball}, calm);
+  }
+  gpu.syncSlots(sim);
+  const Image trampled = frame(withSim, sim.time()).first;
+  const Image standing = frame(plain, sim.time()).first;
+  const double withTufts = changedShare(trampled, standing);
+  // Flattened blades catch the sky (a paler, glossier path, as trampled grass looks): over the pixels the
+  // trampling changed, the grass of the trampled frame is brighter than the grass of the standing one.
+  const auto luminance = [](const Image& image, int x, int y) {
+    return 0.2126 * image.get(x, y, 0) + 0.7152 * image.get(x, y, 1) + 0.0722 * image.get(x, y, 2);
+  };
+  const auto isGrass = [](const Image& image, int x, int y) {
+    return std::abs(image.get(x, y, 2) - 1.0f) > 0.02f;
+  };
+  std::array<double, 2> light{0.0, 0.0};
+  std::array<int, 2> grassPixels{0, 0};
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (std::abs(luminance(trampled, x, y) - luminance(standing, x, y)) <= 8.0 / 255.0) {
+        continue;
+      }
+      for (int k = 0; k < 2; ++k) {
+        const Image& image = k == 0 ? trampled : standing;
+        if (isGrass(image, x, y)) {
+          light[static_cast<std::size_t>(k)] += luminance(image, x, y);
+          ++grassPixels[static_cast<std::size_t>(k)];
+        }
+      }
+    }
+  }
+  ASSERT_GT(grassPixels[0], 100);
+  ASSERT_GT(grassPixels[1], 100);
+  const double paler = light[0] / grassPixels[0];
+  const double before = light[1] / grassPixels[1];
+  std::printf("trampled path: grass luminance %.3f trampled (%d px), %.3f standing (%d px)\n", paler,
+              grassPixels[0], before, grassPixels[1]);
+  EXPECT_GT(paler, 1.03 * before); // 1.000 with the flattened shading off
+  CullSettings noTufts = cull;
+  noTufts.nearLayers = 1;
+  withSim.setCullSettings(noTufts);
+  plain.setCullSettings(noTufts);
+  const double fieldOnly = changedShare(frame(withSim, sim.time()).first, frame(plain, sim.time()).first);
+  std::printf("trampled path: %.2f %% of pixels change with tufts, %.2f %% without\n", 100.0 * withTufts,
+              100.0 * fieldOnly);
+  EXPECT_GT(fieldOnly, 0.002);
+  EXPECT_GT(withTufts, 2.5 * fieldOnly);
 }
 
 } // namespace

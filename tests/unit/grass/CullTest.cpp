@@ -3,6 +3,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Geometry.hpp>
 #include <sylva/grass/Cull.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
 #include <sylva/terrain/Noise.hpp>
 
 #include <gtest/gtest.h>
@@ -10,7 +11,10 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 namespace sylva::grass {
 namespace {
@@ -76,6 +80,12 @@ TEST(GrassCull, LevelsFollowDistance) {
   std::size_t fading = 0;
   for (const VisibleBlade& v : visible) {
     const float d = glm::length(v.blade.root - eye);
+    if (v.blade.guide >= 0) {
+      // A near tuft blade: level 0, inside the near layers' reach (NearTuftsThickenTheFieldTowardsTheCamera).
+      EXPECT_EQ(v.lod, 0);
+      EXPECT_LT(d, nearReach(settings));
+      continue;
+    }
     if (v.fade == Fade::Full) {
       EXPECT_EQ(v.lod, lodForDistance(settings, d));
     } else if (v.lod < 2 || d < settings.maxDistance - settings.farFade) {
@@ -149,6 +159,120 @@ TEST(GrassCull, EdgeOnFarBladesAreSkipped) {
   CullSettings overlapping;
   overlapping.lodFade = 30.0f;
   EXPECT_THROW(validate(overlapping), Error);
+}
+
+/** Drawn instances of the field's own blades and of the near tufts in rings of `width` metres around `eye`.
+ */
+struct Rings {
+  std::vector<double> field;
+  std::vector<double> tufts;
+};
+
+Rings rings(const std::vector<VisibleBlade>& visible, const glm::vec3& eye, float width, std::size_t count) {
+  Rings r{std::vector<double>(count, 0.0), std::vector<double>(count, 0.0)};
+  for (const VisibleBlade& v : visible) {
+    const auto ring = static_cast<std::size_t>(glm::length(v.blade.root - eye) / width);
+    if (ring < count) {
+      (v.blade.guide >= 0 ? r.tufts : r.field)[ring] += 1.0;
+    }
+  }
+  return r;
+}
+
+TEST(GrassCull, NearTuftsThickenTheFieldTowardsTheCamera) {
+  const GrassField s = scene();
+  const glm::vec3 eye(30.0f, terrain::heightAt(s.terrain(), 30.0f, 30.0f) + 1.0f, 30.0f);
+  const glm::mat4 vp = viewProj(eye, {60.0f, eye.y - 6.0f, 50.0f}, 90.0f);
+  CullSettings settings; // 8 layers within 8 m
+  std::vector<VisibleBlade> visible;
+  const CullStats stats = cullField(s, vp, eye, settings, &visible);
+  CullSettings off = settings;
+  off.nearLayers = 1;
+  std::vector<VisibleBlade> plain;
+  const CullStats without = cullField(s, vp, eye, off, &plain);
+  // The field's own blades are untouched; the tufts come on top.
+  EXPECT_EQ(without.tuftBlades, 0u);
+  EXPECT_EQ(stats.drawn(), without.drawn() + stats.tuftBlades);
+  const float reach = nearReach(settings);
+  ASSERT_FLOAT_EQ(reach, 8.0f);
+  const auto withinReach = std::count_if(plain.begin(), plain.end(), [&](const VisibleBlade& v) {
+    return glm::length(v.blade.root - eye) < reach;
+  });
+  EXPECT_GT(stats.tuftBlades, 2u * static_cast<std::size_t>(withinReach));
+  // Density: close to the camera every layer is drawn (7 tufts per field blade), thinning with distance to
+  // none past the reach, never rising on the way out.
+  const Rings r = rings(visible, eye, 1.0f, 12);
+  double before = 1e9;
+  int measured = 0;
+  for (std::size_t k = 0; k < r.field.size(); ++k) {
+    if (r.field[k] < 30.0) {
+      continue; // the ring under the camera, mostly outside the view
+    }
+    ++measured;
+    const double ratio = r.tufts[k] / r.field[k];
+    const float outer = static_cast<float>(k + 1);
+    if (outer <= 0.75f * nearLayerReach(settings, 7, 8)) {
+      EXPECT_NEAR(ratio, 7.0, 1.0) << "ring " << k;
+    }
+    if (static_cast<float>(k) >= reach) {
+      EXPECT_EQ(r.tufts[k], 0.0) << "ring " << k;
+    }
+    EXPECT_LE(ratio, before + 0.6) << "ring " << k;
+    before = ratio;
+  }
+  EXPECT_GE(measured, 8);
+  // Each tuft blade stands within tuftRadius (each axis) of a field blade the density keeps, and fades out
+  // continuously: its coverage (1 − fade amount) is 0 at its layer's reach, so nothing pops as the camera
+  // moves.
+  std::map<std::tuple<int, int, int>, glm::vec3> fieldRoots;
+  for (int tz = 0; tz < s.layout().tilesZ; ++tz) {
+    for (int tx = 0; tx < s.layout().tilesX; ++tx) {
+      s.forEachTileBlade(tx, tz, [&](const FieldBlade& fb) {
+        fieldRoots[{tx, tz, fb.rangeIndex}] = fb.root;
+      });
+    }
+  }
+  const float radius = tuftRadius(s.layout());
+  EXPECT_NEAR(radius, 0.5f * 2.0f / std::sqrt(96.0f), 1e-6f);
+  for (const VisibleBlade& v : visible) {
+    if (v.blade.guide < 0) {
+      continue;
+    }
+    const auto it = fieldRoots.find({v.blade.tileX, v.blade.tileZ, v.blade.guide});
+    ASSERT_NE(it, fieldRoots.end()) << "a tuft beside a blade the field does not draw";
+    EXPECT_LE(std::abs(v.blade.root.x - it->second.x), radius + 1e-4f);
+    EXPECT_LE(std::abs(v.blade.root.z - it->second.z), radius + 1e-4f);
+    const int layer = v.blade.rangeIndex / s.layout().bladesPerTile;
+    ASSERT_GE(layer, 1);
+    const float layerReach = nearLayerReach(settings, layer, 8);
+    const float d = glm::length(v.blade.root - eye);
+    const float coverage = v.fade == Fade::Full ? 1.0f : 1.0f - v.amount;
+    EXPECT_LE(coverage, (layerReach - d) / (0.25f * layerReach) + 1e-4f);
+    EXPECT_EQ(v.fade == Fade::Full, d < 0.75f * layerReach);
+  }
+}
+
+TEST(GrassCull, NearLayersStopBeforeTheFirstLodBandAndFitThePatch) {
+  CullSettings s;
+  s.lodDistances = {5.0f, 30.0f};
+  EXPECT_FLOAT_EQ(nearReach(s), 5.0f - 0.5f * s.lodFade);
+  FieldLayout layout;
+  layout.bladesPerTile = 1024;
+  EXPECT_EQ(nearLayerCount(s, layout, 4096), 4);
+  EXPECT_EQ(nearLayerCount(s, layout, 512), 1);
+  layout.bladesPerTile = 16;
+  EXPECT_EQ(nearLayerCount(s, layout, 1u << 20), 8);
+  EXPECT_FLOAT_EQ(nearLayerReach(s, 1, 8), nearReach(s));
+  EXPECT_NEAR(nearLayerReach(s, 7, 8), nearReach(s) * std::sqrt(1.0f / 7.0f), 1e-5f);
+  EXPECT_FLOAT_EQ(scaled(s, 0.5f).nearDistance, 4.0f);
+  CullSettings bad;
+  bad.nearLayers = 0;
+  EXPECT_THROW(validate(bad), Error);
+  bad.nearLayers = 65;
+  EXPECT_THROW(validate(bad), Error);
+  bad.nearLayers = 8;
+  bad.nearDistance = std::nanf("");
+  EXPECT_THROW(validate(bad), Error);
 }
 
 TEST(GrassCull, TileWindowHoldsEveryTileWithinTheDistance) {

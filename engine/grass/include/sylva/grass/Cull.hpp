@@ -9,6 +9,8 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace sylva::grass {
@@ -32,6 +34,18 @@ struct CullSettings {
    */
   float orientationDistance = 25.0f;
   float orientationCos = 0.12f;
+  /**
+   * Near the camera the field thickens into tufts: each blade of a tile gets up to nearLayers − 1 more beside
+   * it (other blades of the patch, rooted within tuftRadius of it). Layer L (1 … nearLayers − 1) is drawn up
+   * to nearLayerReach(L) = reach·√((nearLayers − L)/(nearLayers − 1)) metres, reach = nearDistance but never
+   * past the start of the first level-of-detail band (tuft blades are level 0), and dithered out over the
+   * last quarter of that, so the density rises smoothly to nearLayers times the field's towards the camera
+   * without popping. 1: the field's density everywhere. Capped at the layers a tile's range can hold (patch
+   * blades / blades per tile). In a simulated tile a tuft blade follows its field blade's simulated bend
+   * (docs/grass.md).
+   */
+  int nearLayers = 8;
+  float nearDistance = 8.0f;
 };
 
 /**
@@ -71,6 +85,8 @@ struct CullStats {
   std::size_t culledFrustum = 0;
   std::size_t culledDistance = 0;
   std::size_t culledOrientation = 0;
+  /** Of the distinct blades drawn, those of the near layers (tuft blades, CullSettings::nearLayers). */
+  std::size_t tuftBlades = 0;
   std::size_t drawn() const { return blades; }
   std::size_t instances() const { return bladesPerLod[0] + bladesPerLod[1] + bladesPerLod[2]; }
 };
@@ -82,6 +98,39 @@ struct CullStats {
  */
 CullStats cullField(const GrassField& field, const glm::mat4& viewProj, const glm::vec3& eye,
                     const CullSettings& settings, std::vector<VisibleBlade>* visible = nullptr);
+
+/** How far (metres) the near layers reach at most: nearDistance, but never into the first LOD band. */
+float nearReach(const CullSettings& settings);
+
+/** The near layers a tile of `layout` draws: settings.nearLayers, capped at patchBlades / bladesPerTile (≥
+ * 1). */
+int nearLayerCount(const CullSettings& settings, const FieldLayout& layout, std::uint32_t patchBlades);
+
+/** How far (metres) near layer `layer` (1 ≤ layer < `layers`) is drawn (CullSettings::nearLayers). */
+float nearLayerReach(const CullSettings& settings, int layer, int layers);
+
+/**
+ * Half the side of the square (metres, centred on its field blade) a tuft blade is rooted in: half the
+ * field's mean blade spacing, tileSize / (2·√bladesPerTile), so tufts fill the ground between the field's
+ * blades.
+ */
+float tuftRadius(const FieldLayout& layout);
+
+/**
+ * The tuft blades of tile (tx, tz) within their layers' reach of `eye` (world metres): blade j of the tile's
+ * range for j in bladesPerTile … layers·bladesPerTile − 1 is layer L = j / bladesPerTile, beside field blade
+ * i = j mod bladesPerTile (FieldBlade::guide = i), rooted at that blade's root plus (its own placement / tile
+ * size − ½)·2·tuftRadius, on the terrain. It is drawn only where its field blade is (inside the terrain, on
+ * valid heights, kept by the density) and its own root is on valid terrain. `visit` gets the blade and its
+ * layer's reach. cullField's and the blade pass's near loop.
+ */
+void forEachTuftBlade(const GrassField& field, int tx, int tz, const glm::vec3& eye,
+                      const CullSettings& settings,
+                      const std::function<void(const FieldBlade&, float reach)>& visit);
+
+/** A tuft blade's fade at `distance` from the eye within its layer's `reach` (metres): Full, or FadeOut over
+ * the last quarter of the reach. */
+void tuftFade(float reach, float distance, VisibleBlade& v);
 
 /** The level of detail for a distance (0, 1 or 2), ignoring the cross-fade bands. */
 int lodForDistance(const CullSettings& settings, float distance);

@@ -141,6 +141,9 @@ struct FieldBlade {
   int rangeIndex = 0;
   int tileX = 0;
   int tileZ = 0;
+  /** A tuft blade of the near layers (forEachTuftBlade): the range index of the field blade it stands
+   * beside; −1 for the field's own blades. */
+  int guide = -1;
 };
 
 /**

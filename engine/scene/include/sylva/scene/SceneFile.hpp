@@ -79,7 +79,9 @@ struct GrassLayer {
   std::uint64_t seed = 1;          ///< placement seed
   bool simulate = false;           ///< blade physics simulation on (else wind-only animation)
   float distance = 60.0f;          ///< draw distance, metres
-  bool extremeBlades = false;      ///< accept blade models outside grass::BladeSizeLimits
+  int nearLayers = 8;         ///< grass::CullSettings::nearLayers: tufts up to this many times denser near
+  float nearDistance = 8.0f;  ///< grass::CullSettings::nearDistance, metres
+  bool extremeBlades = false; ///< accept blade models outside grass::BladeSizeLimits
   // Not in scene files (the command line sets them: --grass-blades, --grass-tile, --grass-per-tile).
   int patchBlades = 16384; ///< blades in the patch every tile draws from
   float tileSize = 2.0f;   ///< tile (and patch) side, metres
