@@ -152,10 +152,10 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   EXPECT_THAT(explained.out, testing::HasSubstr("7 blades in 2 clusters"));
   EXPECT_THAT(explained.out, testing::HasSubstr("depth layer 0 of 2"));
   EXPECT_THAT(explained.out, testing::HasSubstr("depth layer 1 of 2"));
-  // A dense fan of 14 whose blades merge (5 found): --explain says which blade is probably several.
-  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 17 -o " + at(dir, "s17.png")).status, 0);
+  // A dense fan of 13 whose blades merge (11 found): --explain says which blade is probably several.
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 24 -o " + at(dir, "s24.png")).status, 0);
   const test::RunResult dense =
-      runSylva(dir, "capture " + at(dir, "s17.png") + " --explain -o " + at(dir, "s17.json"));
+      runSylva(dir, "capture " + at(dir, "s24.png") + " --explain -o " + at(dir, "s24.json"));
   ASSERT_EQ(dense.status, 0) << dense.err;
   EXPECT_THAT(dense.out, testing::HasSubstr("as wide as the cluster's median blade"));
   EXPECT_THAT(dense.out, testing::HasSubstr("probably blades merged"));

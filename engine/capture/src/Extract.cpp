@@ -846,7 +846,8 @@ void toMetres(const Context& c, CapturedBlade& blade) {
 
 /** Builds one blade from the contour segment [a, b] (indices, circular, a before b) around its tip. */
 bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, int a, int b,
-                int clusterIndex, std::vector<CapturedBlade>& out, std::string& reason) {
+                int clusterIndex, std::vector<CapturedBlade>& out, std::string& reason,
+                float minHeightPx = -1.0f) {
   const ExtractOptions& o = c.options;
   const int n = static_cast<int>(cluster.contour.size());
   const int len = ((b - a) % n + n) % n;
@@ -868,7 +869,7 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
   const float rb = cluster.smoothed[b % n];
   const float level = std::max(ra, rb);
   const float height = tipValue - level;
-  if (height < o.minBladeLengthPx) {
+  if (height < (minHeightPx >= 0.0f ? minHeightPx : static_cast<float>(o.minBladeLengthPx))) {
     reason = fmt::format("too short ({:.0f} px beyond its junctions)", height);
     return false;
   }
@@ -1069,6 +1070,104 @@ struct Partition {
   double coverage = 0.0;
 };
 
+/**
+ * In the segment of `len` contour points from `a`: the point (offset from `a`) of the deepest dip of the
+ * smoothed distance signal between its highest peak and another peak, when that dip (below the lower of the
+ * two peaks) is at least `minDip` pixels; -1 when there is none. `depth` gets the dip.
+ */
+int deepestDip(const Cluster& cluster, int a, int len, float minDip, float& depth) {
+  const int n = static_cast<int>(cluster.contour.size());
+  auto at = [&](int k) { return cluster.smoothed[static_cast<std::size_t>((a + k) % n)]; };
+  int best1 = -1;
+  for (int k = 1; k < len; ++k) {
+    if (at(k) > at(k - 1) && at(k) >= at(k + 1) && (best1 < 0 || at(k) > at(best1))) {
+      best1 = k;
+    }
+  }
+  int split = -1;
+  depth = 0.0f;
+  for (int k = 1; best1 >= 0 && k < len; ++k) {
+    if (k == best1 || !(at(k) > at(k - 1) && at(k) >= at(k + 1))) {
+      continue;
+    }
+    // The lowest point between this peak and the highest one.
+    int lo = std::min(k, best1);
+    const int hi = std::max(k, best1);
+    int m = lo;
+    for (; lo <= hi; ++lo) {
+      m = at(lo) < at(m) ? lo : m;
+    }
+    const float dip = std::min(at(k), at(best1)) - at(m);
+    if (dip >= minDip && dip > depth) {
+      depth = dip;
+      split = m;
+    }
+  }
+  return split;
+}
+
+/** The widest point of a blade, pixels. */
+float maxWidthPx(const CapturedBlade& blade) {
+  return blade.widthsPx.empty() ? 0.0f : *std::max_element(blade.widthsPx.begin(), blade.widthsPx.end());
+}
+
+/** Blades wider than this many times their cluster's median blade are probably several merged. */
+constexpr float kMergedWidthRatio = 1.6f;
+
+/**
+ * Second pass over a cluster's blades: one much wider than the cluster's median (kMergedWidthRatio; clusters
+ * of three or more) is usually several that overlap up to near their tips, each valley between their tips too
+ * shallow for the prominence test and the whole too elongated to fail as one blade. Its segment is split at
+ * the deepest dip between two of its peaks down to a dip of a third of the median width, as long as both
+ * halves make blades no wider than the whole; repeatedly, while a half is still too wide. `segments` are the
+ * blades' contour segments; `splits` gets the junctions added.
+ */
+void splitMerged(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, int clusterIndex,
+                 const std::vector<std::pair<int, int>>& segments, std::vector<CapturedBlade>& blades,
+                 std::vector<Junction>& splits, float maxR) {
+  if (blades.size() < 3) {
+    return;
+  }
+  std::vector<float> widths;
+  for (const CapturedBlade& blade : blades) {
+    widths.push_back(maxWidthPx(blade));
+  }
+  std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2),
+                   widths.end());
+  const float median = widths[widths.size() / 2];
+  if (!(median > 0.0f)) {
+    return;
+  }
+  const int n = static_cast<int>(cluster.contour.size());
+  std::vector<CapturedBlade> result;
+  const auto split = [&](const auto& self, CapturedBlade blade, int a, int b, int depth) -> void {
+    const int len = ((b - a) % n + n) % n;
+    if (depth < 4 && maxWidthPx(blade) > kMergedWidthRatio * median && len > 8) {
+      float dip = 0.0f;
+      const int at = deepestDip(cluster, a, len, median / 3.0f, dip);
+      if (at > 0) {
+        const int index = (a + at) % n;
+        std::vector<CapturedBlade> halves;
+        std::string reason;
+        if (buildBlade(c, cluster, clusterMask, a, index, clusterIndex, halves, reason, median / 3.0f) &&
+            buildBlade(c, cluster, clusterMask, index, b, clusterIndex, halves, reason, median / 3.0f) &&
+            std::max(maxWidthPx(halves[0]), maxWidthPx(halves[1])) < maxWidthPx(blade)) {
+          splits.push_back({index, cluster.contour[static_cast<std::size_t>(index)],
+                            cluster.smoothed[static_cast<std::size_t>(index)], dip / std::max(maxR, 1e-3f)});
+          self(self, std::move(halves[0]), a, index, depth + 1);
+          self(self, std::move(halves[1]), index, b, depth + 1);
+          return;
+        }
+      }
+    }
+    result.push_back(std::move(blade));
+  };
+  for (std::size_t i = 0; i < blades.size(); ++i) {
+    split(split, std::move(blades[i]), segments[i].first, segments[i].second, 0);
+  }
+  blades = std::move(result);
+}
+
 Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const cv::Mat& clusterMask,
                     const CentreCandidate& centre, int clusterIndex) {
   Partition out;
@@ -1112,40 +1211,19 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
   // shallow for the prominence test): it is split at the deepest minimum between its two highest peaks when
   // both peaks rise a blade's minimum length above it.
   std::vector<Junction> splits;
+  std::vector<std::pair<int, int>> segments; // each blade's contour segment
   const auto take = [&](const auto& self, int a, int b, int depth) -> void {
     std::string reason;
     if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason)) {
       cluster.blades.push_back(static_cast<int>(out.blades.size() - 1));
+      segments.emplace_back(a, b);
       return;
     }
     const int len = ((b - a) % n + n) % n;
     if (depth < 4 && reason.rfind("not elongated", 0) == 0 && len > 8) {
-      auto at = [&](int k) { return cluster.smoothed[(a + k) % n]; };
-      int best1 = -1;
-      for (int k = 1; k < len; ++k) {
-        if (at(k) > at(k - 1) && at(k) >= at(k + 1) && (best1 < 0 || at(k) > at(best1))) {
-          best1 = k;
-        }
-      }
-      int split = -1;
       float splitDepth = 0.0f;
-      for (int k = 1; best1 >= 0 && k < len; ++k) {
-        if (k == best1 || !(at(k) > at(k - 1) && at(k) >= at(k + 1))) {
-          continue;
-        }
-        // The lowest point between this peak and the highest one.
-        int lo = std::min(k, best1);
-        const int hi = std::max(k, best1);
-        int m = lo;
-        for (; lo <= hi; ++lo) {
-          m = at(lo) < at(m) ? lo : m;
-        }
-        const float dip = std::min(at(k), at(best1)) - at(m);
-        if (dip >= c.options.minBladeLengthPx && dip > splitDepth) {
-          splitDepth = dip;
-          split = m;
-        }
-      }
+      const int split =
+          deepestDip(cluster, a, len, static_cast<float>(c.options.minBladeLengthPx), splitDepth);
       if (split > 0) {
         const int index = (a + split) % n;
         splits.push_back(
@@ -1163,6 +1241,9 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
     const int b = jn == 1 ? (a + n - 1) % n : cluster.junctions[(j + 1) % jn].index;
     take(take, a, b, 0);
   }
+  splitMerged(c, cluster, clusterMask, clusterIndex, segments, out.blades, splits, maxR);
+  cluster.blades.resize(out.blades.size());
+  std::iota(cluster.blades.begin(), cluster.blades.end(), 0);
   cluster.junctions.insert(cluster.junctions.end(), splits.begin(), splits.end());
   if (out.blades.empty()) {
     out.warnings.push_back(fmt::format("{}: cluster at ({:.0f}, {:.0f}): no segment is a blade ({})", label,
@@ -1420,8 +1501,6 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
 constexpr double kCoverageMargin = 0.02;
 
 /** A blade this many times as wide as its cluster's median blade is probably several merged. */
-constexpr float kMergedWidthRatio = 1.6f;
-
 /** Notes the blades of a partition that are probably merged (Cluster::merged). */
 void flagMerges(Partition& p) {
   if (p.blades.size() < 3) {
