@@ -4,6 +4,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Image.hpp>
 #include <sylva/grass/BladeType.hpp>
+#include <sylva/grass/Cull.hpp>
 #include <sylva/grass/Field.hpp>
 #include <sylva/scene/SceneGrass.hpp>
 
@@ -113,6 +114,27 @@ TEST(SceneGrass, MaxSlopeOfASceneFileThinsTheGrass) {
   // The procedural blades when the layer names no blade files.
   EXPECT_EQ(grassBladeTypes(desc.grass[0], sceneGrassFieldName(desc.path, 0)).size(),
             grass::proceduralBladeTypes().size());
+}
+
+TEST(SceneGrass, NearTuftsOfASceneFileReachTheCulling) {
+  const SceneDesc desc = parseScene(R"({"sylva_scene": 1,
+      "cameras": {"main": {"position": [0, 10, 0], "target": [1, 10, 0]}},
+      "grass": [{"near_layers": 3, "near_distance": 5.5}, {}]})",
+                                    "meadow.json");
+  ASSERT_EQ(desc.grass.size(), 2u);
+  const grass::CullSettings set = grassCullSettings(desc.grass[0], sceneGrassFieldName(desc.path, 0));
+  EXPECT_EQ(set.nearLayers, 3);
+  EXPECT_EQ(set.nearDistance, 5.5f);
+  const grass::CullSettings defaults = grassCullSettings(desc.grass[1], sceneGrassFieldName(desc.path, 1));
+  EXPECT_EQ(defaults.nearLayers, grass::CullSettings{}.nearLayers);
+  EXPECT_EQ(defaults.nearDistance, grass::CullSettings{}.nearDistance);
+  const std::string bad = test::errorOf([] {
+    (void)parseScene(
+        R"({"sylva_scene": 1, "cameras": {"main": {"position": [0, 10, 0], "target": [1, 10, 0]}},
+                         "grass": [{"near_layers": 0}]})",
+        "meadow.json");
+  });
+  EXPECT_NE(bad.find("/grass/0/near_layers"), std::string::npos) << bad;
 }
 
 TEST(SceneGrass, ErrorsNameTheSceneFileAndTheField) {
