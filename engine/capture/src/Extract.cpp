@@ -1122,7 +1122,7 @@ constexpr float kMergedWidthRatio = 1.6f;
  * halves make blades no wider than the whole; repeatedly, while a half is still too wide. `segments` are the
  * blades' contour segments; `splits` gets the junctions added.
  */
-void splitMerged(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, int clusterIndex,
+void splitMerged(Context& c, Cluster& cluster, const cv::Mat& clusterMask, int clusterIndex,
                  const std::vector<std::pair<int, int>>& segments, std::vector<CapturedBlade>& blades,
                  std::vector<Junction>& splits, float maxR) {
   if (blades.size() < 3) {
@@ -1144,16 +1144,23 @@ void splitMerged(Context& c, const Cluster& cluster, const cv::Mat& clusterMask,
     const int len = ((b - a) % n + n) % n;
     if (depth < 4 && maxWidthPx(blade) > kMergedWidthRatio * median && len > 8) {
       float dip = 0.0f;
-      const int at = deepestDip(cluster, a, len, median / 3.0f, dip);
-      if (at > 0) {
-        const int index = (a + at) % n;
+      const int offset = deepestDip(cluster, a, len, median / 3.0f, dip);
+      if (offset > 0) {
+        const int index = (a + offset) % n;
         std::vector<CapturedBlade> halves;
         std::string reason;
         if (buildBlade(c, cluster, clusterMask, a, index, clusterIndex, halves, reason, median / 3.0f) &&
             buildBlade(c, cluster, clusterMask, index, b, clusterIndex, halves, reason, median / 3.0f) &&
             std::max(maxWidthPx(halves[0]), maxWidthPx(halves[1])) < maxWidthPx(blade)) {
-          splits.push_back({index, cluster.contour[static_cast<std::size_t>(index)],
-                            cluster.smoothed[static_cast<std::size_t>(index)], dip / std::max(maxR, 1e-3f)});
+          const glm::vec2 at = cluster.contour[static_cast<std::size_t>(index)];
+          splits.push_back(
+              {index, at, cluster.smoothed[static_cast<std::size_t>(index)], dip / std::max(maxR, 1e-3f)});
+          cluster.split.push_back(fmt::format(
+              "the blade {:.0f} px wide ({:.1f}× the cluster's median blade) was cut at ({:.0f}, {:.0f}) "
+              "between two of its tips, where the outline dips {:.0f} px, into blades {:.0f} and {:.0f} px "
+              "wide",
+              maxWidthPx(blade), maxWidthPx(blade) / median, at.x, at.y, dip, maxWidthPx(halves[0]),
+              maxWidthPx(halves[1])));
           self(self, std::move(halves[0]), a, index, depth + 1);
           self(self, std::move(halves[1]), index, b, depth + 1);
           return;

@@ -63,6 +63,9 @@ std::string explainClusters(const ExtractResult& first) {
     for (const std::string& r : cluster.rejected) {
       text += fmt::format("    not a blade: {}\n", r);
     }
+    for (const std::string& m : cluster.split) {
+      text += fmt::format("    split: {}\n", m);
+    }
     for (const std::string& m : cluster.merged) {
       text += fmt::format("    merged? {}\n", m);
     }

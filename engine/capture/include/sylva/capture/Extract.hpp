@@ -120,10 +120,12 @@ struct Cluster {
   /** Segments between junctions that were not blades, with the reason ("too short", "not elongated"). */
   std::vector<std::string> rejected;
   /**
-   * Blades that are probably two or more merged (`--explain`): much wider than the cluster's median blade, with
-   * no depth step between them to split them by.
+   * Blades that are probably two or more merged (`--explain`): much wider than the cluster's median blade,
+   * with no depth step between them to split them by.
    */
   std::vector<std::string> merged;
+  /** Blades split in two between their tips because they were much wider than the median (`--explain`). */
+  std::vector<std::string> split;
   int areaPx = 0;
   /**
    * The depth layer of its blob this cluster was cut from (0: the nearest), -1 when the blob is one layer.
