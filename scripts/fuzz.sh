@@ -9,7 +9,9 @@
 # writes the input there as crash-*/leak-*/timeout-*/oom-* and makes the script fail; copy it into
 # fuzz/regressions/TARGET when fixing the defect. --merge adds inputs that reach new coverage to fuzz/corpus/TARGET.
 # Prints one summary line per target: executions, executions/s, coverage (edges) and features. Targets run
-# side by side, one per core (SYLVA_FUZZ_JOBS overrides), each for SECONDS.
+# side by side, one per core (SYLVA_FUZZ_JOBS overrides), each for SECONDS. SYLVA_FUZZ_SEED fixes libFuzzer's
+# random seed (the CI smoke run, scripts/test.sh, uses 1, so a finding there repeats on every run and on the
+# developer's machine); unset, each run explores from a new seed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target="${1:-all}"
@@ -21,6 +23,8 @@ for t in "${targets[@]}"; do
   [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (targets: ${all[*]})" >&2; exit 2; }
 done
 [[ "$seconds" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2; }
+[[ "${SYLVA_FUZZ_SEED:-1}" =~ ^[1-9][0-9]*$ ]] ||
+  { echo "fuzz.sh: SYLVA_FUZZ_SEED must be a positive whole number, got '$SYLVA_FUZZ_SEED'" >&2; exit 2; }
 
 scripts/build.sh asan sylva_fuzz >/dev/null
 # Memory ceiling per input: loaders accept fields up to their documented limits, but a small input must never
@@ -41,8 +45,10 @@ fuzz_one() {
   local seeds=("fuzz/corpus/$t")
   [ -d "fuzz/regressions/$t" ] && seeds+=("fuzz/regressions/$t")
   log="$work/fuzz.log"
+  local seed=()
+  [ -n "${SYLVA_FUZZ_SEED:-}" ] && seed=(-seed="$SYLVA_FUZZ_SEED")
   set +e
-  "build/asan/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb="$limit_mb" \
+  "build/asan/fuzz/fuzz_$t" "${seed[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb="$limit_mb" \
     -malloc_limit_mb="$limit_mb" -max_len=65536 -print_final_stats=1 -artifact_prefix="$work/" \
     "$work/corpus" "${seeds[@]}" >"$log" 2>&1
   rc=$?

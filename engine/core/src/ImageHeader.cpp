@@ -1,6 +1,8 @@
 // Image sizes from file headers (PNG: ISO/IEC 15948 §11.2.2; JPEG: ITU T.81 §B.1–B.2; WebP: RFC 9649
 // §2.5–2.7; TIFF 6.0 §2 and §8; BMP: the BITMAPCOREHEADER and BITMAPINFOHEADER layouts; OpenEXR: the
-// file layout's header attributes).
+// file layout's header attributes; Netpbm's PBM/PGM/PPM/PAM/PFM pages; Sun raster; Radiance's RGBE header;
+// JPEG 2000: ISO/IEC 15444-1 §A.5.1 and Annex I). These are the formats OpenCV's image readers decode, except
+// DICOM (GDCM), which callers handing files to OpenCV refuse as unknown.
 #include <sylva/core/ImageHeader.hpp>
 
 #include <sylva/core/Error.hpp>
@@ -9,6 +11,8 @@
 #include <array>
 #include <cstdint>
 #include <fstream>
+#include <optional>
+#include <sstream>
 #include <string>
 
 namespace sylva {
@@ -247,6 +251,165 @@ std::optional<ImageHeader> exrHeader(std::ifstream& in) {
   return std::nullopt;
 }
 
+/** Reads the next token of a Netpbm header: skips whitespace and `#` comments to the end of their line, then
+ * reads up to 63 non-space bytes. Empty when the file ends first. */
+std::string pnmToken(std::ifstream& in) {
+  std::string token;
+  for (char c = 0; in.get(c);) {
+    if (c == '#' && token.empty()) {
+      while (in.get(c) && c != '\n' && c != '\r') {
+      }
+      continue;
+    }
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f') {
+      if (token.empty()) {
+        continue;
+      }
+      break;
+    }
+    if (token.size() == 63) {
+      return {};
+    }
+    token.push_back(c);
+  }
+  return token;
+}
+
+/** A header's decimal number (digits only), saturated at 2^31 − 1; nullopt for anything else. */
+std::optional<int> decimal(const std::string& token) {
+  if (token.empty() || token.size() > 20 ||
+      !std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return std::nullopt;
+  }
+  std::uint64_t v = 0;
+  for (const char c : token) {
+    v = std::min<std::uint64_t>(v * 10 + static_cast<std::uint64_t>(c - '0'), 0x7fffffffu);
+  }
+  return static_cast<int>(v);
+}
+
+std::optional<ImageHeader> netpbmHeader(std::ifstream& in, char kind) {
+  // PBM/PGM/PPM (P1–P6) and PFM (PF, Pf): the magic, then width and height as decimal tokens, with comments
+  // allowed between them (Netpbm's and OpenCV's readers accept them in PFM too). PAM (P7): "WIDTH n",
+  // "HEIGHT n" among other lines before ENDHDR.
+  in.seekg(2);
+  if (kind != '7') {
+    const std::optional<int> width = decimal(pnmToken(in));
+    const std::optional<int> height = width ? decimal(pnmToken(in)) : std::nullopt;
+    if (!height) {
+      return std::nullopt;
+    }
+    return ImageHeader{kind == 'F' || kind == 'f' ? "PFM" : "PNM", *width, *height};
+  }
+  std::optional<int> width;
+  std::optional<int> height;
+  for (int token = 0; token < 256 && !(width && height); ++token) {
+    const std::string key = pnmToken(in);
+    if (key.empty() || key == "ENDHDR") {
+      return std::nullopt;
+    }
+    if (key == "WIDTH") {
+      width = decimal(pnmToken(in));
+    } else if (key == "HEIGHT") {
+      height = decimal(pnmToken(in));
+    }
+  }
+  if (!width || !height) {
+    return std::nullopt;
+  }
+  return ImageHeader{"PAM", *width, *height};
+}
+
+std::optional<ImageHeader> sunRasterHeader(std::ifstream& in) {
+  // Magic (4), then width and height as big-endian 32-bit numbers.
+  std::array<std::uint8_t, 8> size{};
+  in.seekg(4);
+  if (!readBytes(in, size)) {
+    return std::nullopt;
+  }
+  return ImageHeader{"Sun raster", side(bigEndian(&size[0], 4)), side(bigEndian(&size[4], 4))};
+}
+
+std::optional<ImageHeader> radianceHeader(std::ifstream& in) {
+  // "#?RADIANCE" or "#?RGBE", header lines up to an empty one, then the resolution line: two of "±Y n" and
+  // "±X n" (the usual "-Y height +X width" or a transposed order).
+  in.seekg(0);
+  std::string line;
+  bool blank = false;
+  for (int lines = 0; lines < 1024 && std::getline(in, line); ++lines) {
+    if (line.size() > 4096) {
+      return std::nullopt;
+    }
+    if (!blank) {
+      blank = line.empty();
+      continue;
+    }
+    std::istringstream resolution(line);
+    std::optional<int> sides[2];
+    for (int i = 0; i < 2; ++i) {
+      std::string axis;
+      std::string value;
+      resolution >> axis >> value;
+      if (axis.size() != 2 || (axis[0] != '+' && axis[0] != '-') || (axis[1] != 'X' && axis[1] != 'Y')) {
+        return std::nullopt;
+      }
+      sides[axis[1] == 'X' ? 0 : 1] = decimal(value);
+    }
+    if (!sides[0] || !sides[1]) {
+      return std::nullopt;
+    }
+    return ImageHeader{"Radiance HDR", *sides[0], *sides[1]};
+  }
+  return std::nullopt;
+}
+
+std::optional<ImageHeader> jpeg2000Codestream(std::ifstream& in) {
+  // SOC, then the SIZ marker segment (ISO/IEC 15444-1 §A.5.1): FF51, Lsiz (2), Rsiz (2), Xsiz, Ysiz, XOsiz,
+  // YOsiz (4 each, big-endian): the image is (Xsiz − XOsiz) × (Ysiz − YOsiz).
+  std::array<std::uint8_t, 24> siz{};
+  if (!readBytes(in, siz) || siz[0] != 0xFF || siz[1] != 0x4F || siz[2] != 0xFF || siz[3] != 0x51) {
+    return std::nullopt;
+  }
+  const auto at = [&siz](int offset) { return static_cast<std::int64_t>(bigEndian(&siz[offset], 4)); };
+  const auto clampSide = [](std::int64_t v) {
+    return static_cast<int>(std::clamp<std::int64_t>(v, 0, 0x7fffffff));
+  };
+  return ImageHeader{"JPEG 2000", clampSide(at(8) - at(16)), clampSide(at(12) - at(20))};
+}
+
+std::optional<ImageHeader> jp2Header(std::ifstream& in) {
+  // JP2 boxes (ISO/IEC 15444-1 §I.4): length (4; 1 = an 8-byte length follows, 0 = to the end of the file)
+  // and type (4). The contiguous codestream box "jp2c" holds what the decoder decodes.
+  in.seekg(0);
+  for (int box = 0; box < 1024; ++box) {
+    std::array<std::uint8_t, 8> head{};
+    if (!readBytes(in, head)) {
+      return std::nullopt;
+    }
+    std::uint64_t length = bigEndian(&head[0], 4);
+    std::uint64_t headerBytes = 8;
+    if (length == 1) {
+      std::array<std::uint8_t, 8> large{};
+      if (!readBytes(in, large)) {
+        return std::nullopt;
+      }
+      length = (static_cast<std::uint64_t>(bigEndian(&large[0], 4)) << 32) | bigEndian(&large[4], 4);
+      headerBytes = 16;
+    }
+    if (hasTag(&head[4], "jp2c")) {
+      return jpeg2000Codestream(in);
+    }
+    if (length < headerBytes || length - headerBytes > 0x7fffffffu) {
+      return std::nullopt;
+    }
+    in.seekg(static_cast<std::streamoff>(length - headerBytes), std::ios::cur);
+    if (!in) {
+      return std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
 } // namespace
 
 std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path) {
@@ -279,6 +442,25 @@ std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path) {
   }
   if (n >= 4 && start[0] == 0x76 && start[1] == 0x2f && start[2] == 0x31 && start[3] == 0x01) {
     return exrHeader(in);
+  }
+  if (n >= 2 && start[0] == 'P' &&
+      ((start[1] >= '1' && start[1] <= '7') || start[1] == 'F' || start[1] == 'f')) {
+    return netpbmHeader(in, static_cast<char>(start[1]));
+  }
+  if (n >= 4 && bigEndian(start.data(), 4) == 0x59a66a95u) {
+    return sunRasterHeader(in);
+  }
+  const std::string text(reinterpret_cast<const char*>(start.data()), n);
+  if (text.starts_with("#?RADIANCE") || text.starts_with("#?RGBE")) {
+    return radianceHeader(in);
+  }
+  if (n >= 4 && bigEndian(start.data(), 4) == 0xFF4FFF51u) {
+    in.seekg(0);
+    return jpeg2000Codestream(in);
+  }
+  constexpr std::array<std::uint8_t, 12> kJp2 = {0, 0, 0, 12, 'j', 'P', ' ', ' ', '\r', '\n', 0x87, '\n'};
+  if (n == kJp2.size() && std::equal(kJp2.begin(), kJp2.end(), start.begin())) {
+    return jp2Header(in);
   }
   return std::nullopt;
 }

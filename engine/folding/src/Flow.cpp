@@ -92,8 +92,10 @@ struct SequencePattern {
  * Refuses an image sequence whose frames (numbered from 0 or 1, as OpenCV reads them; up to maxFrames + 1,
  * the one past the last read telling whether the clip was cut short) state more than kMaxVideoSide pixels per
  * side in their headers, before OpenCV decodes, and allocates for, any of them: a 2.6 KB progressive JPEG
- * claiming 20000×20000 pixels made libjpeg zero about 2 GB (fuzz/regressions/flow). Frames in formats
- * readImageHeader does not read are checked after decoding, as before.
+ * claiming 20000×20000 pixels made libjpeg zero about 2 GB (fuzz/regressions/flow). A frame whose size the
+ * header does not give (a format readImageHeader does not read, such as DICOM, or a cut header) is refused
+ * too: OpenCV would decode it unchecked. The flow fuzz target found such a file asking for 2.2 GB (12 bytes a
+ * pixel: the 3 floats OpenCV decodes Radiance and PFM files to, formats read here since).
  */
 void checkSequenceHeaders(const std::string& name, int maxFrames) {
   const SequencePattern pattern = SequencePattern::parse(name);
@@ -105,7 +107,12 @@ void checkSequenceHeaders(const std::string& name, int maxFrames) {
       break;
     }
     const std::optional<ImageHeader> header = readImageHeader(file);
-    if (header && (header->width > kMaxVideoSide || header->height > kMaxVideoSide)) {
+    if (!header) {
+      fail("{}: frame file {} is not an image whose size can be read before decoding (PNG, JPEG, WebP, TIFF, "
+           "BMP, OpenEXR, PNM/PAM/PFM, Sun raster, Radiance HDR or JPEG 2000), or its header is cut short",
+           name, fs::path(file).filename().string());
+    }
+    if (header->width > kMaxVideoSide || header->height > kMaxVideoSide) {
       fail("{}: frame file {} is a {} of {}×{} pixels, over the {} per side this loader accepts", name,
            fs::path(file).filename().string(), header->format, header->width, header->height, kMaxVideoSide);
     }

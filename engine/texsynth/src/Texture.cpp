@@ -120,8 +120,8 @@ Image loadPhoto(const fs::path& path) {
   // The size the header states is checked before anything decodes: libjpeg allocates (and for progressive
   // files zeroes) the whole image's coefficients up front, whatever the file's length, and a PNG or an EXR
   // of 20000² takes gigabytes before the size could be checked on the decoded image.
-  if (const std::optional<ImageHeader> header = readImageHeader(path);
-      header && (header->width > kMaxTextureSide || header->height > kMaxTextureSide)) {
+  const std::optional<ImageHeader> header = readImageHeader(path);
+  if (header && (header->width > kMaxTextureSide || header->height > kMaxTextureSide)) {
     fail("{}: image size {}x{} is out of range (1..{} per side)", name, header->width, header->height,
          kMaxTextureSide);
   }
@@ -132,6 +132,11 @@ Image loadPhoto(const fs::path& path) {
   }
   if (ext != ".jpg" && ext != ".jpeg") {
     fail("{}: unsupported photo format '{}' (expected .jpg, .jpeg, .png or .exr)", name, ext);
+  }
+  // OpenCV decodes by content, whatever the name: a .jpg must hold a JPEG, whose size was checked above.
+  if (!header || header->format != "JPEG") {
+    fail("{}: not a JPEG file (its content is {})", name,
+         header ? header->format : "unrecognised or cut short");
   }
   cv::Mat bgr;
   try {

@@ -190,6 +190,55 @@ TEST(ImageHeader, ReadsTiffBmpAndOpenExrHeaders) {
   EXPECT_FALSE(headerOf(dir, cutExr).has_value());
 }
 
+Bytes ascii(const char* s) {
+  return Bytes(s, s + std::char_traits<char>::length(s));
+}
+
+Bytes be(std::uint32_t v) {
+  return {static_cast<std::uint8_t>(v >> 24), static_cast<std::uint8_t>(v >> 16),
+          static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)};
+}
+
+TEST(ImageHeader, ReadsTheOtherFormatsOpenCvDecodes) {
+  test::TempDir dir;
+  // Netpbm: PPM with a comment between the sides, PBM, PFM (OpenCV decodes it to 3 floats a pixel), PAM.
+  expectSize(headerOf(dir, ascii("P6\n# made by hand\n640 # width\n480\n255\n")), "PNM", 640, 480);
+  expectSize(headerOf(dir, ascii("P1 3 2 0 1 0 1 0 1")), "PNM", 3, 2);
+  expectSize(headerOf(dir, ascii("Pf\n13000 7\n-1.0\n")), "PFM", 13000, 7);
+  expectSize(
+      headerOf(dir, ascii("P7\nDEPTH 4\nHEIGHT 20\nMAXVAL 255\nWIDTH 30\nTUPLTYPE RGB_ALPHA\nENDHDR\n")),
+      "PAM", 30, 20);
+  expectSize(headerOf(dir, ascii("P5 99999999999999 2 255")), "PNM", 0x7fffffff, 2); // saturated
+  // Sun raster: magic, width, height (big-endian).
+  expectSize(headerOf(dir, be(0x59a66a95) + be(20000) + be(3) + be(24)), "Sun raster", 20000, 3);
+  // Radiance: header lines, a blank line, then the resolution line in either order.
+  expectSize(headerOf(dir, ascii("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 480 +X 640\n")), "Radiance HDR",
+             640, 480);
+  expectSize(headerOf(dir, ascii("#?RGBE\n\n+X 7 -Y 9\n")), "Radiance HDR", 7, 9);
+  expectSize(readImageHeader(test::sourcePath("fuzz/regressions/flow/radiance-claims-13000x13000.hdr")),
+             "Radiance HDR", 13000, 13000);
+  // JPEG 2000: a bare codestream's SIZ (the image offset is subtracted), and the same in a JP2 file after its
+  // signature, file-type and header boxes.
+  const Bytes siz = Bytes{0xFF, 0x4F, 0xFF, 0x51, 0, 41, 0, 0} + be(1100) + be(700) + be(100) + be(200) +
+                    be(0) + be(0) + be(0) + be(0);
+  expectSize(headerOf(dir, siz), "JPEG 2000", 1000, 500);
+  const Bytes jp2 = Bytes{0, 0, 0, 12, 'j', 'P', ' ', ' ', '\r', '\n', 0x87, '\n'} + be(20) +
+                    ascii("ftypjp2 ") + be(0) + ascii("jp2 ") + be(8) + ascii("jp2h") + be(0) +
+                    ascii("jp2c") + siz;
+  expectSize(headerOf(dir, jp2), "JPEG 2000", 1000, 500);
+  // Cut short or malformed: unknown.
+  EXPECT_FALSE(headerOf(dir, ascii("P6\n640")).has_value());
+  EXPECT_FALSE(headerOf(dir, ascii("P6\n-640 480")).has_value());
+  EXPECT_FALSE(headerOf(dir, ascii("P7\nWIDTH 3\nENDHDR\n")).has_value());
+  EXPECT_FALSE(headerOf(dir, be(0x59a66a95) + be(20000)).has_value());
+  EXPECT_FALSE(headerOf(dir, ascii("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n")).has_value());
+  EXPECT_FALSE(headerOf(dir, ascii("#?RADIANCE\n\nY 480 X 640\n")).has_value());
+  EXPECT_FALSE(headerOf(dir, Bytes(jp2.begin(), jp2.end() - 20)).has_value());
+  EXPECT_FALSE(
+      headerOf(dir, Bytes{0, 0, 0, 12, 'j', 'P', ' ', ' ', '\r', '\n', 0x87, '\n'} + be(3) + ascii("jp2h"))
+          .has_value()); // a box shorter than its own header
+}
+
 TEST(ImageHeader, OtherFormatsAndCutHeadersAreUnknown) {
   test::TempDir dir;
   EXPECT_FALSE(headerOf(dir, {}).has_value());

@@ -62,6 +62,23 @@ TEST(Texture, PhotoErrorsNameTheFile) {
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("huge.jpg: image size 20000x20000 is out of range"));
   }
+  // OpenCV decodes by content: a .jpg that holds another format OpenCV reads (a Radiance file claiming 13000²
+  // pixels, which it would decode to 2 GB of floats; a small PPM) is refused before anything decodes.
+  std::filesystem::copy_file(test::sourcePath("fuzz/regressions/flow/radiance-claims-13000x13000.hdr"),
+                             dir / "radiance.jpg");
+  try {
+    loadPhoto(dir / "radiance.jpg");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("radiance.jpg: not a JPEG file (its content is Radiance HDR)"));
+  }
+  writeTextFile(dir / "small.jpg", "P6\n4 4\n255\n" + std::string(48, 'x'));
+  try {
+    loadPhoto(dir / "small.jpg");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("small.jpg: not a JPEG file (its content is PNM)"));
+  }
 }
 
 TEST(Texture, LoadsTheBarkPhotosThroughOpenCv) {
