@@ -608,11 +608,69 @@ AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult&
   return report;
 }
 
+std::vector<bool> tipsStandFree(const SyntheticTruth& truth, int width, int height) {
+  const std::size_t bladeCount = truth.centrelinePx.size();
+  std::vector<bool> free(bladeCount, false);
+  if (truth.label.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
+    return free;
+  }
+  // Depth of blade l near pixel p: its nearest centreline sample's (blades face the camera, so across a
+  // blade's width its depth is its centreline's).
+  const auto depthNear = [&truth](std::size_t l, glm::vec2 p) {
+    const std::vector<glm::vec2>& line = truth.centrelinePx[l];
+    std::size_t best = 0;
+    float bestD = std::numeric_limits<float>::max();
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const float d = glm::dot(line[i] - p, line[i] - p);
+      if (d < bestD) {
+        bestD = d;
+        best = i;
+      }
+    }
+    return truth.centrelineMetres[l][best].z;
+  };
+  constexpr float kSameSurfaceMetres = 0.008f; // the extractor's smallest depth step between layers
+  for (std::size_t b = 0; b < bladeCount; ++b) {
+    const std::vector<glm::vec2>& line = truth.centrelinePx[b];
+    if (line.empty() || truth.widthsPx[b].size() != line.size()) {
+      continue;
+    }
+    const std::size_t from = line.size() * 85 / 100;
+    const int r = std::max(2, static_cast<int>(std::lround(0.6f * truth.widthsPx[b][from])));
+    for (std::size_t i = from; i < line.size() && !free[b]; ++i) {
+      const int x = static_cast<int>(std::lround(line[i].x));
+      const int y = static_cast<int>(std::lround(line[i].y));
+      if (x < 0 || y < 0 || x >= width || y >= height ||
+          truth.label[static_cast<std::size_t>(y) * width + x] != static_cast<int>(b)) {
+        continue;
+      }
+      const float z = truth.centrelineMetres[b][i].z;
+      bool alone = true;
+      for (int dy = -r; dy <= r && alone; ++dy) {
+        for (int dx = -r; dx <= r && alone; ++dx) {
+          const int qx = x + dx;
+          const int qy = y + dy;
+          if (dx * dx + dy * dy > r * r || qx < 0 || qy < 0 || qx >= width || qy >= height) {
+            continue;
+          }
+          const int l = truth.label[static_cast<std::size_t>(qy) * width + qx];
+          alone =
+              l < 0 || l == static_cast<int>(b) ||
+              std::abs(depthNear(static_cast<std::size_t>(l), glm::vec2(qx, qy)) - z) > kSameSurfaceMetres;
+        }
+      }
+      free[b] = alone;
+    }
+  }
+  return free;
+}
+
 std::string sweepLine(const char* name, const SweepTally& t) {
   return fmt::format(
       "{:<9} {:>5} clusters  count exact {:>5.1f} %  ({} with blades missing)  width within 10 % on "
-      "{:>5.1f} % of {} blades",
-      name, t.clusters, 100.0 * t.exactShare(), t.fewer, 100.0 * t.widthShare(), t.blades);
+      "{:>5.1f} % of {} blades  every tip free in {} (exact {:.1f} %)",
+      name, t.clusters, 100.0 * t.exactShare(), t.fewer, 100.0 * t.widthShare(), t.blades, t.tipsFree,
+      100.0 * t.tipsFreeExactShare());
 }
 
 std::string describeSweep(const SweepReport& report, std::optional<ClusterLayout> only) {
@@ -654,9 +712,13 @@ SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progre
     if (accuracy.bladesFound != accuracy.bladesExpected) {
       report.wrongSeeds.push_back(firstSeed + static_cast<std::uint64_t>(i));
     }
+    const std::vector<bool> free = tipsStandFree(frame.truth, scene.width, scene.height);
+    const bool allFree = std::all_of(free.begin(), free.end(), [](bool f) { return f; });
     for (SweepTally* t : {&report.byLayout[slot], &report.all}) {
       ++t->clusters;
       t->exact += accuracy.bladesFound == accuracy.bladesExpected ? 1 : 0;
+      t->tipsFree += allFree ? 1 : 0;
+      t->tipsFreeExact += allFree && accuracy.bladesFound == accuracy.bladesExpected ? 1 : 0;
       t->fewer += accuracy.bladesFound < accuracy.bladesExpected ? 1 : 0;
       t->blades += accuracy.bladesExpected;
       t->widthWithin10 +=

@@ -46,6 +46,8 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
     EXPECT_GT(report.byLayout[i].clusters, 0) << "every class is drawn";
   }
   print("all", report.all);
+  RecordProperty("tips_free", std::to_string(report.all.tipsFreeShare()));
+  RecordProperty("tips_free_exact", std::to_string(report.all.tipsFreeExactShare()));
   EXPECT_EQ(report.all.clusters, clusters);
   RecordProperty("count_exact", std::to_string(report.all.exactShare()));
   RecordProperty("width_within_10", std::to_string(report.all.widthShare()));
@@ -66,7 +68,49 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   EXPECT_GE(dense.widthShare(), 0.72);
   EXPECT_GE(report.all.exactShare(), 0.76);
   EXPECT_GE(report.all.widthShare(), 0.82);
+  // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
+  // picture, or by a depth step); 200 clusters 94.5 %, 1,000 95.3 %. On those the count is exact on 82.5 %
+  // (1,000: 80.5 %): what is missing is the extractor's, not the frame's.
+  EXPECT_GE(report.all.tipsFreeShare(), 0.92);
+  EXPECT_GE(report.all.tipsFreeExactShare(), 0.79);
 #endif
+}
+
+TEST(CaptureSweep, TipsStandFreeUnlessHiddenOrTouchingAtTheSameDepth) {
+  const auto freeTips = [](const SyntheticScene& scene) {
+    const SyntheticFrame frame = renderScene(scene);
+    const std::vector<bool> free = tipsStandFree(frame.truth, scene.width, scene.height);
+    EXPECT_EQ(free.size(), scene.blades.size());
+    return static_cast<int>(std::count(free.begin(), free.end(), true));
+  };
+  // A plain fan: every tip on its own.
+  SyntheticScene fan = makeCluster(BladeShape::SlimGrass, 5, 0.3f, 0.0f, 1);
+  fan.noise = false;
+  EXPECT_EQ(freeTips(fan), 5);
+  // A blade inside its neighbour's outline, 3 cm nearer: its tip stands free by depth.
+  SyntheticScene occluded =
+      makeLayoutCluster(ClusterLayout::Occluded, BladeShape::SlenderLeaf, 5, 0.2f, 0.0f, 7);
+  occluded.noise = false;
+  EXPECT_EQ(freeTips(occluded), 5);
+  // The same blade drawn at its neighbour's depth: its tip lies in the neighbour's outline on the same
+  // surface.
+  for (SyntheticBlade& b : occluded.blades) {
+    b.nearerMetres = 0.0f;
+  }
+  EXPECT_EQ(freeTips(occluded), 4);
+  // Fourteen broad leaves over 60°: tips touch their neighbours'.
+  SyntheticScene dense =
+      makeLayoutCluster(ClusterLayout::Dense, BladeShape::QuadraticLeaf, 14, 0.0f, 0.0f, 3);
+  dense.noise = false;
+  EXPECT_LT(freeTips(dense), 14);
+  // A narrower, shorter blade wholly behind another: no tip of its own.
+  SyntheticScene twin = makeCluster(BladeShape::SlenderLeaf, 1, 0.0f, 0.0f, 1);
+  twin.noise = false;
+  twin.blades.push_back(twin.blades[0]);
+  twin.blades[1].nearerMetres = -0.02f;
+  twin.blades[1].widthMetres *= 0.5f;
+  twin.blades[1].lengthMetres *= 0.8f;
+  EXPECT_EQ(freeTips(twin), 1);
 }
 
 TEST(CaptureSweep, ClassesAreWhatTheyClaim) {
