@@ -160,13 +160,14 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   EXPECT_THAT(dense.out, testing::HasSubstr("as wide as the cluster's median blade"));
   EXPECT_THAT(dense.out, testing::HasSubstr("probably blades merged"));
   EXPECT_EQ(countOf(explained.out, "merged?"), 0u) << "the occluded fan is captured whole";
-  // A dense fan of 13 whose merged blades are split between their tips (9 blades without the split, 12 with):
-  // --explain says where.
+  // A dense fan of 13 whose merged blades are split between their tips (9 blades without the split, 12 when
+  // wider than 1.6× the median blade, all 13 when wider than 1.4× the narrow blades): --explain says where.
   ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 3 --layout dense -o " + at(dir, "d3.png")).status,
             0);
   const test::RunResult split = runSylva(dir, "capture " + at(dir, "d3.png") + " --explain");
   ASSERT_EQ(split.status, 0) << split.err;
-  EXPECT_THAT(split.out, testing::HasSubstr("12 blades in 1 cluster"));
+  EXPECT_THAT(split.out, testing::HasSubstr("13 blades in 1 cluster"));
+  EXPECT_THAT(split.out, testing::HasSubstr("the cluster's narrow blades) was cut at"));
   EXPECT_THAT(split.out, testing::HasSubstr("split: the blade"));
   EXPECT_THAT(split.out, testing::HasSubstr("between two of its tips"));
   // --layout narrows the sweep to one class, and the hint redraws a cluster of that class.

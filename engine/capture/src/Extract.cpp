@@ -1111,16 +1111,17 @@ float maxWidthPx(const CapturedBlade& blade) {
   return blade.widthsPx.empty() ? 0.0f : *std::max_element(blade.widthsPx.begin(), blade.widthsPx.end());
 }
 
-/** Blades wider than this many times their cluster's median blade are probably several merged. */
-constexpr float kMergedWidthRatio = 1.6f;
+/** Blades wider than this many times their cluster's narrow blades (the lower quartile of its blades' widths)
+ * are split where their outline allows (splitMerged). */
+constexpr float kMergedWidthRatio = 1.4f;
 
 /**
- * Second pass over a cluster's blades: one much wider than the cluster's median (kMergedWidthRatio; clusters
- * of three or more) is usually several that overlap up to near their tips, each valley between their tips too
- * shallow for the prominence test and the whole too elongated to fail as one blade. Its segment is split at
- * the deepest dip between two of its peaks down to a dip of a third of the median width, as long as both
- * halves make blades no wider than the whole; repeatedly, while a half is still too wide. `segments` are the
- * blades' contour segments; `splits` gets the junctions added.
+ * Second pass over a cluster's blades: one much wider than the cluster's narrow blades (kMergedWidthRatio;
+ * clusters of three or more) is usually several that overlap up to near their tips, each valley between their
+ * tips too shallow for the prominence test and the whole too elongated to fail as one blade. Its segment is
+ * split at the deepest dip between two of its peaks down to a dip of a third of the narrow width, as long as
+ * both halves make blades no wider than the whole; repeatedly, while a half is still too wide. `segments` are
+ * the blades' contour segments; `splits` gets the junctions added.
  */
 void splitMerged(Context& c, Cluster& cluster, const cv::Mat& clusterMask, int clusterIndex,
                  const std::vector<std::pair<int, int>>& segments, std::vector<CapturedBlade>& blades,
@@ -1132,34 +1133,36 @@ void splitMerged(Context& c, Cluster& cluster, const cv::Mat& clusterMask, int c
   for (const CapturedBlade& blade : blades) {
     widths.push_back(maxWidthPx(blade));
   }
-  std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2),
+  // The reference is the cluster's narrow blades (the lower quartile of its widths), not the median: in a
+  // dense fan half the blades may be merged pairs, and the median is then a pair's width.
+  std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 4),
                    widths.end());
-  const float median = widths[widths.size() / 2];
-  if (!(median > 0.0f)) {
+  const float narrow = widths[widths.size() / 4];
+  if (!(narrow > 0.0f)) {
     return;
   }
   const int n = static_cast<int>(cluster.contour.size());
   std::vector<CapturedBlade> result;
   const auto split = [&](const auto& self, CapturedBlade blade, int a, int b, int depth) -> void {
     const int len = ((b - a) % n + n) % n;
-    if (depth < 4 && maxWidthPx(blade) > kMergedWidthRatio * median && len > 8) {
+    if (depth < 4 && maxWidthPx(blade) > kMergedWidthRatio * narrow && len > 8) {
       float dip = 0.0f;
-      const int offset = deepestDip(cluster, a, len, median / 3.0f, dip);
+      const int offset = deepestDip(cluster, a, len, narrow / 3.0f, dip);
       if (offset > 0) {
         const int index = (a + offset) % n;
         std::vector<CapturedBlade> halves;
         std::string reason;
-        if (buildBlade(c, cluster, clusterMask, a, index, clusterIndex, halves, reason, median / 3.0f) &&
-            buildBlade(c, cluster, clusterMask, index, b, clusterIndex, halves, reason, median / 3.0f) &&
+        if (buildBlade(c, cluster, clusterMask, a, index, clusterIndex, halves, reason, narrow / 3.0f) &&
+            buildBlade(c, cluster, clusterMask, index, b, clusterIndex, halves, reason, narrow / 3.0f) &&
             std::max(maxWidthPx(halves[0]), maxWidthPx(halves[1])) < maxWidthPx(blade)) {
           const glm::vec2 at = cluster.contour[static_cast<std::size_t>(index)];
           splits.push_back(
               {index, at, cluster.smoothed[static_cast<std::size_t>(index)], dip / std::max(maxR, 1e-3f)});
           cluster.split.push_back(fmt::format(
-              "the blade {:.0f} px wide ({:.1f}× the cluster's median blade) was cut at ({:.0f}, {:.0f}) "
+              "the blade {:.0f} px wide ({:.1f}× the cluster's narrow blades) was cut at ({:.0f}, {:.0f}) "
               "between two of its tips, where the outline dips {:.0f} px, into blades {:.0f} and {:.0f} px "
               "wide",
-              maxWidthPx(blade), maxWidthPx(blade) / median, at.x, at.y, dip, maxWidthPx(halves[0]),
+              maxWidthPx(blade), maxWidthPx(blade) / narrow, at.x, at.y, dip, maxWidthPx(halves[0]),
               maxWidthPx(halves[1])));
           self(self, std::move(halves[0]), a, index, depth + 1);
           self(self, std::move(halves[1]), index, b, depth + 1);
