@@ -1293,13 +1293,15 @@ constexpr int kMaxOccluderRunPx = 24;
 constexpr float kOccludedSlopeMetresPerPx = 0.0005f;
 
 /**
- * Depth step between nearby pixels, metres, above which they lie on different surfaces (at depth z, m): 8 mm
- * or 1.2 % of the depth, and never under 2.5 depth quanta of the sensor. `quantum` is the sensor's depth
- * resolution over z² (1/m): structured light and stereo resolve depth in disparity steps, which grow with z²
- * (a Kinect v1 about 2 mm at 0.8 m, the Middlebury Aloe's integer disparities 4 cm at 5 m).
+ * Depth step between nearby pixels, metres, above which they lie on different surfaces (at depth z, m): 5 mm
+ * or 0.7 % of the depth, and never under 2.5 depth quanta of the sensor (8 mm and 1.2 % merged more crossing
+ * fans through the contacts of their blades: 78.3 % of 1,000 sweep clusters exact against 79.0 %). `quantum`
+ * is the sensor's depth resolution over z² (1/m): structured light and stereo resolve depth in disparity
+ * steps, which grow with z² (a Kinect v1 about 2 mm at 0.8 m, the Middlebury Aloe's integer disparities 4 cm
+ * at 5 m).
  */
 float layerStepMetres(float z, float quantum) {
-  return std::max({0.008f, 0.012f * z, 2.5f * quantum * z * z});
+  return std::max({0.005f, 0.007f * z, 2.5f * quantum * z * z});
 }
 
 /**

@@ -629,7 +629,7 @@ std::vector<bool> tipsStandFree(const SyntheticTruth& truth, int width, int heig
     }
     return truth.centrelineMetres[l][best].z;
   };
-  constexpr float kSameSurfaceMetres = 0.008f; // the extractor's smallest depth step between layers
+  constexpr float kSameSurfaceMetres = 0.005f; // the extractor's smallest depth step between layers
   for (std::size_t b = 0; b < bladeCount; ++b) {
     const std::vector<glm::vec2>& line = truth.centrelinePx[b];
     if (line.empty() || truth.widthsPx[b].size() != line.size()) {

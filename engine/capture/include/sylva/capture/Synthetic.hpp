@@ -211,7 +211,7 @@ AccuracyReport evaluateCapture(const SyntheticTruth& truth, const ExtractResult&
 /**
  * Whether each blade's tip stands free in the frame, so that one depth frame can tell the blade apart: some
  * point of its last 15 % is the front-most surface there, and no other blade's pixel lies within
- * max(2, 0.6 × the blade's width at 85 % of its length) pixels of that point at a depth within 8 mm of the
+ * max(2, 0.6 × the blade's width at 85 % of its length) pixels of that point at a depth within 5 mm of the
  * blade's (a neighbour clearly in front or behind steps in depth and does not merge with it). From the truth
  * (noise-free labels and centrelines); one entry per blade.
  */
