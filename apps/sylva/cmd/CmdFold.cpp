@@ -438,7 +438,10 @@ void registerFoldTemplate(CLI::App& fold) {
           "Largest motion in pixels (0: a fraction of the zone; blink: 0 and anything larger close the eye)")
       ->check(finiteRange(0.0, 1e4))
       ->capture_default_str();
-  command->add_option("--direction", o->direction, "wave_swash: direction the water advances, X Y")
+  command
+      ->add_option("--direction", o->direction,
+                   "wave_swash: direction the water advances, X Y; flag_ripple: the way the wind blows along "
+                   "the flag (its sign on the long axis; default from the left or top)")
       ->expected(2)
       ->check(finiteRange(-1e4, 1e4));
   command->add_option("--period", o->period, "Profile period in seconds (0: the template's default)")

@@ -199,10 +199,39 @@ Result build(const Zone& zone, MotionTemplate motion, const TemplateParams& para
     break;
   }
   case MotionTemplate::FlagRipple: {
+    // A flag flutters as a wave that runs downwind from the pole and grows towards the free end (a flag held
+    // at its leading edge: the hoist barely moves, the fly swings most). The zone's long axis is the flag's
+    // length; the hoist is its left end (horizontal) or top (vertical), the other end when `direction` points
+    // back along that axis. The swing grows linearly from 0 at the hoist to `strength` at the fly, set by
+    // anchors about every 2 pixels (Shepard's interpolation is flat around each anchor), and the phase falls
+    // downwind by 1.5 waves over the length, so every crest travels from the hoist to the fly.
     const bool horizontal = w >= h;
-    const double s = params.strength > 0.0 ? params.strength : 0.04 * (horizontal ? h : w);
-    r.tools = {TranslateTool{horizontal ? Vec2(0.0, s) : Vec2(s, 0.0)}};
-    r.phaseGradient = horizontal ? Vec2(1.5 / std::max(1.0, w), 0.0) : Vec2(0.0, 1.5 / std::max(1.0, h));
+    const double along = horizontal ? w : h;
+    const double across = horizontal ? h : w;
+    const double s = params.strength > 0.0 ? params.strength : 0.04 * across;
+    const bool reversed = (horizontal ? params.direction.x : params.direction.y) < 0.0;
+    const Vec2 swing = horizontal ? Vec2(0.0, s) : Vec2(s, 0.0);
+    const auto at = [&](double u, double v) { // u from the hoist to the fly, v across, both in [0, 1]
+      const double a = reversed ? 1.0 - u : u;
+      return horizontal ? b.at(a, v) : b.at(v, a);
+    };
+    PointsTool ramp;
+    ZeroTool pole;
+    const int steps = std::clamp(static_cast<int>(std::lround(0.5 * along)), 8, 128);
+    for (int i = 0; i <= steps; ++i) {
+      const double u = static_cast<double>(i) / steps;
+      for (const double v : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+        const Vec2 p = at(u, v);
+        ramp.pairs.push_back({p + u * swing, p}); // the anchor at p swings by u · s
+      }
+    }
+    for (const double v : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+      pole.pts.push_back(at(0.0, v));
+    }
+    r.tools = {ramp, pole};
+    r.interp.radius = std::clamp(0.25 * across, 1.0, 4096.0);
+    const Vec2 downwind = (horizontal ? Vec2(1.0, 0.0) : Vec2(0.0, 1.0)) * (reversed ? -1.0 : 1.0);
+    r.phaseGradient = -downwind * (1.5 / std::max(1.0, along));
     r.feather = 0.1 * small;
     r.fn = sine();
     r.periodS = 1.5;

@@ -4,6 +4,7 @@
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Random.hpp>
 #include <sylva/folding/Edit.hpp>
+#include <sylva/folding/Field.hpp>
 #include <sylva/folding/Renderer.hpp>
 #include <sylva/folding/Synthesis.hpp>
 #include <sylva/folding/Templates.hpp>
@@ -226,6 +227,46 @@ TEST(FoldingSession, MotionTemplatesAnimateTheirZoneOnly) {
     EXPECT_EQ(history.project(), start);
   }
   EXPECT_FALSE(parseMotionTemplate("dance").has_value());
+}
+
+TEST(FoldingSession, FlagRippleRunsDownwindAndGrowsTowardsTheFreeEnd) {
+  // A flag held at its pole: the swing is 0 at the hoist and grows to the template's strength at the fly, and
+  // the wave's crests travel from the hoist to the fly. Both ways round and for a vertical flag.
+  struct Case {
+    glm::dvec2 min;
+    glm::dvec2 max;
+    Vec2 direction;
+    Vec2 hoist; ///< a point on the hoist's side of the centre line, 5 % in
+    Vec2 fly;   ///< the same 85 % along
+  };
+  const std::vector<Case> cases = {{{8, 20}, {88, 44}, {0, 1}, {12, 32}, {76, 32}},
+                                   {{8, 20}, {88, 44}, {-1, 0}, {84, 32}, {20, 32}},
+                                   {{30, 4}, {54, 60}, {0, 1}, {42, 6.8}, {42, 51.6}}};
+  for (const Case& c : cases) {
+    json j = sessionProject();
+    j["zones"].erase(1);
+    j["zones"][0]["shape"] = {{"type", "rect"}, {"min", {c.min.x, c.min.y}}, {"max", {c.max.x, c.max.y}}};
+    EditHistory history(parseProject(j, "flag.json"));
+    TemplateParams params;
+    params.strength = 6.0;
+    params.direction = c.direction;
+    applyMotionTemplate(history, 0, MotionTemplate::FlagRipple, params);
+    const Zone& zone = history.project().zones[0];
+    const ZoneField field(zone, {}, {96, 64}, 1);
+    const Vec2 step = (c.fly - c.hoist) / 16.0;
+    double previous = -1.0;
+    for (int k = 0; k <= 16; ++k) {
+      const Vec2 x = c.hoist + static_cast<double>(k) * step;
+      const double swing = glm::length(field.evaluate(x, 0));
+      EXPECT_GE(swing, previous - 0.05) << "the swing grows towards the fly, at " << k;
+      previous = swing;
+    }
+    EXPECT_LT(glm::length(field.evaluate(c.hoist, 0)), 0.1 * params.strength) << "the hoist barely moves";
+    EXPECT_GT(glm::length(field.evaluate(c.fly, 0)), 0.75 * params.strength) << "the fly swings most";
+    // φ = fract(t/T + dt) with dt = phaseGradient · x: a crest reaches smaller dt later, so dt must fall
+    // downwind for the crests to run from the hoist to the fly.
+    EXPECT_LT(glm::dot(zone.phaseGradient, c.fly - c.hoist), 0.0);
+  }
 }
 
 TEST(FoldingSession, AStrongerTemplateNeverCrossesWhereItsSidesMeet) {

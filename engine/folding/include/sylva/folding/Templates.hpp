@@ -19,7 +19,7 @@ enum class MotionTemplate : std::uint8_t {
   WaveSwash,    ///< water advances along `direction` over the rest of the zone and withdraws
   Breathing,    ///< the zone swells and relaxes about its centre (scale), fading to its border
   WoundOpening, ///< skin on both sides of the zone's long axis slides over a central band and back
-  FlagRipple,   ///< a displacement travelling along the zone's long axis (phase gradient + sine)
+  FlagRipple,   ///< a wave running downwind along the zone's long axis, growing from the hoist to the fly
 };
 
 /** Every template, in menu order. */
@@ -31,8 +31,10 @@ std::optional<MotionTemplate> parseMotionTemplate(std::string_view name);
 /** Knobs of a template; zero means "a size that suits the zone". */
 struct TemplateParams {
   double strength = 0.0; ///< largest motion, pixels (0: a fraction of the zone's size; blink: at most closed)
-  Vec2 direction{0.0, 1.0}; ///< WaveSwash: the way the water advances (normalised here)
-  double periodS = 0.0;     ///< profile period, seconds (0: the template's default)
+  /** WaveSwash: the way the water advances (normalised here). FlagRipple: its sign along the zone's long
+   * axis says which way the wind blows (from the hoist to the fly; + or 0: the hoist at the left or top). */
+  Vec2 direction{0.0, 1.0};
+  double periodS = 0.0; ///< profile period, seconds (0: the template's default)
 };
 
 /**
