@@ -6,6 +6,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Image.hpp>
+#include <sylva/farm/Farm.hpp>
 #include <sylva/folding/Flow.hpp>
 #include <sylva/folding/Renderer.hpp>
 #include <sylva/folding/Synthesis.hpp>
@@ -411,6 +412,45 @@ void leafModel(std::span<const std::uint8_t> bytes) {
 }
 
 /**
+ * farm.json (the render farm's manifest, `sylva farm status` reads it) and Slurm's `scontrol -o show job`
+ * lines: strict parsing with one-line errors; a manifest that loads writes its scripts, splits its units over
+ * its tasks exactly once each, and survives its own round trip.
+ */
+void farmManifest(std::span<const std::uint8_t> bytes) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  for (const farm::TaskState& t : farm::parseJobLines(text)) {
+    if (t.state.empty() || t.job.empty()) {
+      throw std::logic_error("scontrol lines: a record without a job or a state");
+    }
+  }
+  if (bytes.size() <= 4096) {
+    expectCleanRejection([&] { (void)farm::parseArrayList(text); });
+  }
+  std::optional<farm::Farm> loaded;
+  expectCleanRejection([&] { loaded = farm::parseFarm(text, "/nonexistent-sylva-fuzz/farm/farm.json"); });
+  if (!loaded) {
+    return;
+  }
+  const farm::Farm& f = *loaded;
+  (void)farm::taskScriptText(f);
+  (void)farm::encodeScriptText(f);
+  const int units = f.unitCount();
+  if (units <= 20000) {
+    int total = 0;
+    for (int task = 0; task < f.tasks; ++task) {
+      total += static_cast<int>(f.unitsOf(task).size());
+    }
+    if (total != units) {
+      throw std::logic_error("farm.json: the tasks' units do not add up to the farm's");
+    }
+  }
+  const std::string again = farm::manifestText(f);
+  if (farm::manifestText(farm::parseFarm(again, "round trip")) != again) {
+    throw std::logic_error("farm.json: the manifest changes in a round trip");
+  }
+}
+
+/**
  * tileset.json (texsynth): strict parsing of the description of a tile set; one that loads must survive its
  * own toJson (its atlas grid recomputed from the tile count) and load again with the same classes.
  */
@@ -523,6 +563,9 @@ const std::vector<Target>& targets() {
        texsynthTileset},
       {"scene_file", "scene files (data/scenes): strict parsing, camera paths, --frames and --shard",
        sceneFile},
+      {"farm_manifest",
+       "the render farm's farm.json and scontrol's job lines: strict parsing, scripts, round trip",
+       farmManifest},
 #ifdef SYLVA_FUZZ_HAVE_CLI
       {"cli", "the sylva command line's option parsing and validation (commands not run)", runCliArguments},
 #endif

@@ -32,6 +32,8 @@ packages=(
   chromium fonts-dejavu-core
   # the performance page's plots (scripts/plot-performance.sh)
   gnuplot-nox
+  # the render farm's test (`sylva farm`): a real single-node Slurm cluster started by scripts/slurm-local.sh
+  slurmctld slurmd slurm-client munge
   # the sanitizer build and fuzzing: clang with libFuzzer and its sanitizer runtimes (the `asan` preset)
   clang libclang-rt-14-dev
 )

@@ -76,6 +76,7 @@ std::unique_ptr<Cli> makeCli() {
 #endif
 #ifdef SYLVA_HAVE_SCENE
   registerScene(app);
+  registerFarm(app);
 #endif
   Cli* raw = cli.get();
   app.parse_complete_callback([raw] { log::setLevel(log::parseLevel(raw->logLevel)); });

@@ -42,6 +42,9 @@ void registerTexsynth(CLI::App& app);
 /** `sylva scene check`: every error of scene files, without rendering (CmdSceneCheck.cpp). */
 void registerScene(CLI::App& app);
 
+/** `sylva farm submit|each|status|wait|resubmit|cancel`: Slurm job arrays (docs/farm.md, CmdFarm.cpp). */
+void registerFarm(CLI::App& app);
+
 /** The whole `sylva` command line: every subcommand registered, callbacks running the commands. */
 struct Cli {
   std::unique_ptr<CLI::App> app;

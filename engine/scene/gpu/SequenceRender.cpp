@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace sylva::scene {
 
 void renderPlannedFrames(const SequencePlan& plan, const std::string& shaderDir) {
@@ -22,7 +24,13 @@ void renderPlannedFrames(const SequencePlan& plan, const std::string& shaderDir)
   world.setDrawOptions(draw);
   render::RenderTarget target(plan.width, plan.height);
   Progress progress(fmt::format("render {}", plan.desc.name), plan.todo.size());
+  const std::vector<int> faults = faultFrames();
   for (int f : plan.todo) {
+    if (std::find(faults.begin(), faults.end(), f) != faults.end()) {
+      fail("frame {}: failed on purpose (SYLVA_FAULT_FRAMES, the render farm's test hook): {} of {} frames "
+           "written",
+           f, progress.done(), plan.todo.size());
+    }
     if (progress.cancelled()) {
       fail("interrupted: {} of {} frames written; run the same command again to resume", progress.done(),
            plan.todo.size());

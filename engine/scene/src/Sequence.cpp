@@ -1,6 +1,7 @@
 #include <sylva/scene/Sequence.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Process.hpp>
 #include <sylva/core/Files.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/media/Export.hpp>
@@ -243,14 +244,6 @@ namespace sylva::scene {
 
 namespace {
 
-std::string shellQuote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) {
-    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return quoted + "'";
-}
-
 /** The range's frames as MP4 through ffmpeg (H.264, yuv420p); the frames must all be there. */
 void encodeMp4(const SequencePlan& plan, double fps, const std::string& out) {
   if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) {
@@ -289,6 +282,18 @@ void encodeMp4(const SequencePlan& plan, double fps, const std::string& out) {
 }
 
 } // namespace
+
+std::vector<int> faultFrames() {
+  const char* text = std::getenv("SYLVA_FAULT_FRAMES");
+  if (text == nullptr || *text == '\0') {
+    return {};
+  }
+  try {
+    return parseFrames(text).frames();
+  } catch (const Error& e) {
+    fail("SYLVA_FAULT_FRAMES: {}", e.what());
+  }
+}
 
 std::filesystem::path SequencePlan::framePath(int frame) const {
   return sequence ? out / frameName(frame) : out;

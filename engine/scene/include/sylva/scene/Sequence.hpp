@@ -70,6 +70,14 @@ void writeFrameAtomically(const std::filesystem::path& path, const Image& image)
  */
 int removeStaleTemporaries(const std::filesystem::path& dir, bool all = false);
 
+/**
+ * Frames that fail on purpose: the numbers in $SYLVA_FAULT_FRAMES ("5" or "5,9"), empty when it is unset. A
+ * test hook for the render farm (docs/farm.md): a task that reaches such a frame fails as a crashed render
+ * would, after the frames before it are written. Throws sylva::Error "SYLVA_FAULT_FRAMES: ..." when
+ * malformed.
+ */
+std::vector<int> faultFrames();
+
 /** What `sylva render SCENE.json` is asked for (docs/scenes.md "Sequences"); empty fields take the file's. */
 struct SequenceJob {
   std::string file;          ///< the scene file
