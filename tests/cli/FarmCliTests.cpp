@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace sylva {
 namespace {
@@ -61,6 +62,59 @@ TEST(FarmCli, ErrorsComeBeforeAnythingIsWrittenOrSubmitted) {
     EXPECT_FALSE(fs::exists(dir / "frames")) << c.args;
     EXPECT_FALSE(fs::exists(dir / "each")) << c.args;
   }
+}
+
+/** A folder of stand-ins for Slurm's commands: sbatch answers `sbatchOut` with `sbatchStatus`. */
+void fakeSlurm(const fs::path& bin, const std::string& sbatchOut, int sbatchStatus,
+               const std::string& scontrolOut) {
+  fs::create_directories(bin);
+  const auto write = [&](const char* name, const std::string& body) {
+    std::ofstream(bin / name) << "#!/bin/sh\n" << body;
+    fs::permissions(bin / name, fs::perms::owner_all);
+  };
+  write("sbatch", "echo " + quote(sbatchOut) + (sbatchStatus ? " >&2" : "") + "\nexit " +
+                      std::to_string(sbatchStatus) + "\n");
+  write("scontrol", "printf '%s\\n' " + quote(scontrolOut) + "\n");
+  write("scancel", "exit 0\n");
+}
+
+TEST(FarmCli, SubmissionsGoThroughSbatchAndAFolderHoldsOneFarm) {
+  test::TempDir dir;
+  const std::string out = " --out " + test::at(dir, "frames");
+  const std::string submit =
+      "farm submit " + kMeadow + " --frames 0-11 --tasks 4 --gif " + test::at(dir, "a.gif") + out;
+  const auto run = [&](const std::string& args) {
+    return test::runProgram("/usr/bin/env", dir.path(),
+                            "PATH=" + quote((dir / "bin").string()) + ":/usr/bin:/bin " + quote(SYLVA_EXE) +
+                                " " + args);
+  };
+  fakeSlurm(dir / "bin", "sbatch: error: Batch job submission failed: Invalid partition name specified", 1,
+            "");
+  const test::RunResult refused = run(submit + " --partition nowhere");
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find(
+                "sbatch failed (exit 1): sbatch: error: Batch job submission failed: Invalid partition"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "frames" / "farm" / "farm.json")) << "nothing recorded as submitted";
+
+  fakeSlurm(dir / "bin", "42;cluster", 0,
+            "JobId=43 ArrayJobId=42 ArrayTaskId=0 JobState=RUNNING Reason=None ExitCode=0:0\n"
+            "JobId=42 ArrayJobId=42 ArrayTaskId=1-3 JobState=PENDING Reason=Resources ExitCode=0:0");
+  const test::RunResult submitted = run(submit);
+  ASSERT_EQ(submitted.status, 0) << submitted.err;
+  EXPECT_NE(submitted.out.find("array job 42 (4 tasks), encode job 42 after it"), std::string::npos)
+      << submitted.out;
+  const test::RunResult status = run("farm status " + test::at(dir, "frames"));
+  EXPECT_EQ(status.status, 0) << status.err;
+  EXPECT_NE(status.out.find("RUNNING      42_0"), std::string::npos) << status.out;
+  EXPECT_NE(status.out.find("PENDING      42_3"), std::string::npos) << status.out;
+  EXPECT_EQ(run("farm resubmit " + test::at(dir, "frames")).out,
+            "nothing to resubmit: every task with work missing is pending or running\n");
+  // A folder holds one farm: submitting again would render its frames twice.
+  const test::RunResult twice = run(submit);
+  EXPECT_EQ(twice.status, 2);
+  EXPECT_NE(twice.err.find("already holds a farm"), std::string::npos) << twice.err;
 }
 
 } // namespace

@@ -128,6 +128,7 @@ TEST_F(FarmSlurm, AFailedTaskIsNamedItsEncodeCancelledAndResubmitRendersOnlyWhat
   EXPECT_NE(text.out.find("failed task 1 (2 frames missing)"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("frame 5: failed on purpose"), std::string::npos) << "the log's tail:\n"
                                                                             << text.out;
+  EXPECT_NE(text.out.find("task 1, attempt 2 of 2"), std::string::npos) << "retried once:\n" << text.out;
   const auto firstFrame = fs::last_write_time(dir / "frames" / frameFile(1));
 
   const test::RunResult again = test::runSylva(dir, "farm resubmit " + out);

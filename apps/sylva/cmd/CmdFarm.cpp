@@ -67,6 +67,15 @@ void warnIfLocal(const farm::Farm& farm) {
   }
 }
 
+/** A farm's folder holds one farm: a second submit would render its frames twice. */
+void refuseExistingFarm(const farm::Farm& farm) {
+  std::error_code ec;
+  if (fs::exists(farm.dir() / "farm.json", ec)) {
+    fail("{} already holds a farm: `sylva farm status` or `resubmit` it, or remove {} to start over",
+         farm.out.string(), farm.dir().string());
+  }
+}
+
 /** Submits `farm`'s tasks and prints what was submitted. */
 void submitAndSay(farm::Farm& farm, const std::vector<int>& tasks) {
   const farm::Submission s = farm::submit(farm, tasks, true);
@@ -131,6 +140,7 @@ void registerFarm(CLI::App& app) {
       return;
     }
     farm::requireSlurm();
+    refuseExistingFarm(farm);
     warnIfLocal(farm);
     std::vector<int> tasks;
     for (int t = 0; t < farm.tasks; ++t) {
@@ -161,6 +171,7 @@ void registerFarm(CLI::App& app) {
       return;
     }
     farm::requireSlurm();
+    refuseExistingFarm(farm);
     warnIfLocal(farm);
     std::vector<int> tasks;
     for (int t = 0; t < farm.tasks; ++t) {
@@ -239,7 +250,10 @@ void registerFarm(CLI::App& app) {
       if (st.done < st.units) {
         std::printf("nothing to resubmit: every task with work missing is pending or running\n");
       } else if (farm.encodes() && !st.encodeWritten && !farm::stateActive(st.encodeState)) {
-        if (!*dryRun) {
+        if (*dryRun) {
+          std::printf("every frame is done: would submit the encode job (%s)\n",
+                      farm.encodeScript().string().c_str());
+        } else {
           const farm::Submission s = farm::submitEncode(farm);
           std::printf("every frame is done: submitted the encode job %s\n", s.encodeJob.c_str());
         }

@@ -5,6 +5,7 @@
 
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Files.hpp>
+#include <sylva/core/ImageHeader.hpp>
 #include <sylva/core/JsonNode.hpp>
 #include <sylva/core/Process.hpp>
 #include <sylva/scene/Sequence.hpp>
@@ -17,6 +18,7 @@
 #include <charconv>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -228,7 +230,19 @@ std::vector<int> Farm::unitsOf(int task) const {
 
 bool Farm::unitDone(int unit) const {
   if (kind == "render") {
-    return scene::frameComplete(out / scene::frameName(unit), width, height);
+    // The header only: status and wait look at thousands of frames twice a second, and frames are written
+    // whole (a temporary renamed). The renderer itself decodes each frame fully before it skips it.
+    const fs::path frame = out / scene::frameName(unit);
+    std::error_code ec;
+    if (!fs::is_regular_file(frame, ec)) {
+      return false;
+    }
+    try {
+      const std::optional<ImageHeader> header = readImageHeader(frame);
+      return header && header->format == "PNG" && header->width == width && header->height == height;
+    } catch (const Error&) {
+      return false; // unreadable: not done
+    }
   }
   std::error_code ec;
   return fs::exists(dir() / "done" / std::to_string(unit), ec);

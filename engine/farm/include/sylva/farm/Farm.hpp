@@ -98,7 +98,11 @@ struct Farm {
   int unitCount() const;
   /** Task `task`'s units: frames (render) or item indices (each), unit k to task k mod tasks. */
   std::vector<int> unitsOf(int task) const;
-  /** Whether unit `unit` is done: its frame complete on disk (render) or its done marker there (each). */
+  /**
+   * Whether unit `unit` is done: its frame on disk as a PNG of the farm's size (read from its header; frames
+   * are written whole, and `sylva render` decodes each fully before skipping it), or its item's done marker
+   * (each).
+   */
   bool unitDone(int unit) const;
   /** Where task `task` of array job `job` logs (Slurm's `%x-%A_%a.out`). */
   std::filesystem::path logOf(const std::string& job, int task) const;
