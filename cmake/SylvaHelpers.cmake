@@ -20,7 +20,10 @@ function(sylva_add_module name)
     PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
   target_link_libraries(sylva_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   target_compile_options(sylva_${name} PRIVATE ${SYLVA_WARNINGS})
-  set_target_properties(sylva_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  # Unity batches: each file parses the same heavy headers (OpenCV, Bullet, glm, fmt, spdlog, nlohmann) again;
+  # a batch parses them once (docs/testing.md, "Where the time goes").
+  set_target_properties(sylva_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON
+    UNITY_BUILD ${SYLVA_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 6)
 endfunction()
 
 # sylva_add_gpu_module(<name> DEPS <targets...>)
@@ -45,6 +48,7 @@ function(sylva_add_gpu_module name)
   target_include_directories(sylva_${name}_gpu PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
   target_link_libraries(sylva_${name}_gpu PUBLIC sylva::${name} ${render_gpu} ${ARG_DEPS})
   target_compile_options(sylva_${name}_gpu PRIVATE ${SYLVA_WARNINGS})
+  set_target_properties(sylva_${name}_gpu PROPERTIES UNITY_BUILD ${SYLVA_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 6)
 endfunction()
 
 # sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...> [LOCK <resource>]

@@ -197,7 +197,7 @@ namespace {
 
 constexpr int kSidecarVersion = 1;
 constexpr const char* kSidecarFormat = "sylva-heightfield";
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kNoHeight = std::numeric_limits<float>::quiet_NaN();
 
 std::filesystem::path sidecarPath(const std::filesystem::path& path) {
   std::filesystem::path sidecar = path;
@@ -341,7 +341,7 @@ HeightField loadImageHeights(const std::filesystem::path& path, const LoadOption
   for (int y = 0; y < image.height(); ++y) {
     for (int x = 0; x < image.width(); ++x) {
       const bool absent = image.channels() == 2 && image.get(x, y, 1) == 0.0f;
-      field.at(x, y) = absent ? kNaN : static_cast<float>(base + scale * image.get(x, y, 0));
+      field.at(x, y) = absent ? kNoHeight : static_cast<float>(base + scale * image.get(x, y, 0));
     }
   }
   detail::applyCoordinates(path, field, coordinates, options, report);
@@ -623,7 +623,7 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
     for (int x = 0; x < width; ++x) {
       const int i = flipX ? width - 1 - x : x;
       const auto s = static_cast<std::size_t>(x);
-      field.at(i, j) = maskRow[s] == 0 ? kNaN : detail::toHeight(row[s] * scale + offset);
+      field.at(i, j) = maskRow[s] == 0 ? kNoHeight : detail::toHeight(row[s] * scale + offset);
     }
   }
 
@@ -707,8 +707,8 @@ HeightFieldInfo heightFieldInfo(const HeightField& field) {
     }
   }
   if (info.validCount == 0) {
-    info.minHeight = kNaN;
-    info.maxHeight = kNaN;
+    info.minHeight = kNoHeight;
+    info.maxHeight = kNoHeight;
   }
   return info;
 }

@@ -19,7 +19,7 @@ namespace sylva::terrain {
 namespace {
 
 constexpr int kMaxOctaves = 16;
-constexpr int kFormatVersion = 1;
+constexpr int kNoiseFileVersion = 1;
 // Largest |perlin| for the 8 gradients below is 1 (reached only at isolated points); scaling by this keeps
 // the mapped value in [0, 1] before the safety clamp.
 constexpr double kPerlinToUnit = 0.5;
@@ -252,7 +252,7 @@ HeightField generate(const ProceduralSpec& spec, double originX, double originZ,
 }
 
 nlohmann::json toJson(const ProceduralSpec& spec) {
-  return {{"version", kFormatVersion},
+  return {{"version", kNoiseFileVersion},
           {"seed", spec.seed},
           {"type", procedureTypeName(spec.type)},
           {"octaves", spec.octaves},
@@ -264,7 +264,7 @@ nlohmann::json toJson(const ProceduralSpec& spec) {
 }
 
 ProceduralSpec proceduralSpecFromJson(const nlohmann::json& json, const std::string& where) {
-  requireJsonVersion(json, kFormatVersion, where);
+  requireJsonVersion(json, kNoiseFileVersion, where);
   const JsonNode root(json, where);
   root.object({"version", "seed", "type", "octaves", "frequency", "lacunarity", "gain", "warpStrength",
                "heightScale"});

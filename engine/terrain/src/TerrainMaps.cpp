@@ -16,7 +16,7 @@
 namespace sylva::terrain {
 namespace {
 
-constexpr int kFormatVersion = 1;
+constexpr int kLayerRulesVersion = 1;
 
 float saturate(float v) {
   return std::clamp(v, 0.0f, 1.0f);
@@ -248,11 +248,11 @@ nlohmann::json splatLayersToJson(std::span<const SplatLayer> layers) {
                     {"heightBlend", layer.heightBlend},
                     {"slopeBlend", layer.slopeBlend}});
   }
-  return {{"version", kFormatVersion}, {"layers", list}};
+  return {{"version", kLayerRulesVersion}, {"layers", list}};
 }
 
 std::vector<SplatLayer> splatLayersFromJson(const nlohmann::json& json, const std::string& where) {
-  requireJsonVersion(json, kFormatVersion, where);
+  requireJsonVersion(json, kLayerRulesVersion, where);
   const JsonNode root(json, where);
   root.object({"version", "layers"});
   const JsonNode list = root["layers"];
