@@ -86,6 +86,15 @@ void submitAndSay(farm::Farm& farm, const std::vector<int>& tasks) {
   std::printf("status: sylva farm status %s\n", farm.out.string().c_str());
 }
 
+/** Every array index of a farm: 0 … tasks − 1. */
+std::vector<int> allTasks(const farm::Farm& farm) {
+  std::vector<int> all;
+  for (int t = 0; t < farm.tasks; ++t) {
+    all.push_back(t);
+  }
+  return all;
+}
+
 /** Prints the scripts a submission would write (--dry-run). */
 void printScripts(const farm::Farm& farm) {
   std::printf("# %s\n%s", farm.taskScript().string().c_str(), farm::taskScriptText(farm).c_str());
@@ -93,12 +102,20 @@ void printScripts(const farm::Farm& farm) {
     std::printf("\n# %s (sbatch --dependency=afterok:<array job> --kill-on-invalid-dep=yes)\n%s",
                 farm.encodeScript().string().c_str(), farm::encodeScriptText(farm).c_str());
   }
-  std::vector<int> all;
-  for (int t = 0; t < farm.tasks; ++t) {
-    all.push_back(t);
-  }
-  std::printf("\n# would submit: sbatch --array=%s %s\n", farm::arrayList(all).c_str(),
+  std::printf("\n# would submit: sbatch --array=%s %s\n", farm::arrayList(allTasks(farm)).c_str(),
               farm.taskScript().string().c_str());
+}
+
+/** `submit` and `each`: prints the scripts (--dry-run), or checks and submits every task of a new farm. */
+void submitNew(farm::Farm farm, bool dryRun) {
+  if (dryRun) {
+    printScripts(farm);
+    return;
+  }
+  farm::requireSlurm();
+  refuseExistingFarm(farm);
+  warnIfLocal(farm);
+  submitAndSay(farm, allTasks(farm));
 }
 
 } // namespace
@@ -133,21 +150,7 @@ void registerFarm(CLI::App& app) {
       "Examples:\n"
       "  sylva farm submit data/scenes/jacksboro.json --frames 0-2999 --chunk 25 --mp4 out/fly.mp4\n"
       "  sylva farm submit data/scenes/meadow.json --frames 0-11 --tasks 4 --dry-run\n");
-  submit->callback([render, dryRun] {
-    farm::Farm farm = farm::planRender(*render, thisProgram());
-    if (*dryRun) {
-      printScripts(farm);
-      return;
-    }
-    farm::requireSlurm();
-    refuseExistingFarm(farm);
-    warnIfLocal(farm);
-    std::vector<int> tasks;
-    for (int t = 0; t < farm.tasks; ++t) {
-      tasks.push_back(t);
-    }
-    submitAndSay(farm, tasks);
-  });
+  submit->callback([render, dryRun] { submitNew(farm::planRender(*render, thisProgram()), *dryRun); });
 
   auto each = std::make_shared<farm::EachRequest>();
   CLI::App* eachCmd = cmd->add_subcommand(
@@ -164,21 +167,7 @@ void registerFarm(CLI::App& app) {
   eachCmd->footer(
       "Example:\n"
       "  sylva farm each projects.txt -o out/fold-farm -- sylva fold render {} --gif out/{stem}.gif\n");
-  eachCmd->callback([each, dryRun] {
-    farm::Farm farm = farm::planEach(*each, thisProgram());
-    if (*dryRun) {
-      printScripts(farm);
-      return;
-    }
-    farm::requireSlurm();
-    refuseExistingFarm(farm);
-    warnIfLocal(farm);
-    std::vector<int> tasks;
-    for (int t = 0; t < farm.tasks; ++t) {
-      tasks.push_back(t);
-    }
-    submitAndSay(farm, tasks);
-  });
+  eachCmd->callback([each, dryRun] { submitNew(farm::planEach(*each, thisProgram()), *dryRun); });
 
   auto folder = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);

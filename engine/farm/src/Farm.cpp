@@ -256,12 +256,6 @@ Farm planRender(const RenderRequest& r, const fs::path& sylva) {
   checkResources(r.resources);
   Farm farm;
   farm.kind = "render";
-  scene::SequenceJob job;
-  job.file = r.scene;
-  job.frames = r.frames;
-  job.camera = r.camera;
-  job.width = r.width;
-  job.height = r.height;
   const scene::SceneDesc desc = scene::loadScene(r.scene);
   farm.scene = absoluteOf(r.scene);
   farm.width = r.width > 0 ? r.width : desc.output.width;
