@@ -1,4 +1,5 @@
-// Running helper programs (Slurm's clients, ffmpeg's probes) and quoting for the shell scripts Sylva writes.
+// Running helper programs (Slurm's client commands for the render farm) and quoting for the shell scripts
+// Sylva writes.
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Process.hpp>
 
