@@ -1,4 +1,6 @@
 include_guard(GLOBAL)
+include(GNUInstallDirs)
+include(SylvaInstall)
 
 # Warnings for our own code only; third-party headers are included as SYSTEM.
 set(SYLVA_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wno-missing-field-initializers)
@@ -16,7 +18,7 @@ function(sylva_add_module name)
   add_library(sylva_${name} STATIC ${sources})
   add_library(sylva::${name} ALIAS sylva_${name})
   target_include_directories(sylva_${name}
-    PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+    PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
     PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
   target_link_libraries(sylva_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   target_compile_options(sylva_${name} PRIVATE ${SYLVA_WARNINGS})
@@ -24,6 +26,7 @@ function(sylva_add_module name)
   # a batch parses them once (docs/testing.md, "Where the time goes").
   set_target_properties(sylva_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON
     UNITY_BUILD ${SYLVA_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 6)
+  sylva_install_module(sylva_${name} ${name} ${CMAKE_CURRENT_SOURCE_DIR}/include)
 endfunction()
 
 # sylva_add_gpu_module(<name> DEPS <targets...>)
@@ -45,10 +48,19 @@ function(sylva_add_gpu_module name)
   endif()
   add_library(sylva_${name}_gpu STATIC ${gpu_sources})
   add_library(sylva::${name}_gpu ALIAS sylva_${name}_gpu)
-  target_include_directories(sylva_${name}_gpu PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_include_directories(sylva_${name}_gpu
+    PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(sylva_${name}_gpu PUBLIC sylva::${name} ${render_gpu} ${ARG_DEPS})
   target_compile_options(sylva_${name}_gpu PRIVATE ${SYLVA_WARNINGS})
   set_target_properties(sylva_${name}_gpu PROPERTIES UNITY_BUILD ${SYLVA_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 6)
+  sylva_install_module(sylva_${name}_gpu ${name}_gpu "")
+endfunction()
+
+# sylva_use_shared_layouts(<target>): <target> includes the GPU layouts as <shared/X.h> (shaders/shared), from
+# the source tree when built here and from include/sylva/shaders once installed.
+function(sylva_use_shared_layouts target)
+  target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${SYLVA_SHADER_DIR}>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/sylva/shaders>)
 endfunction()
 
 # sylva_add_test(<name> LABEL unit|gl|golden SOURCES <files...> DEPS <targets...> [LOCK <resource>]

@@ -34,6 +34,9 @@ packages=(
   gnuplot-nox
   # the render farm's test (`sylva farm`): a real single-node Slurm cluster started by scripts/slurm-local.sh
   slurmctld slurmd slurm-client munge
+  # Sylva as a library (docs/library.md): the Debian packages (CPack; dpkg-shlibdeps finds their dependencies)
+  # checked by lintian, the manual page from --help (help2man), the API reference (Doxygen)
+  dpkg-dev lintian help2man doxygen
   # the sanitizer build and fuzzing: clang with libFuzzer and its sanitizer runtimes (the `asan` preset)
   clang libclang-rt-14-dev
 )

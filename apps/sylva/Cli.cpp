@@ -6,6 +6,8 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -43,6 +45,10 @@ int& exitCode() {
   return code;
 }
 
+std::string versionLine() {
+  return fmt::format("sylva {} (git {})", SYLVA_VERSION, gitRevision());
+}
+
 std::unique_ptr<Cli> makeCli() {
   auto cli = std::make_unique<Cli>();
   cli->app = std::make_unique<CLI::App>(
@@ -50,7 +56,7 @@ std::unique_ptr<Cli> makeCli() {
       "Run 'sylva <command> --help' for a command's options.",
       "sylva");
   CLI::App& app = *cli->app;
-  app.set_version_flag("--version", std::string("sylva ") + SYLVA_VERSION);
+  app.set_version_flag("--version", versionLine());
   app.add_option("--log-level", cli->logLevel, "Log verbosity: trace, debug, info, warn, error, off")
       ->capture_default_str();
   app.require_subcommand(1);

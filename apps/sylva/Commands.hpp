@@ -57,4 +57,10 @@ int runCli(Cli& cli, int argc, const char* const* argv);
 /** Exit code a command asks for (imgdiff: 1 when images differ); 0 by default. */
 int& exitCode();
 
+/** The git revision the program was built from (`git describe --always --dirty`), or "unknown". */
+const char* gitRevision();
+
+/** "sylva 0.2.0 (git d9afbf0ab1c2)": what `sylva --version` prints. */
+std::string versionLine();
+
 } // namespace sylva::app

@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -97,6 +98,25 @@ TEST(CliGeneral, HelpListsCommands) {
   for (const char* command : {"info", "render", "imgdiff", "terrain"}) {
     EXPECT_NE(r.out.find(command), std::string::npos) << command << " missing from:\n" << r.out;
   }
+}
+
+// `sylva --version` names the release (the project() version) and the git revision it was built from, so a
+// report from a user or a render node says exactly which code ran (CHANGELOG.md).
+TEST(CliGeneral, VersionNamesReleaseAndRevision) {
+  const test::TempDir dir;
+  const RunResult r = runSylva(dir, "--version");
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::smatch project;
+  const std::string cmake = readAll(test::sourcePath("CMakeLists.txt"));
+  ASSERT_TRUE(
+      std::regex_search(cmake, project, std::regex(R"(project\(Sylva VERSION ([0-9]+\.[0-9]+\.[0-9]+))")));
+  // A tree without .git (an unpacked archive) has no revision to name.
+  const bool git = fs::exists(test::sourcePath(".git"));
+  const std::string revision = git ? "[0-9a-f]{7,}(-dirty)?" : "unknown";
+  EXPECT_TRUE(std::regex_match(
+      r.out, std::regex("sylva " + std::regex_replace(project[1].str(), std::regex(R"(\.)"), R"(\.)") +
+                        " \\(git " + revision + "\\)\n")))
+      << r.out;
 }
 
 TEST(CliGeneral, UnknownCommandExitsTwoWithOneLine) {

@@ -25,10 +25,11 @@ void registerInfo(CLI::App& app) {
       json["context"] = context->description();
       json["context_attempts"] = context->creationReport();
       json["sylva_version"] = SYLVA_VERSION;
+      json["sylva_revision"] = gitRevision();
       std::cout << json.dump(2) << "\n";
       return;
     }
-    std::printf("Sylva %s\n", SYLVA_VERSION);
+    std::printf("Sylva %s (git %s)\n", SYLVA_VERSION, gitRevision());
     std::printf("context:          %s\n", context->description().c_str());
     std::printf("GL vendor:        %s\n", info.vendor.c_str());
     std::printf("GL renderer:      %s\n", info.renderer.c_str());

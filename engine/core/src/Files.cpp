@@ -107,7 +107,14 @@ std::filesystem::path dataDirectory() {
       return installed;
     }
   }
-  return fs::path(SYLVA_SOURCE_DATA_DIR).lexically_normal();
+  // A program built in the source tree uses the tree's data (so an installed copy never shadows what is being
+  // worked on); a program linking the installed libraries finds the prefix's.
+  const fs::path source = fs::path(SYLVA_SOURCE_DATA_DIR).lexically_normal();
+  const fs::path prefix = fs::path(SYLVA_INSTALL_DATA_DIR).lexically_normal();
+  if (!fs::is_directory(source, ec) && fs::is_directory(prefix, ec)) {
+    return prefix;
+  }
+  return source;
 }
 
 std::filesystem::path dataPath(const std::filesystem::path& relative) {

@@ -10,7 +10,7 @@
 namespace sylva {
 
 /**
- * Writes a file atomically: `writer` fills a temporary file next to `path` (named `.<name>.tmp.<pid>`), which
+ * Writes a file atomically: `writer` fills a temporary file next to `path` (named .NAME.tmp.PID), which
  * is then renamed over `path`. So `path` is either absent, its old content, or the complete new content, even
  * if the process is killed. If `writer` throws, the temporary is removed and the exception propagates.
  * Temporaries left by killed processes (SIGKILL, power loss) for the same `path` are removed on the next
@@ -28,8 +28,10 @@ void removeTemporaryFilesForSignal() noexcept;
 /**
  * Sylva's data folder (scenes, blade models, folding projects, fetched sample data), whatever the working
  * directory: $SYLVA_DATA_DIR when set, else `share/sylva/data` beside the running program's directory (an
- * installed layout: PREFIX/bin/sylva, PREFIX/share/sylva/data), else the source tree's data/ the program was
- * built from. Absolute.
+ * installed layout: PREFIX/bin/sylva, PREFIX/share/sylva/data), else the source tree's data/ the libraries
+ * were built from when it exists, else the data folder of the prefix they were built to be installed in
+ * (CMAKE_INSTALL_PREFIX: /usr for the Debian packages), which is how a program linking the installed
+ * libraries finds it. Absolute.
  */
 std::filesystem::path dataDirectory();
 /** `relative` (e.g. "external/ez-tree/bark") inside dataDirectory(). */
@@ -70,8 +72,8 @@ nlohmann::json loadJsonFile(const std::filesystem::path& path);
 
 /**
  * Checks the envelope of a versioned Sylva JSON document: an object whose integer field `version` equals
- * `expected`. Throws sylva::Error `<where>: expected a JSON object`, `<where>: missing field 'version'` or
- * `<where>: field 'version' must be <expected>`.
+ * `expected`. Throws sylva::Error `WHERE: expected a JSON object`, `WHERE: missing field 'version'` or
+ * `WHERE: field 'version' must be EXPECTED`.
  */
 void requireJsonVersion(const nlohmann::json& json, int expected, const std::string& where);
 
