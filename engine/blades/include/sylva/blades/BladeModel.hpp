@@ -25,11 +25,13 @@ inline constexpr int kBladeModelVersion = 1;
  * normals[k])) with the tangent along the knot line.
  */
 struct BladeLod {
+  /** Knot positions, blade space (metres), root first. */
   std::vector<glm::vec3> positions;
   /** Full width at each knot, metres (≥ 0). */
   std::vector<float> widths;
   /** Unit surface normal at each knot, perpendicular to the knot line. */
   std::vector<glm::vec3> normals;
+  /** Knots of this level. */
   std::size_t knotCount() const { return positions.size(); }
 };
 
@@ -39,10 +41,13 @@ struct BladeSource {
   std::string file;
   /** depthSourceName() of the input. */
   std::string kind;
+  /** Frame of the input the blade was captured in (0 for a still image). */
   int frame = 0;
+  /** Index of the blade's cluster (tuft) within that frame's capture result. */
   int cluster = 0;
   /** Index of the blade within its frame's capture result. */
   int blade = 0;
+  /** The capturing camera (pixels). */
   CameraIntrinsics intrinsics;
   /** Depth was only known up to scale (Middlebury without calibration): metres are nominal. */
   bool relativeDepth = false;
@@ -56,6 +61,7 @@ struct BladeSource {
 
 /** One blade model. */
 struct BladeModel {
+  /** Name of the blade, unique within its file (e.g. "blade-0"). */
   std::string name;
   /** Levels of detail, finest first, strictly decreasing knot counts, each ≥ 2 knots. */
   std::vector<BladeLod> lods;
@@ -64,9 +70,11 @@ struct BladeModel {
    * solver and wind bend blades about it.
    */
   glm::vec3 bendAxis{1.0f, 0.0f, 0.0f};
-  /** Mean colour of the blade's pixels in linear RGB [0, 1] when a colour frame was present. */
+  /** Whether `colour` holds the blade's measured colour (a colour frame was present). */
   bool hasColour = false;
+  /** Mean colour of the blade's pixels in linear RGB [0, 1] (when hasColour). */
   glm::vec3 colour{0.0f};
+  /** Where the blade came from. */
   BladeSource source;
 
   /** Length along the finest knot line, metres. */
@@ -79,6 +87,7 @@ struct BladeModel {
 
 /** A blade-model file. */
 struct BladeModelFile {
+  /** The blades, in capture order. */
   std::vector<BladeModel> blades;
   /** Free text: what made the file ("sylva capture 0.x: aloeGT.png"). */
   std::string generator;

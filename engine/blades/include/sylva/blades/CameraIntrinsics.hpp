@@ -12,10 +12,10 @@ namespace sylva::blades {
  * ((u − cx)·z/fx, (v − cy)·z/fy, z), x right, y down, z forward (OpenCV convention).
  */
 struct CameraIntrinsics {
-  double fx = 594.21;
-  double fy = 591.04;
-  double cx = 339.31;
-  double cy = 242.74;
+  double fx = 594.21; ///< focal length along x, pixels
+  double fy = 591.04; ///< focal length along y, pixels
+  double cx = 339.31; ///< principal point column, pixels
+  double cy = 242.74; ///< principal point row, pixels
   /** Kinect v1 depth camera at 640×480 (Nicolas Burrus' calibration, the values libfreenect users quote). */
   static CameraIntrinsics kinectV1() { return {}; }
   /** Kinect v1 intrinsics scaled to a width × height image (same field of view). */
@@ -24,6 +24,7 @@ struct CameraIntrinsics {
   glm::dvec3 unproject(double u, double v, double z) const {
     return {(u - cx) * z / fx, (v - cy) * z / fy, z};
   }
+  /** Exact equality of all four values. */
   bool operator==(const CameraIntrinsics&) const = default;
 };
 

@@ -44,11 +44,17 @@ const char* depthSourceName(DepthSourceKind kind);
  * loader). `colour` is an optional RGB8 frame registered to the depth pixels (same size), empty when absent.
  */
 struct DepthFrame {
+  /** Pixels per row. */
   int width = 0;
+  /** Rows. */
   int height = 0;
+  /** Depth per pixel, metres, row-major (0: no data). */
   std::vector<float> depth;
+  /** Registered RGB8 colour frame of the same size, or empty. */
   Image colour;
+  /** The depth camera (pixels). */
   CameraIntrinsics intrinsics;
+  /** Where the frame came from. */
   DepthSourceKind kind = DepthSourceKind::DepthPng;
   /** The file (or "kinect") the frame came from, for messages and metadata. */
   std::string source;
@@ -63,7 +69,9 @@ struct DepthFrame {
   /** A frame of the given size with every pixel "no data". Throws sylva::Error for non-positive or absurd
    * sizes. */
   DepthFrame(int width, int height);
+  /** Depth of pixel (x, y), metres (0: no data); no bounds checks. */
   float at(int x, int y) const { return depth[static_cast<std::size_t>(y) * width + x]; }
+  /** Depth of pixel (x, y), metres, for writing; no bounds checks. */
   float& at(int x, int y) { return depth[static_cast<std::size_t>(y) * width + x]; }
   /** A name for messages: "<source>" or "<source> frame <n>" for recordings. */
   std::string label() const;
@@ -96,8 +104,11 @@ void saveDepthPng(const std::filesystem::path& path, const DepthFrame& frame);
  * nominal unless the dataset's doffs is known; the frame is marked relativeDepth unless `calibrated`.
  */
 struct MiddleburyOptions {
+  /** Focal length, pixels. */
   double focalPx = 3740.0;
+  /** Distance between the two cameras, metres. */
   double baselineMetres = 0.160;
+  /** Disparity offset between the two principal points, pixels. */
   double doffsPx = 0.0;
   /** Stored value to disparity in pixels at the image's resolution. */
   double disparityScale = 1.0;

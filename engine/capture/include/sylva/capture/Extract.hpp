@@ -42,12 +42,15 @@ enum class CentreMode {
 struct ExtractOptions {
   /** Depth range of the blades in metres; 0 for either means automatic (Otsu split of the valid depths). */
   float nearMetres = 0.0f;
+  /** Far end of the blades' depth range, metres (0: automatic). */
   float farMetres = 0.0f;
   /** Region of interest x0, y0, x1, y1 in pixels (x1, y1 exclusive); all zero: the whole frame. */
   std::array<int, 4> roi{0, 0, 0, 0};
+  /** How blobs are outlined: the depth-range mask, or Canny edges on depth. */
   ContourMethod contour = ContourMethod::Mask;
   /** Canny thresholds in depth metres per pixel step (the gradient of depth, not of grey). */
   double cannyLowMetres = 0.02;
+  /** Canny's high threshold, metres of depth per pixel step. */
   double cannyHighMetres = 0.06;
   /**
    * Radius in pixels of the morphological close that fills cracks and pin holes (no opening: it would cut the
@@ -58,7 +61,9 @@ struct ExtractOptions {
   int fillHolesPx = 400;
   /** Blobs smaller than this (pixels) are ignored. */
   int minClusterAreaPx = 300;
+  /** How each cluster's centre is chosen. */
   CentreMode centre = CentreMode::Auto;
+  /** The centre with CentreMode::Manual, pixels. */
   glm::vec2 centrePx{0.0f};
   /** Gaussian smoothing of the distance signal along the contour, sigma in pixels of arc length. */
   double smoothSigmaPx = 3.0;
@@ -97,6 +102,7 @@ struct ExtractOptions {
 struct Junction {
   /** Index into Cluster::contour. */
   int index = 0;
+  /** The junction's position, pixels. */
   glm::vec2 px{0.0f};
   /** Smoothed distance from the centre, pixels. */
   float distancePx = 0.0f;
@@ -108,12 +114,15 @@ struct Junction {
 struct Cluster {
   /** Closed outline, pixel coordinates (pixel centres), counter-clockwise on screen. */
   std::vector<glm::vec2> contour;
+  /** The centre the distance signal is measured from, pixels. */
   glm::vec2 centre{0.0f};
   /** The mode that produced the centre (never Auto). */
   CentreMode centreMode = CentreMode::Core;
   /** Distance from the centre along the contour (pixels): raw and smoothed. */
   std::vector<float> signal;
+  /** The distance signal smoothed along the contour (Gaussian, ExtractOptions::smoothSigmaPx). */
   std::vector<float> smoothed;
+  /** The junctions found: prominent minima of the smoothed signal. */
   std::vector<Junction> junctions;
   /** Indices into ExtractResult::blades. */
   std::vector<int> blades;
@@ -126,6 +135,7 @@ struct Cluster {
   std::vector<std::string> merged;
   /** Blades split in two between their tips because they were much wider than the median (`--explain`). */
   std::vector<std::string> split;
+  /** Pixels of the cluster. */
   int areaPx = 0;
   /**
    * The depth layer of its blob this cluster was cut from (0: the nearest), -1 when the blob is one layer.
@@ -134,11 +144,13 @@ struct Cluster {
   int layer = -1;
   /** Depth layers of the blob (1 when it is one), and this layer's median depth, metres (0 when one). */
   int layerCount = 1;
+  /** This layer's median depth, metres (0 when the blob is one layer). */
   float layerDepthMetres = 0.0f;
 };
 
 /** One captured blade. */
 struct CapturedBlade {
+  /** Index of the blade's cluster in ExtractResult::clusters. */
   int cluster = 0;
   /** The blade's outline from one junction over the tip to the next, pixels. */
   std::vector<glm::vec2> outline;
@@ -146,14 +158,17 @@ struct CapturedBlade {
   int tip = 0;
   /** Skeleton knots root → tip (pixels) and full widths (pixels), ExtractOptions::knots of them. */
   std::vector<glm::vec2> skeletonPx;
+  /** Full width at each knot, pixels. */
   std::vector<float> widthsPx;
   /** The same knots in camera space (metres, x right, y down, z forward) and widths in metres. */
   std::vector<glm::vec3> knots;
+  /** Full width at each knot, metres. */
   std::vector<float> widths;
   /** Unit width direction per knot in camera space (the blade's side). */
   std::vector<glm::vec3> sides;
   /** Length of the knot line, pixels and metres. */
   float lengthPx = 0.0f;
+  /** Length of the knot line, metres. */
   float lengthMetres = 0.0f;
   /** Pixels of the skeleton that came from the extension to the centre (0 when none). */
   float extensionPx = 0.0f;
@@ -167,21 +182,27 @@ struct CapturedBlade {
   bool touchesBorder = false;
   /** Mean linear RGB of the blade's pixels when the frame has colour. */
   bool hasColour = false;
+  /** Mean linear RGB of the blade's pixels (when hasColour). */
   glm::vec3 colour{0.0f};
 };
 
 /** Everything extractBlades found, including the intermediate stages (for overlays and docs). */
 struct ExtractResult {
+  /** Frame width, pixels. */
   int width = 0;
+  /** Frame height, pixels. */
   int height = 0;
   /** Depth range used, metres. */
   float nearMetres = 0.0f;
+  /** Far end of the depth range used, metres. */
   float farMetres = 0.0f;
   /** Foreground mask after cleaning (255 inside), width × height. */
   std::vector<std::uint8_t> mask;
   /** Canny edge map (255 on edges) when ContourMethod::Canny was used, else empty. */
   std::vector<std::uint8_t> edges;
+  /** The clusters (blobs, or depth layers of blobs) found. */
   std::vector<Cluster> clusters;
+  /** Every blade found, over all clusters. */
   std::vector<CapturedBlade> blades;
   /** Parts of depth layers too small to partition, each with its place and size (for `--explain`). */
   std::vector<std::string> droppedParts;

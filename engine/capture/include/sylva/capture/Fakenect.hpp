@@ -32,8 +32,11 @@ struct FakenectEntry {
 
 /** A decoded raw depth frame: width × height Kinect 11-bit values, row 0 at the top. */
 struct RawDepth {
+  /** Pixels per row. */
   int width = 0;
+  /** Rows. */
   int height = 0;
+  /** The raw 11-bit values, row-major. */
   std::vector<std::uint16_t> raw;
 };
 
@@ -61,6 +64,7 @@ public:
   /** Throws sylva::Error naming the folder when it or its INDEX.txt is missing, or INDEX.txt is malformed. */
   static FakenectRecording open(const std::filesystem::path& folder);
 
+  /** The recording's folder. */
   const std::filesystem::path& folder() const { return mFolder; }
   /** Every parsed entry whose file exists, in INDEX order. */
   const std::vector<FakenectEntry>& entries() const { return mEntries; }

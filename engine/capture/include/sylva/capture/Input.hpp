@@ -24,6 +24,7 @@ struct DepthInputOptions {
   MiddleburyOptions middlebury; ///< for Middlebury disparity maps
   /** The frames captured, inclusive and 0-based (none: all); `framesText` names them in errors. */
   std::optional<std::pair<int, int>> frames;
+  /** The frame range as the user gave it (for errors). */
   std::string framesText;
 };
 
@@ -31,11 +32,13 @@ struct DepthInputOptions {
 struct DepthInput {
   std::string label; ///< the input as named in reports ("kinect" for a live capture)
   std::string kind;  ///< "png", "middlebury", "fakenect" or "kinect"
+  /** The recording (fakenect input only). */
   std::optional<FakenectRecording> recording;
   std::vector<DepthFrame> frames;    ///< single images and Kinect captures
   std::vector<std::string> warnings; ///< what opening skipped (a recording's unreadable frames)
   int first = 0;                     ///< the first frame captured
   int last = 0;                      ///< the last frame captured
+  /** Frames captured. */
   int count() const { return last - first + 1; }
   /** Frame `i` of the input (first ≤ i ≤ last). */
   DepthFrame frame(int i) const;

@@ -20,8 +20,11 @@ namespace sylva::capture {
  * frame.
  */
 struct TrackedBlade {
+  /** The blade as captured in the reference frame. */
   CapturedBlade reference;
+  /** Its knots per frame, camera space, metres. */
   KnotFrames motion;
+  /** Frames where it was not found (held from the previous frame). */
   int missingFrames = 0;
 };
 
@@ -44,9 +47,11 @@ struct ModelOptions {
    * rawMetres (the paper's units, where the variance term is negligible).
    */
   RefineOptions::Measure measure = RefineOptions::Measure::Displacement;
+  /** Measure lengths in metres (the paper's units) instead of mean knot spacings. */
   bool rawMetres = false;
   /** Without a recording, refine over a simulated sway (swayFrames) instead of the static pose alone. */
   bool simulateSway = true;
+  /** The simulated sway (when simulateSway). */
   SwayOptions sway;
 };
 
@@ -70,9 +75,11 @@ enum class CaptureMotion {
 
 /** What captureBlades() does with a run of depth frames. */
 struct CaptureSettings {
+  /** How blades are found in each frame. */
   ExtractOptions extract;
   /** Levels, μ and the variance measure (simulateSway is set from motion). */
   ModelOptions model;
+  /** Whether refining sees a recording's motion or a simulated sway. */
   CaptureMotion motion = CaptureMotion::Auto;
   /** Models are named "<name>-<index>". */
   std::string name = "capture";

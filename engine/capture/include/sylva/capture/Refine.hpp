@@ -43,6 +43,7 @@ struct RefineOptions {
      */
     Displacement,
   };
+  /** Which variance term refining uses. */
   Measure measure = Measure::Distance;
   /**
    * Lengths are divided by this (metres) before D is formed, so that μ weighs comparable numbers: with a unit
@@ -55,8 +56,11 @@ struct RefineOptions {
 /** Result of refining: the merged trajectories, widths and how many input knots each output knot stands for.
  */
 struct RefineResult {
+  /** The merged knots' trajectories (one per output knot). */
   KnotFrames frames;
+  /** Full width of each output knot. */
   std::vector<float> widths;
+  /** How many input knots each output knot stands for. */
   std::vector<int> merged;
 };
 
@@ -88,6 +92,7 @@ RefineResult refineKnotsReference(const KnotFrames& frames, std::span<const floa
 
 /** A kinematic model of a blade swaying in wind, for refining without a recording. */
 struct SwayOptions {
+  /** Frames of the generated sequence. */
   int frames = 60;
   /** Frames per second of the generated sequence. */
   double fps = 30.0;

@@ -23,23 +23,29 @@ namespace sylva::capture {
 
 /** The five blade shapes of the paper's captures. */
 enum class BladeShape { SlimGrass, QuadraticLeaf, SlenderLeaf, BambooLeaf, SharpTip };
+/** Every blade shape, in the order above. */
 inline constexpr BladeShape kBladeShapes[] = {BladeShape::SlimGrass, BladeShape::QuadraticLeaf,
                                               BladeShape::SlenderLeaf, BladeShape::BambooLeaf,
                                               BladeShape::SharpTip};
 /** "slim", "quadratic", "slender", "bamboo", "sharp". */
 const char* bladeShapeName(BladeShape shape);
+/** The shape named `name` (bladeShapeName's names); nullopt for any other. */
 std::optional<BladeShape> parseBladeShape(const std::string& name);
 
 /** Width at t ∈ [0, 1] (root → tip) as a fraction of the blade's largest width. */
 float bladeWidthProfile(BladeShape shape, float t);
 /** Typical length and largest width of a shape, metres. */
 float bladeShapeLength(BladeShape shape);
+/** Typical largest width of a shape, metres. */
 float bladeShapeWidth(BladeShape shape);
 
 /** One blade of a synthetic cluster. */
 struct SyntheticBlade {
+  /** The width profile. */
   BladeShape shape = BladeShape::SlimGrass;
+  /** Length along the centreline, metres. */
   float lengthMetres = 0.3f;
+  /** Largest full width, metres. */
   float widthMetres = 0.012f;
   /** Lean from vertical in the image plane, radians (positive: to the right). */
   float leanRadians = 0.0f;
@@ -65,28 +71,35 @@ struct SyntheticBlade {
 
 /** A cluster scene. */
 struct SyntheticScene {
+  /** Frame width, pixels. */
   int width = 640;
+  /** Frame height, pixels. */
   int height = 480;
+  /** The camera (Kinect v1 by default). */
   CameraIntrinsics intrinsics = CameraIntrinsics::kinectV1();
   /** The root of every blade in camera space, metres. */
   glm::vec3 rootMetres{0.0f, 0.2f, 0.65f};
+  /** The blades, all from rootMetres. */
   std::vector<SyntheticBlade> blades;
   /**
    * The camera turned about the cluster's root: roll about its optical axis (positive: the picture turns
    * clockwise), pitch about its horizontal axis (positive: looking further down on the cluster), radians.
    */
   float rollRadians = 0.0f;
+  /** Camera pitch about the root, radians (see rollRadians). */
   float pitchRadians = 0.0f;
   /** Background wall depth, metres (0: none, no data). */
   float backgroundMetres = 1.8f;
   /** Kinect-like noise: axial Gaussian σ(z) = 1.2 mm + 1.9 mm·(z − 0.4 m)², lateral edge jitter, dropouts,
    * and 11-bit quantisation. */
   bool noise = true;
+  /** Standard deviation of the edges' lateral jitter, pixels. */
   float lateralNoisePx = 0.5f;
   /** Fraction of edge pixels that lose their depth (Kinect shadows). */
   float edgeDropout = 0.15f;
   /** Also draw a registered RGB frame (green blades on a brown background). */
   bool colour = true;
+  /** Seed of the blade variation and the noise. */
   std::uint64_t seed = 1;
 };
 
@@ -111,10 +124,12 @@ enum class ClusterLayout {
   /** Many blades (count ≥ 11 in the sweep) over a narrow fan of 60°. */
   Dense,
 };
+/** Every cluster layout, in the order above. */
 inline constexpr ClusterLayout kClusterLayouts[] = {ClusterLayout::Fan, ClusterLayout::Occluded,
                                                     ClusterLayout::Crossing, ClusterLayout::Dense};
 /** "fan", "occluded", "crossing", "dense". */
 const char* clusterLayoutName(ClusterLayout layout);
+/** The layout named `name` (clusterLayoutName's names); nullopt for any other. */
 std::optional<ClusterLayout> parseClusterLayout(const std::string& name);
 
 /**
@@ -139,9 +154,11 @@ SyntheticScene makeSweepCluster(std::uint64_t seed, ClusterLayout* layoutOut = n
 struct SyntheticTruth {
   /** Per blade: centreline root → tip (pixels) and full widths (pixels) at 256 samples. */
   std::vector<std::vector<glm::vec2>> centrelinePx;
+  /** Per blade: full widths, pixels, at the same samples. */
   std::vector<std::vector<float>> widthsPx;
   /** The same in camera space, metres. */
   std::vector<std::vector<glm::vec3>> centrelineMetres;
+  /** Per blade: full widths, metres. */
   std::vector<std::vector<float>> widthsMetres;
   /** Noise-free silhouette of all blades (255 inside), width × height. */
   std::vector<std::uint8_t> mask;
@@ -151,7 +168,9 @@ struct SyntheticTruth {
 
 /** A rendered synthetic frame with its truth. */
 struct SyntheticFrame {
+  /** The depth frame (and colour). */
   DepthFrame frame;
+  /** The true blades. */
   SyntheticTruth truth;
 };
 
@@ -176,7 +195,7 @@ nlohmann::json syntheticTruthJson(const SyntheticScene& scene, const std::vector
 
 /**
  * Writes `frames` to `out`: a .png path holds the first frame as a 16-bit depth PNG (and its colour beside it
- * as <stem>-colour.png when it has one), any other path becomes a fakenect recording folder of every frame.
+ * as `STEM-colour.png` when it has one), any other path becomes a fakenect recording folder of every frame.
  * Returns the extra files written (the colour PNG).
  */
 std::vector<std::string> saveSyntheticFrames(const std::string& out,
@@ -184,7 +203,9 @@ std::vector<std::string> saveSyntheticFrames(const std::string& out,
 
 /** Accuracy of a capture against the truth (tests and `sylva capture synth --evaluate`). */
 struct AccuracyReport {
+  /** Blades in the truth. */
   int bladesExpected = 0;
+  /** Blades captured. */
   int bladesFound = 0;
   /** IoU of the rasterised captured blades with the noise-free silhouette. */
   double silhouetteIoU = 0.0;
@@ -196,6 +217,7 @@ struct AccuracyReport {
   /** Mean distance (pixels) of captured skeleton knots from the true centreline, and the worst blade's mean.
    */
   double skeletonErrorPx = 0.0;
+  /** The worst blade's mean skeleton distance, pixels. */
   double skeletonErrorMaxPx = 0.0;
   /** Skeleton error relative to the blade's length (worst blade). */
   double skeletonErrorRelative = 0.0;
@@ -219,6 +241,7 @@ std::vector<bool> tipsStandFree(const SyntheticTruth& truth, int width, int heig
 
 /** Counts of a capture sweep over one class of clusters (or all). */
 struct SweepTally {
+  /** Clusters captured. */
   int clusters = 0;
   int exact = 0;         ///< clusters whose blade count came out exact
   int fewer = 0;         ///< clusters with blades missing (merged or dropped)
@@ -228,11 +251,16 @@ struct SweepTally {
    * a blade whose tip is hidden, or touches a neighbour's at the same depth, leaves no trace one frame can
    * count. */
   int tipsFree = 0;
+  /** Of those, clusters whose count came out exact. */
   int tipsFreeExact = 0;
 
+  /** exact / clusters. */
   double exactShare() const { return clusters > 0 ? static_cast<double>(exact) / clusters : 0.0; }
+  /** widthWithin10 / blades. */
   double widthShare() const { return blades > 0 ? static_cast<double>(widthWithin10) / blades : 0.0; }
+  /** tipsFree / clusters. */
   double tipsFreeShare() const { return clusters > 0 ? static_cast<double>(tipsFree) / clusters : 0.0; }
+  /** tipsFreeExact / tipsFree. */
   double tipsFreeExactShare() const {
     return tipsFree > 0 ? static_cast<double>(tipsFreeExact) / tipsFree : 0.0;
   }
@@ -247,7 +275,9 @@ std::string sweepLine(const char* name, const SweepTally& tally);
 
 /** A capture sweep's result: per layout (index = the layout's place in kClusterLayouts) and over all. */
 struct SweepReport {
+  /** Tallies per layout, in kClusterLayouts' order. */
   std::array<SweepTally, 4> byLayout{};
+  /** Tallies over every layout. */
   SweepTally all;
   /** Seeds of the clusters whose count came out wrong, in sweep order (makeSweepCluster redraws one). */
   std::vector<std::uint64_t> wrongSeeds;

@@ -13,6 +13,7 @@ namespace sylva {
  */
 class Error : public std::runtime_error {
 public:
+  /** `message`: the whole line, naming the file or field first. */
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 

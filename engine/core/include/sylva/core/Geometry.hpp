@@ -8,10 +8,12 @@ namespace sylva {
 
 /** Axis-aligned box in whichever space its user states (world space for terrain nodes), metres. */
 struct Aabb {
-  glm::vec3 min{0.0f};
-  glm::vec3 max{0.0f};
+  glm::vec3 min{0.0f}; ///< smallest corner
+  glm::vec3 max{0.0f}; ///< largest corner
 
+  /** Centre of the box. */
   glm::vec3 center() const { return 0.5f * (min + max); }
+  /** Half the box's size along each axis. */
   glm::vec3 extent() const { return 0.5f * (max - min); }
 };
 
@@ -29,13 +31,16 @@ public:
   /** Gribb–Hartmann extraction from clip = viewProj · world. */
   explicit Frustum(const glm::mat4& viewProj);
 
+  /** The planes (n.xyz, d), inward-facing and normalised, in the order above. */
   const std::array<glm::vec4, 6>& planes() const { return mPlanes; }
 
   /** Conservative box test: Outside only if the box lies entirely behind one plane. */
   Containment test(const Aabb& box) const;
+  /** test(box) is not Outside: some of the box may be visible. */
   bool intersects(const Aabb& box) const { return test(box) != Containment::Outside; }
   /** Sphere test with centre and radius in world units. */
   bool intersectsSphere(const glm::vec3& center, float radius) const;
+  /** Whether `point` (world units) lies inside or on all six planes. */
   bool contains(const glm::vec3& point) const;
 
 private:

@@ -35,22 +35,26 @@ public:
   /** A zero-filled image; throws sylva::Error for non-positive or absurd sizes (> 65536 per side). */
   Image(int width, int height, int channels, PixelType type);
 
-  int width() const { return mWidth; }
-  int height() const { return mHeight; }
-  int channels() const { return mChannels; }
-  PixelType type() const { return mType; }
-  bool empty() const { return mWidth == 0 || mHeight == 0; }
+  int width() const { return mWidth; }                       ///< pixels
+  int height() const { return mHeight; }                     ///< pixels
+  int channels() const { return mChannels; }                 ///< 1 (grey) … 4 (RGBA)
+  PixelType type() const { return mType; }                   ///< type of each channel value
+  bool empty() const { return mWidth == 0 || mHeight == 0; } ///< no pixels
 
   /** Bytes of one row (no padding between rows). */
   std::size_t rowBytes() const {
     return static_cast<std::size_t>(mWidth) * mChannels * bytesPerChannel(mType);
   }
+  /** Bytes of all pixels: rowBytes() · height(). */
   std::size_t byteSize() const { return mData.size(); }
+  /** The pixels, rows top to bottom, channels interleaved. */
   std::byte* data() { return mData.data(); }
+  /** The pixels, rows top to bottom, channels interleaved. */
   const std::byte* data() const { return mData.data(); }
 
   /** Typed view of all channel values; T must match type() (uint8_t, uint16_t or float), else throws. */
   template <typename T> std::span<T> values();
+  /** Typed read-only view of all channel values; T must match type(), else throws. */
   template <typename T> std::span<const T> values() const;
 
   /**
@@ -66,6 +70,7 @@ public:
   /** Mirrors rows in place (GL read-back is bottom-up; files are top-down). */
   void flipVertically();
 
+  /** Same size, channels, type and bytes. */
   bool operator==(const Image& other) const = default;
 
 private:
@@ -90,9 +95,13 @@ Image loadImage(const std::filesystem::path& path);
  */
 void saveImage(const std::filesystem::path& path, const Image& image);
 
+/** Reads a PNG (8 or 16 bit, grey to RGBA); throws sylva::Error naming the file. */
 Image loadPng(const std::filesystem::path& path);
+/** Writes a PNG (8 or 16 bit by the image's type; F32 as 16 bit), atomically. */
 void savePng(const std::filesystem::path& path, const Image& image);
+/** Reads an OpenEXR image as F32; throws sylva::Error naming the file. */
 Image loadExr(const std::filesystem::path& path);
+/** Writes an image as float OpenEXR, atomically. */
 void saveExr(const std::filesystem::path& path, const Image& image);
 
 } // namespace sylva

@@ -43,7 +43,7 @@ public:
 
   /**
    * Requires an object whose keys are all in `allowed`; returns this node. Errors: `expected an object, got
-   * <type>`; at an unknown key's pointer, `unknown field`, with ` (did you mean '<key>'?)` when one is close.
+   * TYPE`; at an unknown key's pointer, `unknown field`, with ` (did you mean 'KEY'?)` when one is close.
    */
   const JsonNode& object(std::initializer_list<const char*> allowed) const;
 
@@ -103,8 +103,8 @@ public:
   bool boolean() const;
 
   /**
-   * A non-empty string equal to one of `names`; returns it. Errors: those of string(), then `'<s>' is not one
-   * of: <name>, <name>, …`.
+   * A non-empty string equal to one of `names`; returns it. Errors: those of string(), then `'S' is not one
+   * of: NAME, NAME, …`.
    */
   std::string choice(std::initializer_list<const char*> names) const;
 

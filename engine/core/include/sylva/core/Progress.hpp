@@ -16,6 +16,7 @@ namespace sylva {
  */
 class Progress {
 public:
+  /** A step named `label` (e.g. "synthesis") of `total` units; shows nothing until work takes a second. */
   Progress(std::string label, std::size_t total);
   ~Progress();
   Progress(const Progress&) = delete;
@@ -35,6 +36,7 @@ public:
   static void cancelAll() noexcept;
   /** True while at least one Progress exists (long work is running); async-signal-safe. */
   static bool anyActive() noexcept;
+  /** Units completed so far. */
   std::size_t done() const { return mDone; }
 
 private:

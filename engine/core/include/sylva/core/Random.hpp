@@ -10,6 +10,7 @@ namespace sylva {
  */
 class Rng {
 public:
+  /** The sequence of `seed` on `stream` (PCG32's defaults when omitted). */
   explicit Rng(std::uint64_t seed = 0x853c49e6748fea9bULL, std::uint64_t stream = 0xda3e39cb94b95bdbULL);
 
   /** Uniform 32-bit value. */

@@ -36,16 +36,16 @@ struct Split {
 
 /** `sylva farm submit SCENE …`: a scene file's frame range, rendered by shards. */
 struct RenderRequest {
-  std::string scene;  ///< the scene file
-  std::string frames; ///< "A-B[,C-D]"; empty: the file's output range
-  std::string camera; ///< empty: the file's output camera
-  int width = 0;      ///< 0: the file's
-  int height = 0;
-  std::string out; ///< the frames' folder; empty: out/<scene file's stem>
-  std::string gif; ///< encode job: an animated GIF here
-  std::string mp4; ///< encode job: an H.264 MP4 here
-  Split split;
-  Resources resources;
+  std::string scene;   ///< the scene file
+  std::string frames;  ///< "A-B[,C-D]"; empty: the file's output range
+  std::string camera;  ///< empty: the file's output camera
+  int width = 0;       ///< 0: the file's
+  int height = 0;      ///< 0: the file's
+  std::string out;     ///< the frames' folder; empty: out/<scene file's stem>
+  std::string gif;     ///< encode job: an animated GIF here
+  std::string mp4;     ///< encode job: an H.264 MP4 here
+  Split split;         ///< how the frames become array tasks
+  Resources resources; ///< what each task asks Slurm for
 };
 
 /** `sylva farm each LIST -o OUT -- COMMAND…`: one command per line of a list. */
@@ -53,9 +53,9 @@ struct EachRequest {
   std::string list; ///< text file: one item per line; blank lines and lines from '#' skipped
   std::string out;  ///< the farm's folder (its state, logs and done markers)
   std::vector<std::string>
-      command; ///< program and arguments with placeholders {} {stem} {name} {dir} {index}
-  Split split;
-  Resources resources;
+      command;         ///< program and arguments with placeholders {} {stem} {name} {dir} {index}
+  Split split;         ///< how the items become array tasks
+  Resources resources; ///< what each task asks Slurm for
 };
 
 /** One `sbatch` of a farm's tasks (and its encode job). */
@@ -73,20 +73,20 @@ struct Farm {
   std::filesystem::path workdir; ///< where tasks start (the submitting directory)
   std::filesystem::path sylva;   ///< the program the tasks run
   int tasks = 1;                 ///< array size (shards)
-  int retries = 2;
-  Resources resources;
+  int retries = 2;               ///< attempts after a task's first failure
+  Resources resources;           ///< what each task asks Slurm for
   // render
-  std::filesystem::path scene;
-  std::string frames; ///< the range, as parsed ("0-11")
-  std::string camera;
-  int width = 0; ///< resolved output size, pixels
-  int height = 0;
-  std::string gif; ///< absolute, or empty
-  std::string mp4;
+  std::filesystem::path scene; ///< render: the scene file
+  std::string frames;          ///< render: the range, as parsed ("0-11")
+  std::string camera;          ///< render: the camera; empty: the file's output camera
+  int width = 0;               ///< render: resolved output width, pixels
+  int height = 0;              ///< render: resolved output height, pixels
+  std::string gif;             ///< render: the GIF the encode job writes (absolute), or empty
+  std::string mp4;             ///< render: the MP4 the encode job writes (absolute), or empty
   // each
-  std::vector<std::string> items;    ///< the list's items, in order
-  std::vector<std::string> commands; ///< item k's shell command line
-  std::vector<Submission> submissions;
+  std::vector<std::string> items;      ///< the list's items, in order
+  std::vector<std::string> commands;   ///< item k's shell command line
+  std::vector<Submission> submissions; ///< every sbatch so far, first submission first
 
   /** OUT/farm: farm.json, the scripts, logs/ and done/. */
   std::filesystem::path dir() const { return out / "farm"; }
@@ -131,7 +131,7 @@ Farm planRender(const RenderRequest& request, const std::filesystem::path& sylva
  */
 Farm planEach(const EachRequest& request, const std::filesystem::path& sylva);
 
-/** The array task script: #SBATCH lines for the resources, a retry loop round the unit work. */
+/** The array task script: `#SBATCH` lines for the resources, a retry loop round the unit work. */
 std::string taskScriptText(const Farm& farm);
 
 /** The encode job's script (afterok on the array; `sylva render … --gif/--mp4` over the complete frames). */
@@ -146,6 +146,7 @@ std::vector<int> parseArrayList(std::string_view text);
 
 /** farm.json as JSON text and back (version 1). Loading errors name the file and field. */
 std::string manifestText(const Farm& farm);
+/** The farm whose folder is `out` (reads out/farm/farm.json; errors name the file and field). */
 Farm loadFarm(const std::filesystem::path& out);
 /** farm.json's text (named `where` in errors) as a farm; what loadFarm reads. */
 Farm parseFarm(std::string_view text, const std::string& where);
@@ -172,27 +173,27 @@ bool stateActive(std::string_view state);
 
 /** A task's place in a farm's status. */
 struct TaskStatus {
-  int task = 0;
-  int units = 0; ///< its frames or items
-  int done = 0;  ///< of those, done on disk
-  std::vector<int> missing;
-  std::string job;   ///< the latest submission's array job holding it ("" never submitted)
-  std::string state; ///< Slurm's state of that task; "" when Slurm no longer knows it
-  std::string reason;
-  std::string exitCode;
-  std::filesystem::path log;
+  int task = 0;              ///< array index
+  int units = 0;             ///< its frames or items
+  int done = 0;              ///< of those, done on disk
+  std::vector<int> missing;  ///< the frames (render) or item indices (each) not done
+  std::string job;           ///< the latest submission's array job holding it ("" never submitted)
+  std::string state;         ///< Slurm's state of that task; "" when Slurm no longer knows it
+  std::string reason;        ///< Slurm's reason for that state
+  std::string exitCode;      ///< Slurm's "status:signal" of its last run
+  std::filesystem::path log; ///< its log file (farm/logs/)
 };
 
 /** A farm's status: units done and missing, per task, the encode job. */
 struct FarmStatus {
-  int units = 0;
-  int done = 0;
-  int inProgress = 0; ///< missing units of tasks that are running
-  std::vector<TaskStatus> tasks;
-  std::string encodeJob;
-  std::string encodeState; ///< "" when none or unknown
-  std::string encodeReason;
-  bool encodeWritten = false; ///< every --gif/--mp4 file exists
+  int units = 0;                 ///< frames or items in all
+  int done = 0;                  ///< of those, done on disk
+  int inProgress = 0;            ///< missing units of tasks that are running
+  std::vector<TaskStatus> tasks; ///< every array task, by index
+  std::string encodeJob;         ///< the latest encode job's id; "" when none
+  std::string encodeState;       ///< "" when none or unknown
+  std::string encodeReason;      ///< Slurm's reason for that state
+  bool encodeWritten = false;    ///< every --gif/--mp4 file exists
   /** Tasks with missing units and not pending or running: what `resubmit` submits. */
   std::vector<int> toResubmit() const;
   /** Tasks that ran and failed (or were cancelled, timed out, lost their node) with units missing. */
@@ -218,9 +219,10 @@ std::string tailOf(const std::filesystem::path& file, int lines);
  * whether it is one that several machines mount (network or cluster filesystems).
  */
 struct FilesystemKind {
-  std::string type;
-  bool shared = false;
+  std::string type;    ///< e.g. "nfs", "lustre", "ext4"; the magic number ("0x1234") for others
+  bool shared = false; ///< a network or cluster filesystem (also assumed for unknown ones)
 };
+/** What filesystem holds `path` (statfs of its nearest existing parent). */
 FilesystemKind filesystemOf(const std::filesystem::path& path);
 
 } // namespace sylva::farm

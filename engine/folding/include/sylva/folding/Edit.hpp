@@ -21,13 +21,17 @@ namespace sylva::folding {
  */
 class EditHistory {
 public:
+  /** Starts the history at `project` (nothing to undo). */
   explicit EditHistory(Project project);
 
+  /** The current state. */
   const Project& project() const { return mProject; }
 
   /** What an edit touched: the zone index (−1: project-wide, e.g. a profile) for region re-synthesis. */
   struct Change {
+    /** The edit's name (as shown in the Edit menu), empty when nothing changed. */
     std::string name;
+    /** The zone it touched; −1: project-wide. */
     int zone = -1;
   };
 
@@ -46,10 +50,13 @@ public:
    * image sizes); it throws sylva::Error to refuse the edit.
    */
   void setValidator(std::function<void(const Project&)> validator) { mValidator = std::move(validator); }
+  /** Whether there is an edit to undo. */
   bool canUndo() const { return !mUndo.empty(); }
+  /** Whether there is an undone edit to redo. */
   bool canRedo() const { return !mRedo.empty(); }
   /** Undoes/redoes the last edit; returns what changed (name empty when there was nothing to do). */
   Change undo();
+  /** Redoes the last undone edit; returns what changed (name empty when there was nothing to do). */
   Change redo();
   /** Names of the edits on the undo stack, oldest first. */
   std::vector<std::string> undoNames() const;
@@ -77,15 +84,21 @@ private:
 
 /** Common edits (each a call to EditHistory::apply with a descriptive name). */
 void moveZoneVertex(EditHistory& history, int zone, int vertex, Vec2 position);
+/** Appends `tool` to zone `zone`'s tools. */
 void addTool(EditHistory& history, int zone, Tool tool);
+/** Removes tool `tool` of zone `zone`. */
 void removeTool(EditHistory& history, int zone, int tool);
 /** Moves one point of a points tool: `end` 0 = from (a), 1 = to (b). */
 void movePointAnchor(EditHistory& history, int zone, int tool, int pair, int end, Vec2 position);
+/** Sets zone `zone`'s interpolation. */
 void setInterpolation(EditHistory& history, int zone, const Interpolation& interp);
+/** Sets profile `profile`'s position function. */
 void setProfileFunction(EditHistory& history, int profile, const PositionFunction& fn);
+/** Sets profile `profile`'s period (seconds) and shift (cycles). */
 void setProfileTiming(EditHistory& history, int profile, double periodS, double shift);
 /** Appends a zone (its id made unique: "zone" → "zone-2"); returns its index. */
 int addZone(EditHistory& history, Zone zone);
+/** Removes zone `zone`. */
 void removeZone(EditHistory& history, int zone);
 /**
  * Moves a zone to another image (the thesis's motion-zone panel): geometry keeps its pixel coordinates, so
@@ -105,7 +118,8 @@ int addImage(EditHistory& history, ImageEntry image);
 // ---------------------------------------------------------------------------------------------------------
 // Files of an editing session
 
-/** The autosave sidecar of a project file: `.<file name>.autosave` in the same directory. */
+/** The autosave sidecar of a project file: `.NAME.autosave` (NAME the project file's name) in the same
+ * directory. */
 std::filesystem::path autosavePath(const std::filesystem::path& projectFile);
 /** Writes the current project to the sidecar, atomically (an editor calls it every few seconds when dirty).
  */

@@ -10,8 +10,11 @@ namespace sylva::folding {
 
 /** An anchor: at position (pixels) the backward jump vector (pixels) is `vector`. */
 struct Anchor {
+  /** Where the anchor is, pixels. */
   Vec2 position{0.0};
+  /** The backward jump vector there, pixels. */
   Vec2 vector{0.0};
+  /** Every field equal. */
   bool operator==(const Anchor&) const = default;
 };
 
@@ -22,6 +25,7 @@ struct Anchor {
  */
 class AnchorField {
 public:
+  /** A field over `anchors` interpolated as `interp` says; `seed` drives the randomised variant. */
   AnchorField(std::vector<Anchor> anchors, const Interpolation& interp, std::uint64_t seed);
 
   /**
@@ -30,6 +34,7 @@ public:
    * Shepard: Σ w v / Σ w, w = d^−p. Modified: w = (max(0, R − d)/(R d))²; no anchor within R gives 0.
    */
   Vec2 evaluate(Vec2 x, std::uint64_t pixelId) const;
+  /** The anchors, as given. */
   const std::vector<Anchor>& anchors() const { return mAnchors; }
 
 private:
@@ -63,12 +68,16 @@ std::vector<double> meanValueCoordinates(std::span<const Vec2> polygon, Vec2 p);
 
 /** Cubic Bézier B(u) and N parameters u_j that sample it uniformly in arc length (u_0 = 0, u_{N−1} = 1). */
 Vec2 bezier(const std::array<Vec2, 4>& c, double u);
+/** The N = `samples` parameters u_j that sample the curve `c` uniformly in arc length. */
 std::vector<double> arcLengthParameters(const std::array<Vec2, 4>& c, int samples);
 
 /** One fold interval (t0, t1] in progress units, 0 ≤ t0 ≤ t1 ≤ 1. */
 struct Interval {
+  /** Start of the interval, progress units. */
   double t0 = 0.0;
+  /** End of the interval, progress units. */
   double t1 = 1.0;
+  /** Every field equal. */
   bool operator==(const Interval&) const = default;
 };
 
@@ -104,8 +113,11 @@ Vec2 baseJump(const Zone& zone, Vec2 x);
  */
 class ZoneField {
 public:
+  /** The field of `zone` on an image of `imageSize` pixels (freezeMask: one value per pixel, or empty). */
   ZoneField(const Zone& zone, std::span<const float> freezeMask, glm::ivec2 imageSize, std::uint64_t seed);
+  /** J at `x` (pixels); `pixelId` as in AnchorField::evaluate. */
   Vec2 evaluate(Vec2 x, std::uint64_t pixelId) const;
+  /** The anchors the zone's tools made, interpolated. */
   const AnchorField& anchors() const { return mField; }
 
 private:

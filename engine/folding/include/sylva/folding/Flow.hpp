@@ -64,7 +64,9 @@ struct FlowField {
    */
   std::vector<glm::vec2> v;
 
+  /** Whether the field has no texels. */
   bool empty() const { return width <= 0 || height <= 0; }
+  /** v at texel (x, y); no bounds checks. */
   glm::vec2 at(int x, int y) const {
     return v[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
   }
@@ -72,6 +74,7 @@ struct FlowField {
   glm::vec2 sample(Vec2 p) const;
   /** Mean and largest length of v over all texels, pixels. */
   double meanMagnitude() const;
+  /** Largest length of v over all texels, pixels. */
   double maxMagnitude() const;
 };
 
@@ -134,6 +137,7 @@ struct FlowSuggestOptions {
     Zone,  ///< onto the zone's bounding box: a filmed eye drives the eye zone
     Image, ///< onto the whole image: the video was filmed from the image's viewpoint
   };
+  /** Where the video frame goes on the image. */
   Mapping mapping = Mapping::Zone;
   double spacingPx = 16.0;     ///< image pixels between grid samples inside the zone, > 0
   double minMagnitudePx = 0.5; ///< image pixels: final vectors shorter than this are dropped (still parts)

@@ -12,6 +12,7 @@ namespace sylva::folding {
 
 /** One draggable point of a zone, in the zone image's pixel coordinates (Project.hpp). */
 struct Handle {
+  /** What the handle moves. */
   enum class Kind : std::uint8_t {
     ZoneVertex,  ///< a corner of the zone's shape (rect corners 0..3 as Shape::outline())
     PointFrom,   ///< points tool: where the content comes from (a)
@@ -24,12 +25,16 @@ struct Handle {
     ScaleCentre, ///< scale tool: its centre
     FoldVertex,  ///< folding polygon `tool` (the polygon index), vertex `index`
   };
+  /** What the handle moves. */
   Kind kind = Kind::ZoneVertex;
+  /** The zone it belongs to. */
   int zone = 0;
   int tool = -1; ///< tool index (FoldVertex: folding polygon index; ZoneVertex: −1)
   int index = 0; ///< vertex, pair or control point
+  /** Where it is, zone image pixels. */
   Vec2 pos{0.0};
 
+  /** Every field equal. */
   bool operator==(const Handle&) const = default;
 };
 

@@ -16,7 +16,9 @@ namespace sylva::folding {
 /** A project file with its images, loaded and validated (errors name the file and the JSON path). */
 struct LoadedProject {
   std::string file; ///< the project file as given
+  /** The project, validated. */
   Project project;
+  /** Its images and masks. */
   ProjectImages images;
 };
 

@@ -24,9 +24,13 @@ struct PlaybackOptions {
  * phase; crossfadePhases() gives both and the weight.
  */
 double progressAt(const Profile& profile, double t, double dt);
+/** The two phases a crossfade profile blends at one time and place, and the first one's weight. */
 struct CrossfadePhases {
-  double s1 = 0.0, s2 = 0.0, w = 1.0;
+  double s1 = 0.0; ///< progress of the first phase
+  double s2 = 0.0; ///< progress of the second phase (half a cycle later)
+  double w = 1.0;  ///< weight of the first phase (the second gets 1 − w)
 };
+/** The crossfade phases of `profile` at time t (seconds) for phase offset dt (cycles). */
 CrossfadePhases crossfadePhases(const Profile& profile, double t, double dt);
 /** Applies playback overrides to the profiles (what both renderers then evaluate). */
 std::vector<Profile> applyPlayback(std::vector<Profile> profiles, const PlaybackOptions& playback);
@@ -51,6 +55,7 @@ struct LoopPeriod {
 
 /** Longest common period searched: at most this many cycles of the slowest profile, and at most kMaxLoopS. */
 inline constexpr int kMaxLoopCycles = 16;
+/** Longest common period searched, seconds. */
 inline constexpr double kMaxLoopS = 60.0;
 
 /**

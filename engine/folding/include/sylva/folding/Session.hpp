@@ -19,6 +19,8 @@ class Progress;
 
 namespace sylva::folding {
 
+/** An open folding project in the editor: the file, its undo history, its images and textures kept up to date
+ * with the edits, and autosave. */
 class Session {
 public:
   /**
@@ -45,8 +47,11 @@ public:
 
   /** The project file (absolute). */
   const std::filesystem::path& file() const { return mFile; }
+  /** The undo history (edits go through it). */
   EditHistory& history() { return mHistory; }
+  /** The current project. */
   const Project& project() const { return mHistory.project(); }
+  /** The loaded images. */
   const ProjectImages& images() const { return mImages; }
   /** Image `index` in pixels. */
   glm::ivec2 imageSize(int index) const;
@@ -80,9 +85,12 @@ public:
   bool needsFullSynthesis() const;
   /** What a background full synthesis needs: copies, so edits may go on meanwhile. */
   struct Snapshot {
+    /** The project as it is. */
     Project project;
+    /** Its images. */
     ProjectImages images;
   };
+  /** Copies of the project and images for a background synthesis. */
   Snapshot snapshot();
   /**
    * Installs textures synthesised from `from` (a snapshot's project). Edits made since leave the session

@@ -16,24 +16,34 @@ namespace sylva::folding {
 
 /** Integer pixel rectangle [min, max) (max exclusive). */
 struct Rect {
+  /** Top-left corner (inclusive). */
   glm::ivec2 min{0};
+  /** Bottom-right corner (exclusive). */
   glm::ivec2 max{0};
+  /** Columns. */
   int width() const { return max.x - min.x; }
+  /** Rows. */
   int height() const { return max.y - min.y; }
+  /** Whether it holds no pixel. */
   bool empty() const { return max.x <= min.x || max.y <= min.y; }
+  /** Whether pixel `p` lies inside. */
   bool contains(glm::ivec2 p) const { return p.x >= min.x && p.y >= min.y && p.x < max.x && p.y < max.y; }
+  /** Same corners. */
   bool operator==(const Rect&) const = default;
 };
 
 /** Where one input image lives in the atlas. */
 struct AtlasEntry {
+  /** The image's id. */
   std::string id;
   glm::ivec2 imageSize{0}; ///< full input image size, pixels
   Rect crop;               ///< the part kept, image pixels
   glm::ivec2 atlasPos{0};  ///< atlas texel of the crop's top-left
   /** Atlas texel of image pixel (0, 0) (may lie outside the atlas when the crop starts past it). */
   glm::ivec2 origin() const { return atlasPos - crop.min; }
+  /** The crop's rectangle in the atlas. */
   Rect atlasRect() const { return {atlasPos, atlasPos + glm::ivec2(crop.width(), crop.height())}; }
+  /** Every field equal. */
   bool operator==(const AtlasEntry&) const = default;
 };
 
@@ -59,6 +69,7 @@ struct Atlas {
   Image color;                     ///< RGBA8, width × height
   std::vector<AtlasEntry> entries; ///< per project image
 };
+/** Packs the project's images (cropped) into one atlas with gutters; errors name the field at fault. */
 Atlas packAtlas(const Project& project, const ProjectImages& images);
 
 /**
@@ -70,11 +81,17 @@ Atlas packAtlas(const Project& project, const ProjectImages& images);
  *  fold[k] = (t0, t1, t0', t1'): second and third fold intervals of layer k (empty: t0 = t1 = 1).
  */
 struct Textures {
+  /** The packed colour atlas and where each image is. */
   Atlas atlas;
+  /** Base read texel, phase offset and profile per texel. */
   Image init;
+  /** Jump vector and first fold interval per layer. */
   std::vector<Image> jump;
+  /** Second and third fold intervals per layer. */
   std::vector<Image> fold;
+  /** Atlas width, texels. */
   int width() const { return init.width(); }
+  /** Atlas height, texels. */
   int height() const { return init.height(); }
   /** Largest |J| component over all layers (pixels): the scale of the 16-bit encoding. */
   double jumpMax() const;
@@ -139,9 +156,11 @@ Rect anchorMoveAtlasRect(const Project& project, const Atlas& atlas, int zone, V
 
 /** 16-bit encoding (docs/folding.md "Encoding"): J ↔ 32767 + round(32767·J/jumpMax); zero is exact. */
 std::uint16_t encodeJump(double j, double jumpMax);
+/** The jump an encoded value stands for, pixels. */
 double decodeJump(std::uint16_t v, double jumpMax);
 /** Progress values in [0, 1] ↔ round(65535·t). */
 std::uint16_t encodeUnit(double t);
+/** The progress value an encoded value stands for. */
 double decodeUnit(std::uint16_t v);
 /** Which of the float textures an image is, for its 16-bit encoding. */
 enum class TextureKind : std::uint8_t { Init, Jump, Fold };
@@ -154,9 +173,13 @@ Image encode16(const Image& texture, TextureKind kind, double jumpMax);
 
 /** File names and scale of an encoded set, written as `folding.json` next to the textures. */
 struct EncodedInfo {
+  /** How the textures are stored. */
   Outputs::Encoding encoding = Outputs::Encoding::Rgba16;
+  /** The jump encoding's scale, pixels. */
   double jumpMax = 0.0;
+  /** Jump layers. */
   int layers = 1;
+  /** Whether fold textures are written. */
   bool foldLayer = false;
 };
 /**

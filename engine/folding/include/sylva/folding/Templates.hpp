@@ -26,6 +26,7 @@ enum class MotionTemplate : std::uint8_t {
 const std::vector<MotionTemplate>& motionTemplates();
 /** Its name in files and on the command line ("blink", "wave_swash", ...). */
 const char* motionTemplateName(MotionTemplate motion);
+/** The template named `name`; nullopt for any other. */
 std::optional<MotionTemplate> parseMotionTemplate(std::string_view name);
 
 /** Knobs of a template; zero means "a size that suits the zone". */

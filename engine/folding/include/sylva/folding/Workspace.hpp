@@ -49,11 +49,14 @@ public:
   /** What poll() compares (exposed for tests and diagnostics). */
   struct Signature {
     bool exists = false; ///< a regular file could be stat'ed
+    /** Device of the file (st_dev). */
     std::uint64_t device = 0;
+    /** Inode of the file (st_ino). */
     std::uint64_t inode = 0;
     std::int64_t size = 0;    ///< bytes
     std::int64_t mtimeNs = 0; ///< modification time, nanoseconds since the epoch
     std::int64_t ctimeNs = 0; ///< status-change time, nanoseconds since the epoch
+    /** Every field equal. */
     bool operator==(const Signature&) const = default;
   };
   /** The signature of `path` now (exists = false when it is missing or not a regular file). */
@@ -75,6 +78,7 @@ private:
  */
 class RecentFiles {
 public:
+  /** Most entries kept. */
   static constexpr std::size_t kMax = 10;
 
   /**
@@ -86,6 +90,7 @@ public:
   /** A list stored at `file` (empty: kept in memory only). Starts empty; call load(). */
   explicit RecentFiles(std::filesystem::path file = defaultPath());
 
+  /** Where the list is stored (empty: memory only). */
   const std::filesystem::path& file() const { return mFile; }
   /** The entries, most recent first. */
   const std::vector<std::filesystem::path>& entries() const { return mEntries; }
@@ -94,6 +99,7 @@ public:
   void add(const std::filesystem::path& path);
   /** Removes `path` (compared after making it absolute and canonical). */
   void remove(const std::filesystem::path& path);
+  /** Empties the list (save() to store that). */
   void clear() { mEntries.clear(); }
 
   /**
@@ -142,6 +148,7 @@ int launchDetached(const std::vector<std::string>& argv, std::string* error = nu
 
 /** A child started by launchDetached() that has finished. */
 struct ChildExit {
+  /** The child's process id. */
   int pid = 0;
   int exitCode = -1; ///< exit status when it exited normally, else −1
   int signal = 0;    ///< the signal that ended it, else 0

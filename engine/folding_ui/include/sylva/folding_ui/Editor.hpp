@@ -17,16 +17,16 @@ namespace sylva::folding_ui {
 struct EditorOptions {
   /** A project file (.json), or input images to start a new project from. Empty: the start screen. */
   std::vector<std::string> inputs;
-  /** Where a new project is saved (default: <first image stem>.fold.json next to the first image). */
+  /** Where a new project is saved (default: `<first image stem>.fold.json` next to the first image). */
   std::string project;
-  int width = 1600;
-  int height = 900;
-  std::string shaderDir;
-  int frames = 0;
-  std::string screenshot;
-  double fixedStep = 0.0;
-  double autosaveSeconds = 30.0;
-  bool noRecover = false;
+  int width = 1600;              ///< window width, screen pixels
+  int height = 900;              ///< window height, screen pixels
+  std::string shaderDir;         ///< read shaders from this folder (live reload) instead of the embedded ones
+  int frames = 0;                ///< scripted run: close after this many frames (0: run until closed)
+  std::string screenshot;        ///< scripted run: PNG of the last frame
+  double fixedStep = 0.0;        ///< seconds each frame advances the clock (0: real time)
+  double autosaveSeconds = 30.0; ///< seconds between autosaves of unsaved work (0: never)
+  bool noRecover = false;        ///< do not offer to recover an autosave newer than the project
   /** The recent-files list (default: $XDG_CONFIG_HOME/sylva/recent-folding.json). */
   std::string recentFile;
   /** Zoom of the canvas at start (0: fit the image). */

@@ -14,6 +14,7 @@ namespace sylva::gl {
  */
 class Buffer : public Object<detail::deleteBuffer> {
 public:
+  /** An empty wrapper (no GL object; no context needed), to be assigned later. */
   explicit Buffer(NoCreateT) {}
   /** Allocates `bytes` bytes, optionally initialised from `data`; `flags` are glBufferStorage flags. */
   explicit Buffer(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
@@ -22,9 +23,11 @@ public:
   explicit Buffer(std::span<const T> values, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT)
       : Buffer(values.size_bytes(), values.data(), flags) {}
 
+  /** Size, bytes. */
   std::size_t size() const { return mSize; }
   /** Uploads `bytes` at `offset`; the range must lie inside the buffer. */
   void setSubData(std::size_t offset, std::size_t bytes, const void* data);
+  /** Uploads a typed span at byte `offset`. */
   template <typename T> void setSubData(std::span<const T> values, std::size_t offset = 0) {
     setSubData(offset, values.size_bytes(), values.data());
   }
@@ -38,6 +41,7 @@ public:
   void bind(GLenum target) const;
   /** Reads `bytes` from `offset` back to the CPU (synchronous). */
   void getSubData(std::size_t offset, std::size_t bytes, void* out) const;
+  /** The whole buffer read back as values of T (synchronous). */
   template <typename T> std::vector<T> read() const {
     std::vector<T> out(mSize / sizeof(T));
     getSubData(0, out.size() * sizeof(T), out.data());

@@ -8,28 +8,29 @@ namespace sylva::gl {
 
 /** What the current context is and the limits Sylva relies on. */
 struct ContextInfo {
-  std::string vendor;
-  std::string renderer;
-  std::string version;
-  std::string glslVersion;
-  int major = 0;
-  int minor = 0;
-  bool coreProfile = false;
-  bool debugContext = false;
-  int maxTessGenLevel = 0;
-  int maxPatchVertices = 0;
-  int maxComputeWorkGroupCount[3] = {0, 0, 0};
-  int maxComputeWorkGroupSize[3] = {0, 0, 0};
-  int maxComputeWorkGroupInvocations = 0;
-  int maxComputeSharedMemory = 0;
-  int maxArrayTextureLayers = 0;
-  int maxTextureSize = 0;
-  int maxSamples = 0;
-  int maxShaderStorageBlockSize = 0;
-  int timestampBits = 0;
+  std::string vendor;                          ///< GL_VENDOR
+  std::string renderer;                        ///< GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string version;                         ///< GL_VERSION
+  std::string glslVersion;                     ///< GL_SHADING_LANGUAGE_VERSION
+  int major = 0;                               ///< GL major version
+  int minor = 0;                               ///< GL minor version
+  bool coreProfile = false;                    ///< a core-profile context
+  bool debugContext = false;                   ///< a debug context (KHR_debug output on)
+  int maxTessGenLevel = 0;                     ///< GL_MAX_TESS_GEN_LEVEL
+  int maxPatchVertices = 0;                    ///< GL_MAX_PATCH_VERTICES
+  int maxComputeWorkGroupCount[3] = {0, 0, 0}; ///< GL_MAX_COMPUTE_WORK_GROUP_COUNT per axis
+  int maxComputeWorkGroupSize[3] = {0, 0, 0};  ///< GL_MAX_COMPUTE_WORK_GROUP_SIZE per axis
+  int maxComputeWorkGroupInvocations = 0;      ///< GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS
+  int maxComputeSharedMemory = 0;              ///< GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, bytes
+  int maxArrayTextureLayers = 0;               ///< GL_MAX_ARRAY_TEXTURE_LAYERS
+  int maxTextureSize = 0;                      ///< GL_MAX_TEXTURE_SIZE, texels
+  int maxSamples = 0;                          ///< GL_MAX_SAMPLES
+  int maxShaderStorageBlockSize = 0;           ///< GL_MAX_SHADER_STORAGE_BLOCK_SIZE, bytes
+  int timestampBits = 0;                       ///< GL_QUERY_COUNTER_BITS of GL_TIMESTAMP (0: no timers)
 
   /** "llvmpipe" for Mesa's CPU rasteriser, otherwise "gpu": selects golden-image references. */
   std::string deviceClass() const;
+  /** The fields as JSON (`sylva info --json`). */
   nlohmann::json toJson() const;
 };
 

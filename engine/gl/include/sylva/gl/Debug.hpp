@@ -10,11 +10,11 @@ namespace sylva::gl {
 
 /** One KHR_debug message. */
 struct DebugMessage {
-  GLenum source = 0;
-  GLenum type = 0;
-  GLuint id = 0;
-  GLenum severity = 0;
-  std::string text;
+  GLenum source = 0;   ///< GL_DEBUG_SOURCE_*
+  GLenum type = 0;     ///< GL_DEBUG_TYPE_*
+  GLuint id = 0;       ///< the implementation's message id
+  GLenum severity = 0; ///< GL_DEBUG_SEVERITY_*
+  std::string text;    ///< the message
 };
 
 /**
@@ -26,6 +26,7 @@ bool enableDebugOutput();
 
 /** Messages of type GL_DEBUG_TYPE_ERROR recorded since the last clearDebugErrors(); thread-local. */
 const std::vector<DebugMessage>& debugErrors();
+/** Forgets the errors recorded so far (this thread). */
 void clearDebugErrors();
 
 /** Human-readable name of a glGetError code or framebuffer status. */

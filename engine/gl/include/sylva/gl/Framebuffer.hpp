@@ -10,6 +10,7 @@ namespace sylva::gl {
 /** Framebuffer object with DSA attachments. Move-only; does not own attached textures. */
 class Framebuffer : public Object<detail::deleteFramebuffer> {
 public:
+  /** An empty wrapper (no GL object; no context needed), to be assigned later. */
   explicit Framebuffer(NoCreateT) {}
   Framebuffer();
 

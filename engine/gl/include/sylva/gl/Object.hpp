@@ -10,6 +10,7 @@ namespace sylva::gl {
 struct NoCreateT {
   explicit constexpr NoCreateT() = default;
 };
+/** Pass to a wrapper's constructor for an empty wrapper (no GL object). */
 inline constexpr NoCreateT NoCreate{};
 
 /**
@@ -21,11 +22,14 @@ inline constexpr NoCreateT NoCreate{};
 template <void (*Deleter)(GLuint)> class Object {
 public:
   Object() = default;
+  /** Takes ownership of GL name `id`. */
   explicit Object(GLuint id) : mId(id) {}
   ~Object() { reset(); }
   Object(const Object&) = delete;
   Object& operator=(const Object&) = delete;
+  /** Takes `other`'s object; `other` is left empty. */
   Object(Object&& other) noexcept : mId(std::exchange(other.mId, 0)) {}
+  /** Deletes the object held, then takes `other`'s; `other` is left empty. */
   Object& operator=(Object&& other) noexcept {
     if (this != &other) {
       reset();
@@ -36,9 +40,11 @@ public:
 
   /** The GL name, 0 in the NoCreate state. For the gl layer and debug labels only. */
   GLuint id() const { return mId; }
+  /** Whether an object is held (not the NoCreate state). */
   explicit operator bool() const { return mId != 0; }
 
 protected:
+  /** Deletes the object held, if any. */
   void reset() {
     if (mId != 0) {
       Deleter(mId);

@@ -11,14 +11,20 @@ namespace sylva::gl {
  */
 class Query : public Object<detail::deleteQuery> {
 public:
+  /** An empty wrapper (no GL object; no context needed), to be assigned later. */
   explicit Query(NoCreateT) {}
+  /** A query of kind `target` (GL_TIME_ELAPSED, GL_SAMPLES_PASSED, …). */
   explicit Query(GLenum target);
 
+  /** The query's kind. */
   GLenum target() const { return mTarget; }
+  /** Starts counting (glBeginQuery). */
   void begin() const;
+  /** Stops counting (glEndQuery). */
   void end() const;
   /** Records the GPU timestamp (nanoseconds) when previous commands complete; target must be GL_TIMESTAMP. */
   void timestamp() const;
+  /** Whether the result is ready (never waits). */
   bool available() const;
   /** The result, waiting for it if `wait`; nullopt when not ready and not waiting. */
   std::optional<std::uint64_t> result(bool wait = true) const;
@@ -34,13 +40,16 @@ public:
   ~Sync();
   Sync(const Sync&) = delete;
   Sync& operator=(const Sync&) = delete;
+  /** Takes `other`'s fence; `other` is left empty. */
   Sync(Sync&& other) noexcept;
+  /** Deletes the fence held, then takes `other`'s. */
   Sync& operator=(Sync&& other) noexcept;
 
   /** Inserts a fence after all commands issued so far. */
   static Sync fence();
   /** Waits up to `timeoutNs` nanoseconds (flushing); true when signalled. */
   bool clientWait(std::uint64_t timeoutNs) const;
+  /** Whether a fence is held. */
   explicit operator bool() const { return mSync != nullptr; }
 
 private:

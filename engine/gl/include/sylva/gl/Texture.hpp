@@ -7,9 +7,9 @@ namespace sylva::gl {
 
 /** Sampling parameters applied with glTextureParameteri. */
 struct SamplerState {
-  GLenum minFilter = GL_LINEAR;
-  GLenum magFilter = GL_LINEAR;
-  GLenum wrap = GL_CLAMP_TO_EDGE;
+  GLenum minFilter = GL_LINEAR;   ///< GL_TEXTURE_MIN_FILTER
+  GLenum magFilter = GL_LINEAR;   ///< GL_TEXTURE_MAG_FILTER
+  GLenum wrap = GL_CLAMP_TO_EDGE; ///< GL_TEXTURE_WRAP_S/T/R
 };
 
 /**
@@ -18,6 +18,7 @@ struct SamplerState {
  */
 class Texture : public Object<detail::deleteTexture> {
 public:
+  /** An empty wrapper (no GL object; no context needed), to be assigned later. */
   explicit Texture(NoCreateT) {}
   /** A 2D texture with `levels` mip levels of `internalFormat` (e.g. GL_RGBA8, GL_R32F). */
   static Texture create2D(GLenum internalFormat, int width, int height, int levels = 1);
@@ -26,15 +27,17 @@ public:
   /** A 2D texture holding `image` (R/RG/RGB/RGBA of 8-bit, 16-bit unorm or float), optionally with mips. */
   static Texture fromImage(const Image& image, bool mipmaps = false);
 
-  GLenum target() const { return mTarget; }
-  GLenum internalFormat() const { return mFormat; }
-  int width() const { return mWidth; }
-  int height() const { return mHeight; }
-  int layers() const { return mLayers; }
+  GLenum target() const { return mTarget; }         ///< GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY or GL_TEXTURE_3D
+  GLenum internalFormat() const { return mFormat; } ///< e.g. GL_RGBA8
+  int width() const { return mWidth; }              ///< texels of level 0
+  int height() const { return mHeight; }            ///< texels of level 0
+  int layers() const { return mLayers; }            ///< array slices (or depth); 1 for 2D
 
   /** Uploads `image` into mip `level` (and `layer` for arrays); sizes must match that level. */
   void upload(const Image& image, int level = 0, int layer = 0);
+  /** Sets the filters and wrap mode. */
   void setSampler(const SamplerState& state);
+  /** Fills the mip levels below 0 from level 0 (glGenerateTextureMipmap). */
   void generateMipmaps();
   /** Binds for sampling at texture unit `unit`. */
   void bind(GLuint unit) const;
@@ -57,6 +60,7 @@ private:
 
 /** GL pixel format/type for `channels` channels of `type` (e.g. 3 × U8 → GL_RGB, GL_UNSIGNED_BYTE). */
 GLenum pixelFormatFor(int channels);
+/** GL pixel type for channel type `type` (U8 → GL_UNSIGNED_BYTE, …). */
 GLenum pixelTypeFor(PixelType type);
 /** A sized internal format that stores `channels` × `type` losslessly (e.g. GL_RGBA16, GL_R32F). */
 GLenum internalFormatFor(int channels, PixelType type);

@@ -11,6 +11,7 @@ namespace sylva::gl {
  */
 class VertexArray : public Object<detail::deleteVertexArray> {
 public:
+  /** An empty wrapper (no GL object; no context needed), to be assigned later. */
   explicit VertexArray(NoCreateT) {}
   VertexArray();
 
@@ -20,7 +21,9 @@ public:
   /** Float attribute `location` with `components` components of `type` at `offset` within binding. */
   void setAttribute(GLuint location, GLuint binding, int components, GLenum type, GLuint offset,
                     bool normalized = false);
+  /** Uses `buffer` as the index buffer of indexed draws. */
   void setElementBuffer(const Buffer& buffer);
+  /** Binds for drawing. */
   void bind() const;
 };
 

@@ -18,12 +18,15 @@ inline constexpr std::array<int, 3> kLodKnots{16, 8, 4};
 
 /** One level: knots root → tip in blade space (metres, root at the origin, +Y up, +Z the face) and widths. */
 struct BladeShapeLod {
+  /** Knot positions, blade space (metres), root first. */
   std::vector<glm::vec3> knots;
+  /** Full width at each knot, metres. */
   std::vector<float> widths;
 };
 
 /** A blade type. */
 struct BladeType {
+  /** The type's name (the blade model's name, or a procedural type's). */
   std::string name;
   /** kLodKnots.size() levels with kLodKnots[i] knots each. */
   std::array<BladeShapeLod, 3> lods;
@@ -55,7 +58,9 @@ BladeType bladeTypeFromModel(const blades::BladeModel& model, const glm::vec3& c
  * purpose.
  */
 struct BladeSizeLimits {
+  /** Shortest length, metres. */
   float minLength = 0.005f;
+  /** Longest length, metres. */
   float maxLength = 5.0f;
   float minWidth = 1e-4f; ///< of the widest knot
   float maxWidth = 0.3f;  ///< of the widest knot

@@ -33,6 +33,7 @@ struct CullSettings {
    * view direction below orientationCos) cover less than a pixel of width and are skipped.
    */
   float orientationDistance = 25.0f;
+  /** The |cos| below which a blade beyond orientationDistance counts as edge-on. */
   float orientationCos = 0.12f;
   /**
    * Near the camera the field thickens into tufts: each blade of a tile gets up to nearLayers − 1 more beside
@@ -45,6 +46,7 @@ struct CullSettings {
    * (docs/grass.md).
    */
   int nearLayers = 8;
+  /** Distance the near layers reach, metres (see nearLayers). */
   float nearDistance = 8.0f;
 };
 
@@ -66,8 +68,11 @@ enum class Fade : int { Full = 0, FadeOut = 1, FadeIn = 2 };
 
 /** A drawn instance: a blade at one level (a blade in a cross-fade band gives two). */
 struct VisibleBlade {
+  /** The blade. */
   FieldBlade blade;
+  /** Its level of detail (0: finest). */
   int lod = 0;
+  /** Whether it is drawn whole or fading in or out of a cross-fade band. */
   Fade fade = Fade::Full;
   /** Fade amount in [0, 1]. */
   float amount = 0.0f;
@@ -77,17 +82,23 @@ struct VisibleBlade {
 struct CullStats {
   /** Tiles looked at: the window of tiles within the draw distance (tileWindow). */
   std::size_t tiles = 0;
+  /** Of those, tiles inside the frustum. */
   std::size_t tilesVisible = 0;
   /** Instances in each level's list (a blade in a cross-fade band is in two lists). */
   std::array<std::size_t, 3> bladesPerLod{0, 0, 0};
   /** Distinct blades drawn. */
   std::size_t blades = 0;
+  /** Blades culled by the frustum. */
   std::size_t culledFrustum = 0;
+  /** Blades culled beyond the draw distance (or dissolved in the far fade). */
   std::size_t culledDistance = 0;
+  /** Blades culled as edge-on. */
   std::size_t culledOrientation = 0;
   /** Of the distinct blades drawn, those of the near layers (tuft blades, CullSettings::nearLayers). */
   std::size_t tuftBlades = 0;
+  /** Distinct blades drawn (as `blades`). */
   std::size_t drawn() const { return blades; }
+  /** Instances drawn over all levels (a blade in a cross-fade band counts twice). */
   std::size_t instances() const { return bladesPerLod[0] + bladesPerLod[1] + bladesPerLod[2]; }
 };
 

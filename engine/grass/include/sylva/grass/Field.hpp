@@ -29,22 +29,30 @@ struct DensitySettings {
   float base = 1.0f;
   /** Perlin density map: frequency per metre, fraction of ground it covers, and how sharp its edges are. */
   float noiseFrequency = 0.03f;
+  /** Share of the ground the noise leaves grass on, [0, 1]. */
   float coverage = 0.7f;
+  /** How sharp the noise map's edges are (a logistic slope). */
   float contrast = 8.0f;
+  /** Seed of the noise map. */
   std::uint64_t seed = 3;
   /** Heights (metres) where grass grows, faded over heightFade metres at both ends. */
   float minHeight = -std::numeric_limits<float>::infinity();
+  /** Highest height with grass, metres. */
   float maxHeight = std::numeric_limits<float>::infinity();
+  /** Metres over which grass fades out at minHeight and maxHeight. */
   float heightFade = 2.0f;
   /** Steepest slope (degrees) with grass, faded over slopeFade degrees. */
   float maxSlopeDegrees = 38.0f;
+  /** Degrees over which grass fades out below maxSlopeDegrees. */
   float slopeFade = 8.0f;
   /**
    * Optional paint mask (first channel, 0..1) over the world rectangle paintMin..paintMax (x, z metres),
    * bilinear, multiplied in; outside the rectangle the density is unchanged.
    */
   std::shared_ptr<const Image> paint;
+  /** World (x, z) of the paint mask's first pixel's corner, metres. */
   glm::vec2 paintMin{0.0f};
+  /** World (x, z) of the paint mask's opposite corner, metres. */
   glm::vec2 paintMax{0.0f};
   /**
    * Optional terrain splat layer (rules in true metres and degrees): the density is multiplied by its raw
@@ -65,6 +73,7 @@ public:
   float noise(float x, float z) const;
   /** Density at world (x, z) with terrain height (m) and slope (degrees) there, [0, 1]. */
   float at(float x, float z, float height, float slopeDegrees) const;
+  /** The settings the map was made with. */
   const DensitySettings& settings() const { return mSettings; }
 
 private:
@@ -88,8 +97,11 @@ public:
   DensityGrid(const DensityMap& map, const terrain::HeightField& terrain, float maxSpacing = 2.0f);
   /** Bilinear density at world (x, z), clamped to the edge samples. */
   float at(float x, float z) const;
+  /** Grid samples along x. */
   int width() const { return mWidth; }
+  /** Grid samples along z. */
   int height() const { return mHeight; }
+  /** Metres between grid samples along x and z. */
   glm::vec2 spacing() const { return mSpacing; }
   /** Row-major samples, width() × height(). */
   const std::vector<float>& values() const { return mValues; }
@@ -112,8 +124,11 @@ float rootHeight(const terrain::HeightField& terrain, float x, float z);
 struct FieldLayout {
   /** World (x, z) of tile (0, 0)'s corner, metres. */
   glm::vec2 origin{0.0f};
+  /** Tile side, metres. */
   float tileSize = 2.0f;
+  /** Tiles along x. */
   int tilesX = 0;
+  /** Tiles along z. */
   int tilesZ = 0;
   /** Blades a tile draws at density 1 (≤ the patch size). */
   int bladesPerTile = 64;
@@ -138,8 +153,11 @@ struct FieldBlade {
   glm::vec3 root{0.0f};
   /** Index into the patch, and the blade's position j in its tile's range. */
   std::uint32_t patchIndex = 0;
+  /** The blade's position j in its tile's range. */
   int rangeIndex = 0;
+  /** The tile's column. */
   int tileX = 0;
+  /** The tile's row. */
   int tileZ = 0;
   /** A tuft blade of the near layers (forEachTuftBlade): the range index of the field blade it stands
    * beside; −1 for the field's own blades. */

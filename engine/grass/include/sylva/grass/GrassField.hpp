@@ -17,9 +17,11 @@ namespace sylva::grass {
 
 /** How a field is made. */
 struct FieldSettings {
+  /** The patch every tile draws from. */
   PatchSettings patch;
   /** Blades a tile draws at density 1 (the paper's field: 64 per 2 m tile); at most patch.blades. */
   int bladesPerTile = 64;
+  /** Where grass grows and how dense. */
   DensitySettings density;
   /** Largest spacing of the baked density grid, metres. */
   float densitySpacing = 2.0f;
@@ -34,11 +36,17 @@ public:
    */
   GrassField(terrain::HeightField terrain, std::vector<BladeType> types, const FieldSettings& settings);
 
+  /** The terrain the blades stand on. */
   const terrain::HeightField& terrain() const { return mTerrain; }
+  /** The blade types. */
   const std::vector<BladeType>& types() const { return mTypes; }
+  /** The patch's blades as the GPU reads them. */
   const std::vector<gpu::GrassBlade>& patch() const { return mPatch; }
+  /** The grid of tiles. */
   const FieldLayout& layout() const { return mLayout; }
+  /** The density baked over the terrain. */
   const DensityGrid& density() const { return mDensity; }
+  /** The settings the field was made with. */
   const FieldSettings& settings() const { return mSettings; }
   /** Height range (min, max; min > max when the tile has no terrain) of tile (tx, tz), metres. */
   glm::vec2 tileRange(int tx, int tz) const {

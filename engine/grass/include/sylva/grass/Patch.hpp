@@ -18,9 +18,11 @@ struct PatchSettings {
   float tileSize = 2.0f;
   /** Scale range of the blades (uniform). */
   float minScale = 0.7f;
+  /** Largest blade scale. */
   float maxScale = 1.3f;
   /** Relative frequency of each blade type (one per type; empty: equal). */
   std::vector<float> typeWeights;
+  /** Seed of the blades' roots, types, scales and orientations. */
   std::uint64_t seed = 1;
 };
 

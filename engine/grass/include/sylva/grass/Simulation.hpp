@@ -39,6 +39,7 @@ struct SolverSettings {
   /** Global shape: pull towards the rest pose with this stiffness, for the knots below globalRange of the
    * blade. */
   float globalStiffness = 0.408f;
+  /** Share of each blade (from the root) that gets global shape, [0, 1]. */
   float globalRange = 0.308f;
   /**
    * Local shape stiffness per step (corrected for the iteration count when correctStiffness), and passes:
@@ -47,6 +48,7 @@ struct SolverSettings {
    * in steady wind flicker between two states; 0.6 bends within 15 % of it and is stable.
    */
   float localStiffness = 0.6f;
+  /** Local shape passes per edge. */
   int localIterations = 2;
   /** Edge-length passes (even edges, then odd). */
   int lengthIterations = 2;
@@ -69,6 +71,7 @@ struct SolverSettings {
   /** Fraction of the shape stiffness a freshly trampled blade loses; it comes back over trampleRecovery
    * seconds. */
   float trampleSoftening = 0.97f;
+  /** Seconds over which a trampled blade recovers its stiffness. */
   float trampleRecovery = 6.0f;
   /** The CPU kernel (results do not depend on it; the scalar one is for comparisons and benchmarks). */
   SolverKernel kernel = SolverKernel::Simd;
@@ -83,6 +86,7 @@ struct SolverSettings {
  * (GrassSimUniforms) use these same values.
  */
 struct SolverConstants {
+  /** Δt of one step, seconds. */
   float dt = 0.0f;
   /** Fraction of the velocity kept per step, exp(−d·Δt·60). */
   float keep = 1.0f;
@@ -90,26 +94,37 @@ struct SolverConstants {
   float gravityStep = 0.0f;
   /** Largest move of a knot per step (maxSpeed·Δt), metres. */
   float maxStep = 0.0f;
+  /** Global shape stiffness per step. */
   float global = 0.0f;
   /** Knots with index < globalKnots get global shape. */
   float globalKnots = 0.0f;
   /** ½·min(s', 0.95) with s' the (corrected) per-pass local stiffness. */
   float localShare = 0.0f;
+  /** SolverSettings::windDrag. */
   float windDrag = 0.0f;
+  /** SolverSettings::trampleMass, kg. */
   float trampleMass = 0.0f;
+  /** SolverSettings::trampleSoftening. */
   float softening = 0.0f;
   /** Trample lost per step, Δt / recovery time. */
   float recoveryStep = 0.0f;
+  /** Local shape passes per step. */
   int localPasses = 1;
+  /** Edge-length passes per step. */
   int lengthPasses = 1;
+  /** The CPU kernel. */
   SolverKernel kernel = SolverKernel::Simd;
 };
+/** The constants of one step for `settings`. */
 SolverConstants solverConstants(const SolverSettings& settings);
 
 /** A body's collision shape for the blades, world metres: a capsule from a to b (a sphere when a == b). */
 struct BladeCollider {
+  /** One end of the capsule's axis, world metres. */
   glm::vec3 a{0.0f};
+  /** The other end (equal to a for a sphere). */
   glm::vec3 b{0.0f};
+  /** Capsule radius, metres. */
   float radius = 0.0f;
   /** kg (0 = static or unknown): heavy bodies trample. */
   float mass = 0.0f;
@@ -121,10 +136,15 @@ struct BladeCollider {
  * (0..1).
  */
 struct SimBlades {
+  /** Knot positions now, world metres. */
   std::vector<glm::vec3> position;
+  /** Knot positions one step ago. */
   std::vector<glm::vec3> previous;
+  /** The rest pose the blade returns to. */
   std::vector<glm::vec3> rest;
+  /** How trampled each blade is (0..1). */
   std::vector<float> trample;
+  /** Blades held. */
   std::size_t count() const { return trample.size(); }
   /** Appends a blade at rest: position = previous = rest = `pose` (kSimKnots knots), not trampled. */
   void add(const std::vector<glm::vec3>& pose);
@@ -153,7 +173,9 @@ struct GroundShortcuts {
   /** Inside [lo, hi] (world x, z, metres) the ground is nowhere higher than `ceiling` (metres), so knots
    * there above the ceiling need no lookup. */
   glm::vec2 lo{1.0f};
+  /** Upper corner of that rectangle (lo > hi: none). */
   glm::vec2 hi{0.0f};
+  /** Highest ground inside [lo, hi], metres. */
   float ceiling = 0.0f;
 };
 

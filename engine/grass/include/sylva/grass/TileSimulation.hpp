@@ -32,16 +32,21 @@ struct PoolSettings {
 
 /** A body as the tile manager sees it: its collision shape and bounding box (world metres). */
 struct SimBody {
+  /** Collision shape. */
   BladeCollider shape;
+  /** Bounding box, world metres. */
   Aabb box;
 };
 
 /** One slot of the pool. */
 struct SimSlot {
+  /** Whether the slot holds a tile. */
   bool used = false;
+  /** The tile it holds (column, row). */
   glm::ivec2 tile{0};
   /** 0 while simulated; rises to 1 over the release ramp, then the slot is freed. */
   float release = 0.0f;
+  /** True while the slot is being released. */
   bool releasing = false;
   /** Simulation time until which the tile counts as trampled (a heavy body was near): it is not released
    * before, so bent blades stay bent and stand up again under simulation. */
@@ -63,14 +68,19 @@ struct SimFocus {
 
 /** What the last advance() did. */
 struct SimStats {
+  /** Tiles simulated in the last step. */
   std::size_t activeTiles = 0;
+  /** Blades simulated in the last step. */
   std::size_t simulatedBlades = 0;
   /** Tiles in the pool not stepped in the last step: beyond the focus, held as they were (setFocus). */
   std::size_t heldTiles = 0;
   /** Tiles near a body that got no slot (pool exhausted) in the last step. */
   std::size_t refusedTiles = 0;
+  /** Tiles that got a slot in the last advance(). */
   std::size_t activations = 0;
+  /** Tiles released in the last advance(). */
   std::size_t releases = 0;
+  /** Fixed steps run by the last advance(). */
   int steps = 0;
 };
 
@@ -97,6 +107,7 @@ public:
 /** The tile manager and its blades. */
 class TileSimulation {
 public:
+  /** A manager for `field` with a pool of `pool.tiles` slots, stepped with `solver`. */
   TileSimulation(std::shared_ptr<const GrassField> field, const PoolSettings& pool,
                  const SolverSettings& solver);
 
@@ -127,13 +138,18 @@ public:
    * view). Null (the default): every tile is stepped, and a sequence's state depends only on its times.
    */
   void setFocus(std::optional<SimFocus> focus);
+  /** The focus set by setFocus(). */
   const std::optional<SimFocus>& focus() const { return mFocus; }
   /** Runs the steps on `backend` instead of the CPU (null: the CPU reference). Not owned. */
   void setBackend(SimulationBackend* backend) { mBackend = backend; }
 
+  /** The field simulated. */
   const GrassField& field() const { return *mField; }
+  /** The pool's settings. */
   const PoolSettings& pool() const { return mPool; }
+  /** The solver's settings. */
   const SolverSettings& solver() const { return mSolver; }
+  /** The pool's slots. */
   const std::vector<SimSlot>& slots() const { return mSlots; }
   /** The pool's blades, slot-major: slot s holds blades [s·bladesPerTile, (s + 1)·bladesPerTile). */
   const SimBlades& blades() const { return mBlades; }
@@ -141,14 +157,18 @@ public:
   bool bladeInUse(std::size_t i) const { return mPatchIndex[i] != kUnused; }
   /** Patch index of pool blade i (kUnused when not in use). */
   std::uint32_t patchIndex(std::size_t i) const { return mPatchIndex[i]; }
+  /** Root of pool blade i, world metres. */
   glm::vec3 root(std::size_t i) const { return mRoot[i]; }
   /** Slot of tile (tx, tz), or −1. */
   int slotOf(glm::ivec2 tile) const;
+  /** What the last advance() did. */
   const SimStats& stats() const { return mStats; }
   /** Simulation time reached, seconds. */
   double time() const { return mTime; }
+  /** Blades per tile in the pool. */
   int bladesPerTile() const { return mPerTile; }
 
+  /** patchIndex() of a pool blade not in use. */
   static constexpr std::uint32_t kUnused = 0xffffffffu;
 
 private:

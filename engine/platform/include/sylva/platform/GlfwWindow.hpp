@@ -15,12 +15,12 @@ namespace sylva::platform {
 
 /** Input state of one frame, in window pixels (origin top-left). */
 struct InputState {
-  glm::dvec2 cursor{0.0};
-  glm::dvec2 cursorDelta{0.0};
-  double scrollDelta = 0.0;
-  bool mouseLeft = false;
-  bool mouseRight = false;
-  bool mouseMiddle = false;
+  glm::dvec2 cursor{0.0};      ///< cursor position, window pixels
+  glm::dvec2 cursorDelta{0.0}; ///< cursor movement since the last frame, window pixels
+  double scrollDelta = 0.0;    ///< vertical wheel steps since the last frame (positive: away from the user)
+  bool mouseLeft = false;      ///< left button held
+  bool mouseRight = false;     ///< right button held
+  bool mouseMiddle = false;    ///< middle button held
 };
 
 /** A window with an OpenGL 4.5 core context (GLFW). Requires a display (X11/Wayland, or Xvfb headless). */
@@ -47,11 +47,13 @@ public:
   bool pollEvents();
   /** Framebuffer size in pixels (may differ from window size on HiDPI). */
   glm::ivec2 framebufferSize() const;
+  /** This frame's input (updated by pollEvents()). */
   const InputState& input() const { return mInput; }
   /** True while `key` (GLFW_KEY_*) is held. */
   bool keyDown(int key) const;
   /** Called on key press with the GLFW key code. */
   void setKeyCallback(std::function<void(int key, int mods)> callback) { mKeyCallback = std::move(callback); }
+  /** Waits for the display's vertical refresh on swapBuffers() (true) or not. */
   void setVsync(bool enabled);
   /** The underlying GLFW handle, for the ImGui backend only. */
   GLFWwindow* handle() const { return mWindow; }

@@ -12,12 +12,14 @@ namespace sylva::render {
  * kMaxZoom].
  */
 struct CanvasView {
-  static constexpr double kMinZoom = 1.0 / 8.0;
-  static constexpr double kMaxZoom = 32.0;
-  double zoom = 1.0;      ///< screen pixels per image pixel
-  glm::dvec2 offset{0.0}; ///< screen position of image point (0, 0)
+  static constexpr double kMinZoom = 1.0 / 8.0; ///< smallest zoom, screen pixels per image pixel
+  static constexpr double kMaxZoom = 32.0;      ///< largest zoom
+  double zoom = 1.0;                            ///< screen pixels per image pixel
+  glm::dvec2 offset{0.0};                       ///< screen position of image point (0, 0)
 
+  /** Screen position of image point `image`. */
   glm::dvec2 toScreen(glm::dvec2 image) const { return offset + zoom * image; }
+  /** Image point under screen position `screen`. */
   glm::dvec2 toImage(glm::dvec2 screen) const { return (screen - offset) / zoom; }
   /** Multiplies the zoom by `factor` (clamped) keeping the image point under `screenPoint` fixed. */
   void zoomAround(glm::dvec2 screenPoint, double factor);

@@ -31,13 +31,13 @@ enum class Atmosphere {
 /** Lighting and atmosphere of a frame (linear colours). */
 struct Environment {
   glm::vec3 sunDirection = glm::normalize(glm::vec3(0.45f, 0.7f, 0.3f)); ///< towards the sun, world space
-  float sunIntensity = 1.1f;
-  glm::vec3 fogColor{0.62f, 0.72f, 0.85f};
-  float fogDensity = 0.0012f; ///< per metre
-  Atmosphere atmosphere = Atmosphere::Fog;
-  float turbidity = 3.0f; ///< sky turbidity (2 clear .. 10 hazy), Atmosphere::Sky only
-  float exposure = 1.0f;  ///< scale on sky radiance, Atmosphere::Sky only
-  ShadowFrame shadows;    ///< no shadows by default
+  float sunIntensity = 1.1f;                                             ///< sun radiance multiplier
+  glm::vec3 fogColor{0.62f, 0.72f, 0.85f};                               ///< linear colour of Atmosphere::Fog
+  float fogDensity = 0.0012f;                                            ///< per metre
+  Atmosphere atmosphere = Atmosphere::Fog; ///< plain fog or the analytic sky's aerial perspective
+  float turbidity = 3.0f;                  ///< sky turbidity (2 clear .. 10 hazy), Atmosphere::Sky only
+  float exposure = 1.0f;                   ///< scale on sky radiance, Atmosphere::Sky only
+  ShadowFrame shadows;                     ///< no shadows by default
   /**
    * The frame block a frame path (scene::ScenePasses) already uploaded for the camera it is drawing with,
    * from this environment, the pass's target size and time (GL side, FrameUniforms.hpp). Renderers bind it

@@ -16,18 +16,19 @@ namespace sylva::render {
  * among compared pixels exceeds `maxFailingFraction`.
  */
 struct Tolerance {
-  int maxChannelDiff = 0;
-  double maxFailingFraction = 0.0;
+  int maxChannelDiff = 0;          ///< 8-bit steps a channel may differ by
+  double maxFailingFraction = 0.0; ///< share of pixels (0..1) that may fail
 };
 
 /** Outcome of comparing an actual image with a reference. */
 struct CompareResult {
-  bool sizeMatches = true;
-  bool passed = false;
-  int maxChannelDiff = 0;     ///< largest difference seen, 8-bit steps
-  double meanChannelDiff = 0; ///< mean absolute difference over compared channels, 8-bit steps
-  std::size_t comparedPixels = 0;
-  std::size_t failingPixels = 0;
+  bool sizeMatches = true;        ///< false: the sizes differ and nothing was compared
+  bool passed = false;            ///< within the tolerance
+  int maxChannelDiff = 0;         ///< largest difference seen, 8-bit steps
+  double meanChannelDiff = 0;     ///< mean absolute difference over compared channels, 8-bit steps
+  std::size_t comparedPixels = 0; ///< pixels compared
+  std::size_t failingPixels = 0;  ///< of those, over maxChannelDiff
+  /** failingPixels / comparedPixels (0 with nothing compared). */
   double failingFraction() const {
     return comparedPixels == 0 ? 0.0
                                : static_cast<double>(failingPixels) / static_cast<double>(comparedPixels);
@@ -35,6 +36,7 @@ struct CompareResult {
   /** Visual diff: grey reference with failing pixels red (intensity ∝ difference), passing differences blue.
    */
   Image diff;
+  /** The figures above and `tolerance`, for golden-test reports. */
   nlohmann::json toJson(const Tolerance& tolerance) const;
 };
 

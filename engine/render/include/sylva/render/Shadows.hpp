@@ -10,7 +10,7 @@
 
 namespace sylva::render {
 
-/** How the sun's cascaded shadow maps cover a view (docs/scenes.md#shadows). */
+/** How the sun's cascaded shadow maps cover a view (docs/scenes.md, "Shadows"). */
 struct ShadowSettings {
   int cascades = 3;        ///< 1..4 cascades (layers of the shadow-map array)
   int size = 2048;         ///< texels per side of each cascade
@@ -45,6 +45,7 @@ struct ShadowCascade {
 
 /** The cascades of one frame. */
 struct ShadowCascades {
+  /** Nearest first. */
   std::vector<ShadowCascade> cascades;
   /** Split depths along the view direction, metres: cascades + 1 values from the near plane to the far end.
    */

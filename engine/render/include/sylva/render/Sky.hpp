@@ -55,10 +55,11 @@ float perezDistribution(const std::array<float, 5>& coefficients, float cosTheta
 
 /** Preetham's Perez coefficients A..E for luminance Y and chromaticities x, y at `turbidity`. */
 struct PerezCoefficients {
-  std::array<float, 5> Y;
-  std::array<float, 5> x;
-  std::array<float, 5> y;
+  std::array<float, 5> Y; ///< A..E of luminance
+  std::array<float, 5> x; ///< A..E of chromaticity x
+  std::array<float, 5> y; ///< A..E of chromaticity y
 };
+/** The Perez coefficients at `turbidity` (Preetham et al. 1999). */
 PerezCoefficients perezCoefficients(float turbidity);
 
 /** Zenith luminance (kcd/m²) and chromaticity (x, y) for `turbidity` and the sun's zenith angle (radians). */
@@ -132,11 +133,12 @@ struct FlareGhost {
 
 /** The flare's ghost table: position t along sun → centre (0 = sun, 1 = screen centre, 2 = mirrored sun). */
 struct FlareGhostDesc {
-  float t;
-  float radius;
-  glm::vec3 colour;
-  int halo;
+  float t;          ///< position along sun → screen centre
+  float radius;     ///< NDC y units, as FlareGhost::radius
+  glm::vec3 colour; ///< linear tint
+  int halo;         ///< 1: the glow around the sun, 0: a ghost
 };
+/** Ghosts of the lens flare. */
 inline constexpr int kFlareGhostCount = 8;
 /** The table, shared with shaders/render/flare.vert (same values and order). */
 const std::array<FlareGhostDesc, kFlareGhostCount>& flareGhostTable();

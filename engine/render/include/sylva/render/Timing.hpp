@@ -12,13 +12,15 @@ namespace sylva::render {
 
 /** Median, spread (min, max, p10, p90) of samples; for `sylva bench` reports. */
 struct Stats {
-  double median = 0.0;
-  double min = 0.0;
-  double max = 0.0;
-  double p10 = 0.0;
-  double p90 = 0.0;
-  std::size_t count = 0;
+  double median = 0.0;   ///< middle sample
+  double min = 0.0;      ///< smallest sample
+  double max = 0.0;      ///< largest sample
+  double p10 = 0.0;      ///< 10th percentile
+  double p90 = 0.0;      ///< 90th percentile
+  std::size_t count = 0; ///< samples
+  /** The statistics of `samples` (all 0 when empty). */
   static Stats of(std::vector<double> samples);
+  /** The fields as a JSON object. */
   nlohmann::json toJson() const;
 };
 
@@ -34,6 +36,7 @@ public:
   double tick();
   /** Seconds since start (fixed: frames × step). */
   double time() const { return mTime; }
+  /** Whether the clock steps by a fixed amount. */
   bool fixed() const { return mFixedStep > 0.0; }
 
 private:

@@ -70,7 +70,9 @@ public:
   int update(double frameMs);
   /** The step the next frame is drawn at. */
   int step() const { return mStep; }
+  /** How many steps the governor chooses from. */
   std::size_t steps() const { return mHold.size(); }
+  /** The settings the governor was made with. */
   const GovernorSettings& settings() const { return mSettings; }
   /** Starts again at `step` (clamped to the ladder) with nothing measured and nothing barred. */
   void reset(int step = 0);

@@ -19,6 +19,7 @@ struct SceneCheck {
   std::size_t forests = 0; ///< forests
   std::size_t water = 0;   ///< water bodies
   int terrainWidth = 0;    ///< samples of the terrain that loaded (0: it did not)
+  /** Rows of the terrain that loaded (0: it did not). */
   int terrainHeight = 0;
 };
 

@@ -133,7 +133,9 @@ struct WaterDesc {
 
 /** One rigid body. */
 struct BodyDesc {
+  /** A ball (radius) or a box (half extents). */
   enum class Shape { Ball, Box };
+  /** The body's shape. */
   Shape shape = Shape::Ball;
   Vec3Ground position;         ///< centre, world metres
   glm::vec3 velocity{0.0f};    ///< metres per second
@@ -147,6 +149,7 @@ struct BodyDrop {
   glm::vec2 centre{0.0f}; ///< (x, z) metres
   float radius = 2.0f;    ///< disc radius, metres
   int count = 8;          ///< balls
+  /** Seed of where in the disc each ball drops. */
   std::uint64_t seed = 1;
   float height = 1.0f; ///< metres above the terrain
 };
@@ -181,6 +184,7 @@ struct WindDesc {
   float speed = 3.0f;      ///< metres per second
   float direction = 30.0f; ///< degrees clockwise from north, the direction the wind blows TOWARDS
   float gusts = 0.8f;      ///< gust strength, [0, 4]
+  /** Seed of the gusts and turbulence. */
   std::uint64_t seed = 5;
 };
 
@@ -205,15 +209,20 @@ enum class GrassSolve {
 
 /** How simulated grass runs (code only: `--grass-sim`, `--grass-pool`, `--trample-recovery`). */
 struct GrassSimSettings {
+  /** The pool of simulated tiles: how many at once, how released tiles return to rest. */
   grass::PoolSettings pool;
+  /** The constraint solver's step rate, damping and stiffness. */
   grass::SolverSettings solver;
+  /** Where the solver runs: the GPU, the CPU, or Auto (the CPU on a software rasteriser). */
   GrassSolve solve = GrassSolve::Auto;
 };
 
 /** A camera key. */
 struct CameraKey {
   double time = 0.0; ///< seconds; strictly increasing along a path
+  /** Where the camera is at this key. */
   Vec3Ground position;
+  /** What the camera looks at at this key. */
   Vec3Ground target;
   float fov = 50.0f; ///< vertical field of view, degrees, (0, 179)
 };
@@ -238,22 +247,34 @@ struct OutputDesc {
 struct SceneDesc {
   std::string path; ///< the scene file (as given to loadScene / parseScene)
   std::string name; ///< "name" in the file; default: the file's stem
+  /** The terrain. */
   TerrainDesc terrain;
+  /** Grass layers, drawn in order. */
   std::vector<GrassLayer> grass;
+  /** Forests. */
   std::vector<ForestDesc> forests;
+  /** Water planes (lakes, sea). */
   std::vector<WaterDesc> water;
+  /** Rigid bodies at the start. */
   std::vector<BodyDesc> bodies;
+  /** Balls dropped into the grass at given times. */
   std::vector<BodyDrop> drops;
+  /** The sun. */
   SunDesc sun;
+  /** The sky model. */
   SkyDesc sky;
+  /** Fog. */
   FogDesc fog;
+  /** The wind shared by grass and trees. */
   WindDesc wind;
+  /** Sun shadows. */
   ShadowDesc shadows;
   GrassSimSettings grassSim; ///< code only
   /** Code only: names a field in errors from its JSON pointer ("/grass/0/paint" → "--grass-paint"); empty:
    * "<path>: <pointer>", as for a file. */
   std::function<std::string(std::string_view pointer)> fieldNames;
   std::map<std::string, CameraDesc> cameras; ///< at least the output camera
+  /** What is rendered: size, frames, frame rate, camera, files. */
   OutputDesc output;
 };
 

@@ -65,6 +65,8 @@ grass::FieldSettings grassFieldSettings(const GrassLayer& layer, const GrassGrou
  */
 int simulatedGrassLayer(const SceneDesc& scene);
 
+/** The blade types of a grass layer: its blade-model files, or the procedural blade; errors name the layer's
+ * field. */
 std::vector<grass::BladeType> grassBladeTypes(const GrassLayer& layer, const GrassFieldName& name);
 
 /**

@@ -28,7 +28,9 @@ struct FrameRange {
 
 /** Shard `index` of `count` (0 ≤ index < count ≤ 4096). */
 struct Shard {
+  /** This shard, counted from 0. */
   int index = 0;
+  /** How many shards the frames are split into. */
   int count = 1;
 };
 
@@ -84,7 +86,7 @@ struct SequenceJob {
   std::string frames;        ///< "A-B[,C-D...]"; empty: a still of the output's first frame
   std::string shard = "0/1"; ///< i/n
   std::string camera;        ///< empty: the file's output camera
-  std::string out;           ///< a PNG (still) or a directory (sequence); empty: out/<name>[.png]
+  std::string out;           ///< a PNG (still) or a directory (sequence); empty: `out/<name>[.png]`
   std::string gif;           ///< also write the sequence as an animated GIF here
   std::string mp4;           ///< also encode the sequence as MP4 here (the ffmpeg program)
   int width = 0;             ///< 0: the file's output width, pixels
@@ -94,9 +96,11 @@ struct SequenceJob {
 
 /** A job checked against its scene file, with the frames still to draw. */
 struct SequencePlan {
+  /** The job as asked for. */
   SequenceJob job;
   SceneDesc desc; ///< the loaded scene
   int width = 0;  ///< output size, pixels
+  /** Output height, pixels. */
   int height = 0;
   std::string camera;        ///< the camera drawn
   bool sequence = false;     ///< frames to a directory (else one still to a PNG)

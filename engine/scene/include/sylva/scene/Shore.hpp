@@ -88,6 +88,8 @@ struct SwashCoords {
   glm::vec2 uv[2]{}; ///< frame coordinates for the two directions around the uphill angle
   float mix = 0.0f;  ///< weight of uv[1] (uv[0] gets 1 − mix)
 };
+/** The swash texture coordinates at world (x, z) for water `depth` metres deep with the terrain's height
+ * `gradient` there. */
 SwashCoords swashCoords(glm::vec2 xz, float depth, glm::vec2 gradient, const ShoreSettings& settings,
                         float aspect);
 
@@ -96,10 +98,15 @@ SwashCoords swashCoords(glm::vec2 xz, float depth, glm::vec2 gradient, const Sho
  * column may be shorter), cellsX × cellsZ of them, so at most maxCells per axis.
  */
 struct WaterGrid {
+  /** Height-field samples per water grid cell side. */
   int stride = 1;
+  /** Water grid cells along x. */
   int cellsX = 1;
+  /** Water grid cells along z. */
   int cellsZ = 1;
 };
+/** The water grid over a field of the given samples: the smallest stride with at most `maxCells` cells along
+ * its longer side. */
 WaterGrid waterGrid(int fieldWidth, int fieldHeight, int maxCells);
 
 /**

@@ -11,9 +11,9 @@ namespace sylva::shader {
 /** A program to build: stage files (stage from the extension: .vert .tesc .tese .geom .frag .comp) + defines.
  */
 struct ProgramDesc {
-  std::string label;
-  std::vector<std::string> stages;
-  Defines defines;
+  std::string label;               ///< name in errors and in GL debug labels
+  std::vector<std::string> stages; ///< library paths of the stage files, e.g. "terrain/terrain.vert"
+  Defines defines;                 ///< emitted after `#version` in every stage
 };
 
 /** GL stage enum for a file name by extension; throws sylva::Error for unknown extensions. */

@@ -26,7 +26,9 @@ public:
   std::vector<std::string> list() const;
   /** Switches to reading from `directory` (empty path = embedded copies). */
   void setDirectory(std::filesystem::path directory) { mDirectory = std::move(directory); }
+  /** The disk directory read from; empty for the embedded copies. */
   const std::filesystem::path& directory() const { return mDirectory; }
+  /** True when reading the copies embedded at build time. */
   bool embedded() const { return mDirectory.empty(); }
 
   /** The source tree's shaders/ directory recorded at build time (may not exist on an installed machine). */

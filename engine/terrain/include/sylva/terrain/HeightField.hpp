@@ -20,23 +20,30 @@ public:
       : mWidth(width), mHeight(height), mSpacingX(spacingX), mSpacingZ(spacingZ),
         mHeights(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill) {}
 
-  int width() const { return mWidth; }
-  int height() const { return mHeight; }
-  float spacingX() const { return mSpacingX; }
-  float spacingZ() const { return mSpacingZ; }
+  int width() const { return mWidth; }         ///< samples along x (columns)
+  int height() const { return mHeight; }       ///< samples along z (rows)
+  float spacingX() const { return mSpacingX; } ///< metres between columns
+  float spacingZ() const { return mSpacingZ; } ///< metres between rows
+  /** Sets the metres between columns (x) and rows (z). */
   void setSpacing(float x, float z) {
     mSpacingX = x;
     mSpacingZ = z;
   }
   /** World extent covered by the samples, metres: (width - 1) · spacingX. */
   float extentX() const { return static_cast<float>(mWidth - 1) * mSpacingX; }
+  /** World extent along z, metres: (height - 1) · spacingZ. */
   float extentZ() const { return static_cast<float>(mHeight - 1) * mSpacingZ; }
 
+  /** Height of sample (i, j), metres (NaN: absent); no bounds checks. */
   float at(int i, int j) const { return mHeights[index(i, j)]; }
+  /** Height of sample (i, j), metres, for writing; no bounds checks. */
   float& at(int i, int j) { return mHeights[index(i, j)]; }
+  /** Whether sample (i, j) is present (not NaN). */
   bool valid(int i, int j) const { return !std::isnan(at(i, j)); }
 
+  /** All heights, row-major (row j = z index), width × height values. */
   const std::vector<float>& samples() const { return mHeights; }
+  /** All heights, row-major, for writing. */
   std::vector<float>& samples() { return mHeights; }
 
 private:

@@ -100,6 +100,8 @@ struct LoadOptions {
    * texture for a renderer. `maxSideReason` says why, in the error message.
    */
   int maxSide = kMaxHeightFieldSide;
+  /** Why maxSide is what it is, for the error (e.g. "the GPU's largest texture"); empty: the default limit.
+   */
   std::string maxSideReason;
 };
 
@@ -115,8 +117,10 @@ struct LoadReport {
   /** Degrees only: the latitude at which degrees became metres, and the rows' latitude range; NaN if unknown.
    */
   double centreLatitude = std::numeric_limits<double>::quiet_NaN();
-  double southLatitude = std::numeric_limits<double>::quiet_NaN();
-  double northLatitude = std::numeric_limits<double>::quiet_NaN();
+  double southLatitude =
+      std::numeric_limits<double>::quiet_NaN(); ///< degrees: the southernmost row's latitude
+  double northLatitude =
+      std::numeric_limits<double>::quiet_NaN(); ///< degrees: the northernmost row's latitude
   /** Degrees only: largest relative error of east-west distances over the rows (0.04 = 4 %). */
   double eastWestError = 0.0;
   /** How rows map to north: "row 0 is north (file order)", "flipped: latitude rises with the row", ... */

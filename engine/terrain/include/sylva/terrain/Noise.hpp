@@ -29,6 +29,7 @@ struct ProceduralSpec {
 
   /** Seed of all permutation tables and octave offsets; the same seed gives the same heights everywhere. */
   std::uint64_t seed = 1;
+  /** Which noise: plain fBm, ridged multifractal or domain-warped fBm. */
   Type type = Type::Fbm;
   /** Number of octaves, 1..16. */
   int octaves = 6;
@@ -43,6 +44,7 @@ struct ProceduralSpec {
   /** Height of noise value 1, metres (> 0): heights lie in [0, heightScale]. */
   float heightScale = 200.0f;
 
+  /** Every field equal. */
   bool operator==(const ProceduralSpec&) const = default;
 };
 
@@ -60,7 +62,7 @@ inline constexpr float kDefaultProceduralSpacing = 2.0f;
 /** "fbm", "ridged" or "warped". */
 const char* procedureTypeName(ProceduralSpec::Type type);
 
-/** Throws sylva::Error `<where>: field '<name>' ...` if a parameter is out of range. */
+/** Throws sylva::Error `WHERE: field 'NAME' ...` if a parameter is out of range. */
 void validate(const ProceduralSpec& spec, const std::string& where = "procedural spec");
 
 /**
@@ -73,6 +75,7 @@ public:
   /** Validates `spec` (throws sylva::Error naming the field) and builds the tables. */
   explicit ProceduralNoise(const ProceduralSpec& spec);
 
+  /** The spec the noise was made from. */
   const ProceduralSpec& spec() const { return mSpec; }
 
   /**
@@ -117,7 +120,7 @@ nlohmann::json toJson(const ProceduralSpec& spec);
 
 /**
  * Parses a spec from JSON. `version` (1) is required; other fields default to ProceduralSpec's values;
- * unknown fields are errors (typos). Throws sylva::Error `<where>: field '<name>': <reason>`.
+ * unknown fields are errors (typos). Throws sylva::Error `WHERE: field 'NAME': REASON`.
  */
 ProceduralSpec proceduralSpecFromJson(const nlohmann::json& json, const std::string& where);
 

@@ -142,6 +142,7 @@ struct NodeId {
   int gridX = 0;
   /** Grid index along z at that depth. */
   int gridZ = 0;
+  /** Same depth and grid indices. */
   bool operator==(const NodeId&) const = default;
 };
 

@@ -30,6 +30,7 @@ enum class BorderMode {
 
 /** Options of sobelNormalMap. */
 struct SobelOptions {
+  /** What the neighbours outside the field are: the edge sample (Clamp), or a constant height. */
   BorderMode border = BorderMode::Clamp;
   /** Height in metres of every outside neighbour with BorderMode::Constant. */
   float constantHeight = 0.0f;
@@ -58,17 +59,20 @@ Image sobelNormalMap(const HeightField& field, const SobelOptions& options = {})
 struct SplatLayer {
   /** Unique, non-empty name (e.g. the texture it selects). */
   std::string name;
-  /** Height range, metres (minHeight ≤ maxHeight). */
+  /** Lowest height of the layer, metres (minHeight ≤ maxHeight). */
   float minHeight = -1.0e9f;
+  /** Highest height of the layer, metres. */
   float maxHeight = 1.0e9f;
-  /** Slope range, degrees from horizontal: 0 = flat, 90 = vertical (minSlope ≤ maxSlope). */
+  /** Least slope, degrees from horizontal: 0 = flat, 90 = vertical (minSlope ≤ maxSlope). */
   float minSlope = 0.0f;
+  /** Steepest slope, degrees from horizontal. */
   float maxSlope = 90.0f;
   /** Width of the soft edge at minHeight/maxHeight, metres (≥ 0; 0 = hard edge). */
   float heightBlend = 0.0f;
   /** Width of the soft edge at minSlope/maxSlope, degrees (≥ 0; 0 = hard edge). */
   float slopeBlend = 0.0f;
 
+  /** Every field equal. */
   bool operator==(const SplatLayer&) const = default;
 };
 
@@ -133,7 +137,7 @@ nlohmann::json splatLayersToJson(std::span<const SplatLayer> layers);
 /**
  * Parses layer rules. `version` (1) and `layers` (1..64 objects, each with a unique non-empty `name`) are
  * required; other layer fields default to SplatLayer's values; unknown fields are errors. Throws sylva::Error
- * `<where>: field 'layers[2].maxSlope': <reason>`.
+ * `WHERE: field 'layers[2].maxSlope': REASON`.
  */
 std::vector<SplatLayer> splatLayersFromJson(const nlohmann::json& json, const std::string& where);
 

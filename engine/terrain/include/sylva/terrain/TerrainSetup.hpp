@@ -24,10 +24,13 @@ namespace sylva::terrain {
 struct TerrainSource {
   /** Height file (PNG, GeoTIFF and other GDAL rasters, .npy/.npz); empty = procedural. */
   std::filesystem::path dem;
+  /** How the DEM is read (units, limits, array name). */
   LoadOptions load;
+  /** The procedural generator's parameters (with no DEM). */
   ProceduralSpec procedural = defaultProcedural();
-  /** Procedural field size in samples per side, and spacing in metres. */
+  /** Procedural field size in samples along x (and z unless proceduralRows). */
   int proceduralSize = 1025;
+  /** Procedural sample spacing, metres. */
   float proceduralSpacing = 2.0f;
   /** Samples along z of a rectangular procedural field (proceduralSize along x); 0: square. */
   int proceduralRows = 0;
@@ -60,7 +63,9 @@ using TerrainFieldName = FieldName;
 /** Where the sea is: from the data (0 m when the heights go below 0 m, else none), nowhere, or at a height.
  */
 struct SeaLevelRule {
+  /** Auto: 0 m when the heights go below 0 m, else none; None: no sea; Metres: at `metres`. */
   enum class Kind { Auto, None, Metres };
+  /** Which rule. */
   Kind kind = Kind::Auto;
   /** Metres (true heights) for Kind::Metres. */
   float metres = 0.0f;
@@ -71,11 +76,13 @@ struct SeaLevelRule {
 
 /** A terrain to build: heights, presentation and quadtree layout. */
 struct TerrainSetup {
+  /** Where the heights come from. */
   TerrainSource source;
   /** Splat rules (JSON, loadSplatLayers); empty: the default sand/grass/snow/rock rules. */
   std::filesystem::path layersFile;
   /** Vertical exaggeration: heights are drawn × this, (0, 1000]. */
   float exaggeration = 1.0f;
+  /** Where the sea is. */
   SeaLevelRule seaLevel;
   /** Geomorphing between LOD levels in the scene's draw options. */
   bool geomorph = false;

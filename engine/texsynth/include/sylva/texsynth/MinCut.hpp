@@ -14,10 +14,11 @@ namespace sylva::texsynth {
  * usually e = ‖B1 − B2‖² over the colour channels of the overlapping texels.
  */
 struct ErrorSurface {
-  int rows = 0;
-  int cols = 0;
-  std::vector<double> values;
+  int rows = 0;               ///< rows of the overlap region
+  int cols = 0;               ///< columns of the overlap region
+  std::vector<double> values; ///< rows × cols errors, row-major
 
+  /** e(row, col); no bounds checks. */
   double at(int row, int col) const { return values[static_cast<std::size_t>(row) * cols + col]; }
   /** The transpose (rows and columns swapped). */
   ErrorSurface transposed() const;
@@ -27,6 +28,7 @@ struct ErrorSurface {
 struct Cut {
   /** Vertical cut: the column of the cut in each row. Horizontal cut: the row of the cut in each column. */
   std::vector<int> path;
+  /** Sum of the errors along the cut. */
   double cost = 0.0;
 };
 

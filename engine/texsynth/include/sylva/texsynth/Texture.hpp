@@ -29,22 +29,24 @@ enum class NormalGreen {
  * concurrent writes.
  */
 struct Texture {
-  int width = 0;
-  int height = 0;
-  int channels = 3;
-  std::string name;
-  std::vector<float> texels;
+  int width = 0;             ///< texels
+  int height = 0;            ///< texels
+  int channels = 3;          ///< 3 (RGB) or 6 (RGB + normal)
+  std::string name;          ///< for error messages
+  std::vector<float> texels; ///< width × height × channels values, rows top to bottom
 
   /** An all-zero texture; throws sylva::Error for sizes outside 1..16384 or channels other than 3 or 6. */
   static Texture blank(int width, int height, int channels, std::string name = "texture");
 
-  bool empty() const { return width == 0 || height == 0; }
-  bool hasNormals() const { return channels == 6; }
+  bool empty() const { return width == 0 || height == 0; } ///< no texels
+  bool hasNormals() const { return channels == 6; }        ///< channels 3..5 hold a normal
   /** Pointer to the `channels` values of texel (x, y); no bounds checks. */
   float* at(int x, int y) { return texels.data() + (static_cast<std::size_t>(y) * width + x) * channels; }
+  /** Read-only pointer to the `channels` values of texel (x, y); no bounds checks. */
   const float* at(int x, int y) const {
     return texels.data() + (static_cast<std::size_t>(y) * width + x) * channels;
   }
+  /** Same size, channels, name and values. */
   bool operator==(const Texture& other) const = default;
 };
 

@@ -41,13 +41,14 @@ enum Edge : int { kEdgeBottom = 0, kEdgeRight = 1, kEdgeTop = 2, kEdgeLeft = 3 }
  * tiles), with a flat normal (0, 0, 1).
  */
 struct EdgeColour {
-  std::string name;
-  bool symmetric = false;
-  bool operator==(const EdgeColour&) const = default;
+  std::string name;                                   ///< e.g. "wang0" or "bark", unique in the set
+  bool symmetric = false;                             ///< its texel line reads the same both ways
+  bool operator==(const EdgeColour&) const = default; ///< same name and symmetry
 };
 
 /** A class of tiles: the same four edge colours; variants differ only in their interiors. */
 struct TileClass {
+  /** e.g. "wang-0101" (its edge colours, bottom, right, top, left). */
   std::string name;
   /** Colour id of edges 0 (bottom), 1 (right), 2 (top), 3 (left). */
   std::array<int, 4> edges{};
@@ -55,6 +56,7 @@ struct TileClass {
   std::string interior;
   /** Number of tiles (variants) of the class. */
   int tileCount = 0;
+  /** Same name, edges, interior and count. */
   bool operator==(const TileClass&) const = default;
 };
 
@@ -71,9 +73,9 @@ struct TileSet {
   int overlap = 21;
   /** 3 (RGB) or 6 (RGB + normal). */
   int channels = 3;
-  std::vector<EdgeColour> colours;
-  std::vector<TileClass> classes;
-  std::vector<Texture> tiles;
+  std::vector<EdgeColour> colours; ///< by colour id
+  std::vector<TileClass> classes;  ///< by class index
+  std::vector<Texture> tiles;      ///< ordered by class, class 0's first
 
   /** Index of the first tile of `classIndex`. */
   int firstTile(int classIndex) const;
@@ -102,7 +104,9 @@ struct TileSettings {
   /** Most interior candidate positions per source (16..1,000,000), on a regular grid. */
   int maxCandidates = 2048;
 
+  /** `band`, or T / 8 (at least 1) when 0. */
   int effectiveBand() const;
+  /** `overlap`, or T / 6 (at least 1) when 0. */
   int effectiveOverlap() const;
 };
 

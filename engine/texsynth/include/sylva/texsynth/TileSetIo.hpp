@@ -15,8 +15,8 @@ constexpr int kTileSetVersion = 1;
 
 /** The atlas layout named by tileset.json. */
 struct AtlasLayout {
-  int columns = 1;
-  int rows = 1;
+  int columns = 1; ///< tiles per atlas row
+  int rows = 1;    ///< tile rows
   /** Colour atlas file name in the set's directory. */
   std::string colour = "color.png";
   /** Normal atlas file name, "" when the set has no normals. */
@@ -25,8 +25,9 @@ struct AtlasLayout {
 
 /** A tile set without its tiles, as described by tileset.json. */
 struct TileSetDescription {
-  TileSet set; ///< everything but `tiles`
-  AtlasLayout atlas;
+  TileSet set;       ///< everything but `tiles`
+  AtlasLayout atlas; ///< where the tiles are stored
+  /** Tiles over all classes. */
   int tileTotal() const;
 };
 
@@ -49,7 +50,7 @@ TileSetDescription tileSetFromJson(const nlohmann::json& json, const std::string
 /** An extra picture written into a tile set's directory (e.g. a preview of a tiling). */
 struct ExtraImage {
   std::string fileName; ///< plain file name, .png or .exr
-  Image image;
+  Image image;          ///< the picture
 };
 
 /**

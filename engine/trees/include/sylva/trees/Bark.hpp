@@ -56,7 +56,9 @@ constexpr std::uint8_t kRimEdge = 255;
  * ids 0 … 254, rim edges kRimEdge.
  */
 struct PieceTiling {
+  /** Per quad: the corner its tile's x axis starts at (quadTileRotations). */
   std::vector<std::uint8_t> rotation;
+  /** Per quad: the ids of its four edges, quad-edge order. */
   std::vector<std::array<std::uint8_t, 4>> edges;
   /**
    * Per quad, how many tiles its grain takes (tileRepeat): x the quad's length along the tile's y over its
@@ -124,13 +126,19 @@ glm::ivec2 tileTexel(glm::vec2 xy, int tileSize);
  * K³·e3.
  */
 struct BarkSet {
+  /** The set's source (a photo name, "procedural" or a tile-set directory). */
   std::string name;
+  /** Tile side T, texels. */
   int tileSize = 0;
   /** Symmetric edge colours K (1: the paper's one border for every tile). */
   int edgeColours = 1;
+  /** The colour tiles, in class order. */
   std::vector<Image> colour;
+  /** The normal-map tiles, in the same order (empty: none). */
   std::vector<Image> normal;
+  /** Per class: index of its first tile. */
   std::array<std::uint32_t, SYLVA_TREE_MAX_TILE_CLASSES> classFirst{};
+  /** Per class: its number of tiles. */
   std::array<std::uint32_t, SYLVA_TREE_MAX_TILE_CLASSES> classCount{};
 };
 
@@ -184,6 +192,7 @@ struct BarkSources {
   /** Photos are halved until their side is at most this many texels (bark scale and synthesis time). */
   int photoSide = 256;
 
+  /** The tile settings bark sets are synthesised with by default. */
   static texsynth::TileSettings defaultBarkTiles();
 };
 
@@ -206,11 +215,16 @@ BarkSet barkSetFromSource(const std::string& source, const BarkSources& sources)
  * rows top-down); a tile's row 0 (its edge 0) is its cell's top row.
  */
 struct BarkAtlas {
+  /** The atlas, RGB or RGBA 8-bit. */
   Image image;
+  /** Tiles per atlas row. */
   int columns = 1;
+  /** Tile rows. */
   int rows = 1;
+  /** Tile side, texels. */
   int tileSize = 0;
 };
+/** The colour tiles of `set` in one atlas image. */
 BarkAtlas barkAtlas(const BarkSet& set);
 /**
  * UVs (glTF convention: v down the image) of a quad's four corners showing `tile` with `rotation`: the texel

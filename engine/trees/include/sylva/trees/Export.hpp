@@ -59,7 +59,9 @@ namespace sylva::trees {
  * downwards.
  */
 struct QuadUvs {
+  /** The strips' atlas UVs, four corners each. */
   std::vector<std::array<glm::vec2, 4>> strips;
+  /** Whether the strips run along s (else along t). */
   bool alongS = false;
 };
 
@@ -68,6 +70,7 @@ using QuadUvFunction = std::function<QuadUvs(std::size_t pieceInstance, std::siz
 
 /** A pre-rendered impostor atlas: viewsPerSide × viewsPerSide equal views of the tree. */
 struct ImpostorAtlas {
+  /** The atlas (RGBA8, file order). */
   Image image;
   /** Views per side of the atlas (≥ 1). */
   int viewsPerSide = 8;
@@ -115,13 +118,17 @@ void useRendererBark(TreeExportOptions& options, const BarkSet& bark, const Piec
 
 /** One LOD level of an exported tree (world = metres, rest pose). */
 struct TreeMeshLod {
+  /** The tessellation level the LOD was made at (1 … 64). */
   int level = 1;
+  /** Vertex positions, metres. */
   std::vector<glm::vec3> positions;
+  /** Unit vertex normals. */
   std::vector<glm::vec3> normals;
   /** glTF texture space (v down). */
   std::vector<glm::vec2> uvs;
   /** Global joint indices and weights (sum 1; unused slots joint 0, weight 0). */
   std::vector<std::array<std::uint16_t, 4>> joints;
+  /** The joints' weights (sum 1). */
   std::vector<glm::vec4> weights;
   /** Triangles, counter-clockwise seen from outside. */
   std::vector<std::uint32_t> indices;
@@ -131,6 +138,7 @@ struct TreeMeshLod {
 struct TreeMesh {
   /** World transform of every joint (metres). */
   std::vector<glm::mat4> jointFrames;
+  /** The LOD meshes, finest first. */
   std::vector<TreeMeshLod> lods;
   /** Bounds of the finest LOD, metres. */
   Bounds bounds;
@@ -146,9 +154,11 @@ TreeMesh buildTreeMesh(const PieceSet& pieces, const TreeTopology& tree, const S
 
 /** Counts of what an export wrote. */
 struct TreeExportStats {
+  /** Joints written. */
   std::size_t joints = 0;
   /** Vertices and triangles per LOD level, finest first. */
   std::vector<std::size_t> vertices;
+  /** Triangles per LOD level, finest first. */
   std::vector<std::size_t> triangles;
   /** Bytes of the main file. */
   std::size_t bytes = 0;

@@ -42,6 +42,7 @@ inline float fadeThreshold(glm::uvec2 pixel, std::uint32_t tree) {
 inline bool piecesKeep(float blend, glm::uvec2 pixel, std::uint32_t tree) {
   return blend < fadeThreshold(pixel, tree);
 }
+/** Whether the impostor covers the pixel at `blend`: the complement of piecesKeep(). */
 inline bool impostorKeeps(float blend, glm::uvec2 pixel, std::uint32_t tree) {
   return blend >= fadeThreshold(pixel, tree);
 }
@@ -59,8 +60,11 @@ glm::vec3 hemiOctDecode(glm::vec2 uv);
 
 /** The atlas of one species (one texture array layer): views × views cells of cell × cell pixels. */
 struct ImpostorLayout {
+  /** Views per side of the grid. */
   int views = 8;
+  /** Pixels per view. */
   int cell = 128;
+  /** The atlas side, pixels. */
   int side() const { return views * cell; }
 };
 
@@ -74,9 +78,12 @@ glm::vec3 impostorViewDirection(glm::ivec2 cell, int views);
  * a view's weight falls to 0 on the far edge of every triangle it belongs to).
  */
 struct ImpostorViews {
+  /** The three views' cells. */
   std::array<glm::ivec2, 3> cells{};
+  /** Their barycentric weights (sum 1). */
   glm::vec3 weights{0.0f};
 };
+/** The three views to blend for `direction` on a grid of `views` × `views`. */
 ImpostorViews impostorViews(glm::vec3 direction, int views);
 
 /**
@@ -85,10 +92,14 @@ ImpostorViews impostorViews(glm::vec3 direction, int views);
  * at centre + forward · d looking at the centre with this up sees `right` to the right and `up` upwards.
  */
 struct ImpostorBasis {
+  /** The billboard's right, world. */
   glm::vec3 right{1.0f, 0.0f, 0.0f};
+  /** The billboard's up, world. */
   glm::vec3 up{0.0f, 1.0f, 0.0f};
+  /** Towards the viewer, world. */
   glm::vec3 forward{0.0f, 0.0f, 1.0f};
 };
+/** The billboard frame of view direction `forward`. */
 ImpostorBasis impostorBasis(glm::vec3 forward);
 
 /**
@@ -109,6 +120,7 @@ struct FarTree {
   glm::vec3 position{0.0f};
   /** Crown height, metres (as TreeRenderer::treeCentres() w: the rest pose height times the base scale). */
   float height = 10.0f;
+  /** Index of its species (its impostor atlas layer). */
   int species = 0;
   /** The tree index of the dissolve (TreeRenderer's tree index for trees that also have pieces). */
   std::uint32_t id = 0;
@@ -137,6 +149,7 @@ bool impostorVisible(const FarTree& tree, glm::vec4 sphere, const std::array<glm
  */
 struct Forest;
 
+/** How a species' far trees lean in the wind: lean = k · |u| u, u the wind at the base. */
 struct ImpostorSway {
   /** k: lean per squared wind speed, 1/(m/s)² (0: the species does not sway). */
   float perSpeedSquared = 0.0f;
@@ -173,16 +186,21 @@ std::vector<FarTree> farTrees(const Forest& forest);
 
 /** A large far-only field (benchmarks, the horizon around a detailed forest). */
 struct FarTreeFieldSettings {
+  /** Trees in the field. */
   int count = 100000;
+  /** Seed of their places, species and heights. */
   std::uint64_t seed = 1;
   /** An annulus around `centre` (world x, z metres): trees lie between the radii, uniformly by area. */
   glm::vec2 centre{0.0f};
+  /** Inner radius of the annulus, metres. */
   float innerRadius = 0.0f;
+  /** Outer radius of the annulus, metres. */
   float outerRadius = 2000.0f;
   /** Species 0 … species − 1, uniformly. */
   int species = 1;
   /** Crown heights, uniformly in this range (metres). */
   float minHeight = 8.0f;
+  /** Tallest crown, metres. */
   float maxHeight = 16.0f;
   /** Heights of the terrain field times this are drawn heights. */
   float verticalScale = 1.0f;

@@ -31,6 +31,7 @@ namespace sylva::trees {
 
 /** One flat rectangular leaf of a cloud, cloud units. */
 struct LeafCard {
+  /** Centre of the card, cloud units. */
   glm::vec3 centre{0.0f};
   /** Unit normal of the side the texture faces. */
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
@@ -45,16 +46,20 @@ struct LeafCard {
 /** One vertex of a cloud's triangles. */
 struct LeafVertex {
   glm::vec3 position{0.0f}; ///< cloud units
+  /** Unit normal. */
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   glm::vec2 uv{0.0f}; ///< leaf texture coordinates, (0, 0) at the bottom left of the image
+  /** Linear colour factor (per-leaf variation). */
   glm::vec3 tint{1.0f};
 };
 static_assert(sizeof(LeafVertex) == 44);
 
 /** A leaf cloud: a triangle list (3 vertices per triangle), cloud units, inside the unit sphere. */
 struct LeafCloud {
+  /** The triangles' vertices, three per triangle. */
   std::vector<LeafVertex> vertices;
 
+  /** Triangles in the cloud. */
   std::size_t triangles() const { return vertices.size() / 3; }
 };
 
@@ -88,6 +93,7 @@ struct LeafCloudSettings {
   float shell = 0.45f;
   /** Random brightness and hue variation of the leaves, [0, 1]. */
   float tintVariation = 0.18f;
+  /** Seed of the leaves' places, turns and tints. */
   std::uint64_t seed = 1;
 };
 /** Throws sylva::Error "<where>.<field>: …" for values out of range. */
@@ -110,9 +116,11 @@ struct NeedleCloudSettings {
   float shootLength = 0.75f;
   /** Needle length and width, in units of the cloud's radius, (0, 1]. */
   float needleLength = 0.13f;
+  /** Needle width, in units of the cloud's radius, (0, 1]. */
   float needleWidth = 0.02f;
   /** Random brightness and hue variation of the needles, [0, 1]. */
   float tintVariation = 0.15f;
+  /** Seed of the shoots and needles. */
   std::uint64_t seed = 1;
 };
 /** Throws sylva::Error "<where>.<field>: …" for values out of range. */
@@ -172,8 +180,11 @@ float decodeFoliageDepth(std::uint8_t alpha);
 
 /** The orthonormal basis of a bake: forward (view direction), right (the texture's +u), up (its +v). */
 struct FoliageBasis {
+  /** The view direction. */
   glm::vec3 forward{0.0f, 0.0f, -1.0f};
+  /** The texture's +u. */
   glm::vec3 right{1.0f, 0.0f, 0.0f};
+  /** The texture's +v. */
   glm::vec3 up{0.0f, 1.0f, 0.0f};
 };
 /**
@@ -219,7 +230,9 @@ struct FoliageSettings {
    * clamp decides most radii.
    */
   float radiusScale = 12.0f;
+  /** Smallest anchor radius, metres. */
   float minRadius = 0.45f;
+  /** Largest anchor radius, metres. */
   float maxRadius = 1.4f;
   /** Random per-anchor radius variation, ± fraction, [0, 0.9]. */
   float sizeVariation = 0.2f;
@@ -227,6 +240,7 @@ struct FoliageSettings {
   float rotationVariation = 0.3f;
   /** Moves each cloud centre this fraction of its radius outwards along the branch tip (+y of the joint). */
   float lift = 0.35f;
+  /** Seed of the per-anchor variations. */
   std::uint64_t seed = 1;
   /** The broad-leaf cloud (species with FoliageKind::Broadleaf). */
   LeafCloudSettings cloud;
@@ -240,7 +254,9 @@ void validate(const FoliageSettings& settings, const std::string& where);
 struct FoliageAnchor {
   /** Global index of the root joint of the foliage-bearing piece instance. */
   std::uint32_t joint = 0;
+  /** Index of the tree in the forest. */
   std::uint32_t tree = 0;
+  /** Index of its species in the forest. */
   std::uint32_t species = 0;
   /** Sphere centre in the joint's frame, rim units. */
   glm::vec3 offset{0.0f};

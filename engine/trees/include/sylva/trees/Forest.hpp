@@ -24,6 +24,7 @@ namespace sylva::trees {
 
 /** One tree of a forest. */
 struct ForestTree {
+  /** The tree's pieces and joints. */
   TreeTopology topology;
   /** Index into Forest::species. */
   int species = 0;
@@ -37,10 +38,15 @@ struct ForestTree {
 
 /** Trees with their pieces and species; jointOffset[t] is tree t's joint 0 in the global joint numbering. */
 struct Forest {
+  /** The pieces every tree is built from. */
   PieceSet pieces;
+  /** The species, indexed by ForestTree::species. */
   std::vector<Species> species;
+  /** The trees. */
   std::vector<ForestTree> trees;
+  /** Per tree: its joint 0 in the global joint numbering. */
   std::vector<std::uint32_t> jointOffset;
+  /** Joints over all trees. */
   std::size_t jointCount = 0;
 
   /** Recomputes jointOffset and jointCount (call after changing trees). */
@@ -51,7 +57,9 @@ struct Forest {
 struct ForestSettings {
   /** Species mix (preset names or species files), chosen uniformly per tree. */
   std::vector<std::string> species{"almond"};
+  /** Trees to place. */
   int count = 100;
+  /** Seed of the placement and of every tree's growth. */
   std::uint64_t seed = 1;
   /** Minimum distance between trunks, metres. */
   float spacing = 4.0f;
@@ -59,12 +67,15 @@ struct ForestSettings {
   float maxSlope = 30.0f;
   /** Height band, metres (NaN: no limit). */
   float minHeight = std::numeric_limits<float>::quiet_NaN();
+  /** Highest ground a tree grows on, metres (NaN: no limit). */
   float maxHeight = std::numeric_limits<float>::quiet_NaN();
   /** Density noise: feature size in metres and the fraction of ground it leaves bare (0: uniform). */
   float clusterSize = 60.0f;
+  /** Fraction of the ground the density noise leaves bare, [0, 1). */
   float bare = 0.35f;
   /** Region trees grow in: centre (world x, z metres) and radius in metres; radius 0: the whole terrain. */
   glm::vec2 regionCentre{0.0f};
+  /** Region radius, metres (0: the whole terrain). */
   float regionRadius = 0.0f;
   /** Heights of the terrain field are multiplied by this to get drawn heights (terrain exaggeration). */
   float verticalScale = 1.0f;
@@ -83,7 +94,9 @@ struct ForestSettings {
    * bilinear value there. Empty: no map.
    */
   std::vector<float> densityMap;
+  /** Columns of densityMap. */
   int densityWidth = 0;
+  /** Rows of densityMap. */
   int densityHeight = 0;
 };
 
@@ -106,10 +119,14 @@ Forest gridForestOf(const std::vector<Species>& species, int side, float spacing
 
 /** Instances grouped by piece type: instances[first[t] … first[t] + count[t]) are of piece type t. */
 struct PackedInstances {
+  /** The instances, grouped by piece type. */
   std::vector<gpu::TreeInstanceGpu> instances;
+  /** Per piece type: index of its first instance. */
   std::vector<std::uint32_t> first;
+  /** Per piece type: its number of instances. */
   std::vector<std::uint32_t> count;
 };
+/** The forest's piece instances grouped by piece type (what TreeRenderer uploads). */
 PackedInstances packInstances(const Forest& forest);
 
 /** A similarity as the GPU's three rows. */

@@ -27,6 +27,7 @@ struct ForestLook {
   std::filesystem::path barkPhotos;
   /** Synthesised tile side, texels, and tiles per class and edge colouring. */
   int barkTile = BarkSources::defaultBarkTiles().tileSize;
+  /** Tiles per class and edge colouring of synthesised bark. */
   int barkVariants = BarkSources{}.variants;
   /** Leaf-cloud impostors at the branch tips. */
   bool foliage = true;
@@ -37,7 +38,9 @@ struct ForestLook {
   /** Trees farther than this become octahedral impostors, metres (0: never), dissolving over farBand metres;
    * farCount impostor-only trees are added around the forest out to the terrain's edge. */
   float farDistance = 0.0f;
+  /** Width of the near/far dissolve band, metres. */
   float farBand = 25.0f;
+  /** Impostor-only trees added around the forest. */
   int farCount = 0;
 };
 

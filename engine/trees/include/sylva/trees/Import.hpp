@@ -63,8 +63,8 @@ struct ImportOptions {
 Piece importPiece(const std::filesystem::path& file, const ImportOptions& options = {});
 
 /**
- * The built-in pieces, each replaced by `folder`/<name>.{gltf,glb,obj,dae,fbx} where such a file exists (the
- * first found in that order; it must have as many leaf rims as the piece it replaces), followed by every
+ * The built-in pieces, each replaced by FOLDER/NAME.gltf (or .glb, .obj, .dae, .fbx) where such a file exists
+ * (the first found in that order; it must have as many leaf rims as the piece it replaces), followed by every
  * other piece file in `folder` in name order. Throws sylva::Error naming the file at fault.
  */
 PieceSet loadPieceSet(const std::filesystem::path& folder, const ImportOptions& options = {});

@@ -47,9 +47,11 @@ struct TreeMeasures {
   float spread = 0.0f;
   /** Caliper width of the surfaces in each of kProfileBins equal height bands from the base to the top. */
   std::array<float, kProfileBins> profile{};
+  /** Piece instances in the tree. */
   std::size_t pieces = 0;
   /** Branch ends (cap pieces), and those whose axis points below the horizontal where they attach. */
   std::size_t tips = 0;
+  /** Of those, the tips whose axis points below the horizontal. */
   std::size_t droopingTips = 0;
   float droopingFraction = 0.0f; ///< droopingTips / tips
 };
@@ -66,8 +68,11 @@ TreeMeasures measureSpecies(const PieceSet& pieces, const Species& species, std:
 
 /** A closed range [lo, hi]. */
 struct MeasureRange {
+  /** Lower end. */
   float lo = 0.0f;
+  /** Upper end. */
   float hi = 0.0f;
+  /** Whether lo ≤ v ≤ hi. */
   bool contains(float v) const { return v >= lo && v <= hi; }
 };
 
@@ -77,10 +82,15 @@ struct MeasureRange {
  * base (share of the height) and the share of drooping twig tips.
  */
 struct SpeciesTargets {
+  /** Tree height, metres. */
   MeasureRange height;
+  /** Height over trunk radius. */
   MeasureRange slenderness;
+  /** Leafy crown width over height. */
   MeasureRange spread;
+  /** Crown base, as a share of the height. */
   MeasureRange crownBase;
+  /** Share of drooping twig tips. */
   MeasureRange drooping;
 };
 
@@ -92,11 +102,16 @@ std::string targetMisses(const TreeMeasures& m, const SpeciesTargets& targets);
 
 /** The minimum, mean and maximum of each measure over several trees. */
 struct MeasureSummary {
+  /** Each tree's measures. */
   std::vector<TreeMeasures> trees;
+  /** The smallest value of each measure. */
   TreeMeasures min;
+  /** The mean of each measure. */
   TreeMeasures mean;
+  /** The largest value of each measure. */
   TreeMeasures max;
 };
+/** The minimum, mean and maximum of each measure over `trees`. */
 MeasureSummary summarise(std::vector<TreeMeasures> trees);
 
 /**

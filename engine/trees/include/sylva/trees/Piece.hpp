@@ -36,22 +36,27 @@ glm::mat4 rimRotation(int steps);
 
 /** One vertex of a piece, model space (rim units: the root rim has circumradius 1). */
 struct PieceVertex {
+  /** Position, model space (rim units). */
   glm::vec3 position{0.0f};
   /** Unit normal, model space. */
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
   /** Up to four joints (indices into Piece::joints) and weights summing to 1; unused weights are 0. */
   std::array<std::uint8_t, 4> joints{0, 0, 0, 0};
+  /** The joints' weights (sum 1). */
   glm::vec4 weights{1.0f, 0.0f, 0.0f, 0.0f};
   /** Rim this vertex belongs to (index into Piece::rims) and its corner there; -1 for interior vertices. */
   int rim = -1;
+  /** Its corner on that rim (0 … 5), -1 for interior vertices. */
   int corner = -1;
   /** Texture coordinates: u around the branch (0..1 per turn), v along it (rim-radius units). */
   float u = 0.0f;
+  /** Texture coordinate along the branch, rim-radius units. */
   float v = 0.0f;
 };
 
 /** A rim: six vertex indices, corner k first at index k, and the frame mapping the standard rim onto it. */
 struct Rim {
+  /** The rim's six vertex indices, corner k at index k. */
   std::array<std::uint32_t, kRimCorners> vertices{};
   /** Building transform: standard rim frame → piece model space (a similarity); identity for the root rim. */
   glm::mat4 frame{1.0f};
@@ -74,15 +79,22 @@ struct Joint {
  * accepts.
  */
 struct Piece {
+  /** The piece's name (assembly refers to pieces by name). */
   std::string name;
+  /** Vertices, model space. */
   std::vector<PieceVertex> vertices;
+  /** Quads, corner indices counter-clockwise seen from outside. */
   std::vector<std::array<std::uint32_t, 4>> quads;
+  /** Per quad: the class of bark tiles it takes. */
   std::vector<std::uint8_t> tileClass;
+  /** Rims: rims[0] the root rim, the rest leaf rims. */
   std::vector<Rim> rims;
+  /** Joints: joints[0] the root, joint i carrying rim i. */
   std::vector<Joint> joints;
   /** Whether foliage may grow on it (twig pieces, tips). */
   bool bearsFoliage = false;
 
+  /** Leaf rims (rims other than the root rim). */
   std::size_t leafRims() const { return rims.empty() ? 0 : rims.size() - 1; }
 };
 
@@ -106,9 +118,12 @@ void computeNormals(Piece& piece);
 
 /** Axis-aligned bounds of a piece's vertices, model space. */
 struct Bounds {
+  /** Smallest corner. */
   glm::vec3 min{0.0f};
+  /** Largest corner. */
   glm::vec3 max{0.0f};
 };
+/** The bounds of `piece`'s vertices, model space. */
 Bounds pieceBounds(const Piece& piece);
 
 } // namespace sylva::trees

@@ -31,13 +31,16 @@ Piece makeFoot();
 
 /** A set of pieces addressed by index; assembly refers to pieces by name through find(). */
 struct PieceSet {
+  /** The pieces, by index. */
   std::vector<Piece> pieces;
 
   /** Index of the piece called `name`, or -1. */
   int find(const std::string& name) const;
   /** Index of `name`; throws sylva::Error "<where>: unknown piece '<name>' (known: …)". */
   int require(const std::string& name, const std::string& where) const;
+  /** Piece `i`; no bounds checks. */
   const Piece& operator[](std::size_t i) const { return pieces[i]; }
+  /** Pieces in the set. */
   std::size_t size() const { return pieces.size(); }
 };
 

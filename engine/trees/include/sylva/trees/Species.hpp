@@ -28,11 +28,14 @@ enum class AssemblyRule {
 struct OrderParams {
   /** I pieces an axis of this order has before it may split, and after which it must split or end. */
   int minSegments = 2;
+  /** Most I pieces before the axis must split or end. */
   int maxSegments = 5;
   /** Probabilities of a split once allowed: symmetric fork Y, trifurcation Psi, side branch ⊢ (stem goes on).
    */
   float fork = 0.3f;
+  /** Probability of a trifurcation Psi once allowed. */
   float trifurcation = 0.0f;
+  /** Probability of a side branch once allowed. */
   float sideBranch = 0.3f;
   /** Fork asymmetry: one child's bone scale is 1 − asymmetry, the other's 1 (0: symmetric). */
   float asymmetry = 0.0f;
@@ -72,7 +75,9 @@ enum class FoliageKind {
 
 /** A species: rule, limits, per-order grammar, size and colours. */
 struct Species {
+  /** Name (a preset's, or the file's "name"). */
   std::string name = "almond";
+  /** How the tree is assembled (the paper's alternate or uniform rules, or the grammar). */
   AssemblyRule rule = AssemblyRule::Grammar;
   /** Deepest branching order; axes of this order end in caps. */
   int maxOrder = 4;
@@ -86,8 +91,11 @@ struct Species {
   float trunkRadius = 0.18f;
   /** Random scale per tree, ± fraction. */
   float sizeVariation = 0.15f;
+  /** Grammar parameters per branching order (the last entry for deeper orders). */
   std::vector<OrderParams> orders{OrderParams{}};
+  /** Bark colour, linear RGB (without bark tiles). */
   glm::vec3 barkColour{0.33f, 0.25f, 0.19f};
+  /** Summer leaf colour, linear RGB. */
   glm::vec3 leafColour{0.22f, 0.42f, 0.14f};
   /** Leaf colour in full autumn colour, linear RGB (ForestSettings::autumn blends towards it). */
   glm::vec3 autumnColour{0.62f, 0.42f, 0.12f};
@@ -116,7 +124,9 @@ struct Species {
   std::string bark = "oak";
   /** Wind: Young's modulus of the wood, Pa; wood density kg/m³; damping ratio. */
   float youngModulus = 9e9f;
+  /** Wood density, kg/m³. */
   float woodDensity = 700.0f;
+  /** Damping ratio of the joint springs. */
   float damping = 0.1f;
 
   /** Parameters of order `o` (the last entry for deeper orders). */
@@ -157,9 +167,12 @@ Species resolveSpecies(const std::string& nameOrPath);
 
 /** Species JSON (version 1); strict: unknown fields and bad values name the file and field. */
 nlohmann::json toJson(const Species& species);
+/** A species from its JSON; errors name `where` and the field. */
 Species speciesFromJson(const nlohmann::json& json, const std::string& where);
+/** Reads a species file; errors name the file and field. */
 Species loadSpecies(const std::filesystem::path& path);
 
+/** "alternate", "uniform-random" or "grammar". */
 const char* ruleName(AssemblyRule rule);
 
 } // namespace sylva::trees

@@ -30,6 +30,7 @@ struct TreeNode {
   int rotation = 0;
   /** Branching order (0: trunk) and depth (pieces from the root). */
   int order = 0;
+  /** Pieces from the root. */
   int depth = 0;
   /**
    * Axial stretch (0.5 … 16): the piece's leaf rims sit this many times as far along its root rim's axis
@@ -45,18 +46,23 @@ struct TreeNode {
 
 /** A tree's topology and rest parameters (no placement). */
 struct TreeTopology {
+  /** The piece instances, root first. */
   std::vector<TreeNode> nodes;
   /** Per global joint: parent joint (-1 for the base), the node whose terminal joint it is (-1 for the base).
    */
   std::vector<int> jointParent;
+  /** Per global joint: the node whose terminal joint it is (-1 for the base). */
   std::vector<int> jointNode;
   /** Per global joint: bone scale (asymmetric forks), 1 by default. */
   std::vector<float> jointScale;
   /** Per global joint: branching order of the piece it ends (trunk 0). */
   std::vector<int> jointOrder;
+  /** Name of the species it grew as. */
   std::string species;
+  /** The seed it grew from. */
   std::uint64_t seed = 0;
 
+  /** Joints over all nodes. */
   std::size_t jointCount() const { return jointParent.size(); }
   /** Terminal joint of `node`'s leaf rim `rim` (1-based). */
   std::uint32_t terminalJoint(std::size_t node, int rim) const { return nodes[node].jointBase + rim - 1; }
@@ -70,6 +76,7 @@ TreeTopology generateTree(const PieceSet& pieces, const Species& species, std::u
 
 /** Smallest and largest TreeNode::stretch a tree may carry. */
 constexpr float kMinStretch = 0.5f;
+/** Largest TreeNode::stretch. */
 constexpr float kMaxStretch = 16.0f;
 
 /**
@@ -102,22 +109,32 @@ std::vector<glm::mat4> topologicalTransforms(const PieceSet& pieces, const TreeT
 
 /** Counts for `sylva tree info` and benchmarks. */
 struct TreeStats {
+  /** Piece instances. */
   std::size_t pieces = 0;
+  /** Piece instances per piece type. */
   std::vector<std::size_t> piecesByType;
+  /** Joints. */
   std::size_t joints = 0;
+  /** Quads over all piece instances. */
   std::size_t quads = 0;
+  /** Deepest node (pieces from the root). */
   int maxDepth = 0;
+  /** Highest branching order. */
   int maxOrder = 0;
   /** Height of the rest pose, trunk-radius units, and tree-space bounds. */
   float height = 0.0f;
 };
+/** The counts of `tree`. */
 TreeStats treeStats(const PieceSet& pieces, const TreeTopology& tree);
 
 /** Tree JSON (version 1): species, seed and nodes by piece name; strict loading with errors naming the field.
  */
 nlohmann::json toJson(const TreeTopology& tree, const PieceSet& pieces);
+/** A tree from its JSON (pieces by name from `pieces`); errors name `where` and the field. */
 TreeTopology treeFromJson(const nlohmann::json& json, const PieceSet& pieces, const std::string& where);
+/** Reads a tree file; errors name the file and field. */
 TreeTopology loadTree(const std::filesystem::path& path, const PieceSet& pieces);
+/** Writes a tree file (JSON), atomically. */
 void saveTree(const std::filesystem::path& path, const TreeTopology& tree, const PieceSet& pieces);
 
 } // namespace sylva::trees

@@ -40,11 +40,16 @@ public:
 
   /** Orbit distance limits, metres (zoom stops there). */
   void setOrbitLimits(float minDistance, float maxDistance);
+  /** The orbit camera's distance from its target, metres. */
   float orbitDistance() const { return mOrbit.distance; }
 
+  /** Whether fly (and walk) is offered: the world has a ground to fly over. */
   bool flyAllowed() const { return static_cast<bool>(mWorld.groundHeight); }
+  /** True while one of the world's named cameras is selected. */
   bool named() const { return mIndex < orbitIndex(); }
+  /** True while the fly camera is selected. */
   bool flying() const { return mIndex == flyIndex(); }
+  /** True while flying keeps to walking height over the ground. */
   bool walking() const { return mWalk; }
 
   /** F: into fly from the current camera, or back to where fly was entered from. */
@@ -59,6 +64,7 @@ public:
    */
   const render::Camera& update(const platform::InputState& in, const glm::vec3& move, bool mouseFree,
                                float dt, float aspect);
+  /** The camera of the last update(). */
   const render::Camera& camera() const { return mCamera; }
 
   /** The ImGui camera selector (named cameras, orbit, fly) and the walk checkbox. */

@@ -16,6 +16,7 @@ namespace sylva::ui {
 /** An ImGui context bound to `window` for its lifetime; torn down in reverse order. One per window. */
 class ImGuiLayer {
 public:
+  /** Creates the ImGui context and its GLFW and OpenGL 3 backends for `window` (its context current). */
   explicit ImGuiLayer(platform::GlfwWindow& window);
   ~ImGuiLayer();
   ImGuiLayer(const ImGuiLayer&) = delete;

@@ -44,16 +44,21 @@ public:
   /** One image pixel per screen pixel, around the canvas's centre. */
   void actualSize() { zoomAtCentre(1.0 / view.zoom); }
 
+  /** Screen position of image pixel coordinates `image` (as of the last begin()). */
   ImVec2 toScreen(glm::dvec2 image) const;
+  /** Image pixel coordinates under screen position `screen`. */
   glm::dvec2 toImage(ImVec2 screen) const;
   /** Top-left corner and size of the canvas, screen pixels (as of the last begin()). */
   ImVec2 origin() const { return mOrigin; }
+  /** Size of the canvas, screen pixels (as of the last begin()). */
   ImVec2 size() const { return mSize; }
 
+  /** Zoom and pan: which image point is where on the canvas. */
   render::CanvasView view;
   double fitZoom = 0.0;    ///< > 0: the zoom a fit ends at (centred), instead of the whole image
   double fitMargin = 16.0; ///< screen pixels around a fitted image
-  bool showGrid = true;
+  bool showGrid =
+      true; ///< draw the pixel grid where image pixels are large enough (CanvasView::showsPixelGrid)
   /** A fit puts the image's corner on a whole screen pixel, so integer zooms show every texel exactly. */
   bool fitOnWholePixels = false;
 
@@ -83,7 +88,9 @@ public:
   void bindForDraw(glm::ivec2 size);
   /** Chooses the magnification for showing at `zoom` screen pixels per texel. */
   void showAt(double zoom);
+  /** The image as an ImGui texture, for ImGui::Image. */
   ImTextureID texture() const;
+  /** The image's size, pixels (as of the last bindForDraw()). */
   glm::ivec2 size() const { return mSize; }
 
 private:

@@ -32,9 +32,9 @@ struct ShellOptions {
    * spin a core while the user thinks; swap intervals are not honoured everywhere, e.g. under Xvfb).
    */
   double maxFps = 0.0;
-  bool panelShown = true; ///< the panel at start (Tab toggles it when tabTogglesPanel)
-  bool tabTogglesPanel = true;
-  bool escapeQuits = true;
+  bool panelShown = true;      ///< the panel at start (Tab toggles it when tabTogglesPanel)
+  bool tabTogglesPanel = true; ///< Tab shows and hides the panel
+  bool escapeQuits = true;     ///< Esc closes the window
   /**
    * Which keys reach the command's handler: false (viewers) drops every key while an ImGui widget has the
    * keyboard; true (editors, whose shortcuts work beside focused panels) drops them only while text is typed.
@@ -60,10 +60,12 @@ struct ShellFrame {
  */
 class WindowShell {
 public:
+  /** Opens the window with an ImGui layer as `options` say. Needs a display. */
   explicit WindowShell(const ShellOptions& options);
   WindowShell(const WindowShell&) = delete;
   WindowShell& operator=(const WindowShell&) = delete;
 
+  /** The window (input, framebuffer size). */
   platform::GlfwWindow& window() { return mWindow; }
   /** The GL renderer string (the panel's first line). */
   const std::string& renderer() const { return mRenderer; }
@@ -74,7 +76,9 @@ public:
    */
   void setKeyHandler(std::function<bool(int key, int mods)> handler) { mKeyHandler = std::move(handler); }
 
+  /** Whether the command's panel is shown this frame (Tab toggles it). */
   bool panelShown() const { return mPanelShown; }
+  /** Shows or hides the command's panel. */
   void setPanelShown(bool shown) { mPanelShown = shown; }
   /** Ends the loop after the current frame. */
   void requestClose();
@@ -102,6 +106,7 @@ public:
 
   /** ImGui frame brackets for the frame callback (ImGuiLayer::begin/end). */
   void beginUi() { mUi.begin(); }
+  /** Ends the ImGui frame begun by beginUi() and draws it. */
   void endUi() { mUi.end(); }
 
   /**

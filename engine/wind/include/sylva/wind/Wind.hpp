@@ -23,15 +23,19 @@ struct WindSettings {
   float speed = 3.0f;
   /** Speed added at a gust's peak, as a fraction of the mean speed. */
   float gustStrength = 0.8f;
-  /** Gust size along the wind and across it, metres. */
+  /** Gust size along the wind, metres. */
   float gustLength = 20.0f;
+  /** Gust size across the wind, metres. */
   float gustWidth = 10.0f;
   /** Gusts travel downwind at this fraction of the mean speed. */
   float gustTravel = 1.0f;
-  /** Turbulence: strength as a fraction of the mean speed, eddy size in metres, rate in Hz. */
+  /** Turbulence strength as a fraction of the mean speed. */
   float turbulence = 0.25f;
+  /** Turbulence eddy size, metres. */
   float turbulenceScale = 2.0f;
+  /** Turbulence rate, Hz. */
   float turbulenceRate = 0.7f;
+  /** Seed of the gust and turbulence noise (the same seed gives the same wind everywhere). */
   std::uint32_t seed = 1;
 };
 
@@ -64,6 +68,7 @@ float valueNoise(glm::vec3 p, std::uint32_t seed);
 
 /** JSON object of the settings (scene files); fromJson validates with errors naming `where`. */
 nlohmann::json toJson(const WindSettings& settings);
+/** The settings of a scene file's wind object; errors name `where` and the field. */
 WindSettings windSettingsFromJson(const nlohmann::json& json, const std::string& where);
 
 } // namespace sylva::wind

@@ -79,6 +79,7 @@ public:
 
   /** Atlas size in texels (0 × 0 before upload()). */
   int width() const { return mWidth; }
+  /** Atlas height in texels (0 before upload()). */
   int height() const { return mHeight; }
   /** The atlas-sized RGBA8 offscreen target render() draws into (created on first use). */
   const gl::Framebuffer& offscreenTarget();
@@ -115,6 +116,7 @@ struct GpuBenchResult {
   double msPerFrame = 0.0; ///< wall milliseconds per frame (glFinish-bounded)
   double fps = 0.0;        ///< 1000 / msPerFrame
   int width = 0;           ///< frame size, texels (the atlas)
+  /** Frame height, texels. */
   int height = 0;
   int frames = 0; ///< frames timed
 };

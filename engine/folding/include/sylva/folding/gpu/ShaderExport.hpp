@@ -16,9 +16,9 @@ namespace sylva::folding::gpu {
 EncodedInfo encodedInfo(const Project& project, const Textures& textures);
 
 /**
- * The text of the exported `folding.glsl`: a self-contained GLSL 4.50 snippet (no #version; paste it, or
- * include it, after the host shader's #version line) with the evaluation functions of folding/fold.glsl, the
- * project's profiles and breakpoints as constants, the uniforms it reads (folding_color, folding_init,
+ * The text of the exported `folding.glsl`: a self-contained GLSL 4.50 snippet (no `#version`; paste it, or
+ * include it, after the host shader's `#version` line) with the evaluation functions of folding/fold.glsl,
+ * the project's profiles and breakpoints as constants, the uniforms it reads (folding_color, folding_init,
  * folding_jump<k>, folding_fold<k>, folding_phase[]) and
  *   vec4 foldingSample(ivec2 texel)   // frame colour of atlas texel (row 0 = first row of the files), [0, 1]
  *   vec4 foldingSampleUv(vec2 uv)     // the same at the nearest texel of uv ∈ [0, 1]² (v = 0: first row)
@@ -30,7 +30,7 @@ std::string exportedShaderSource(const shader::Library& library, const Project& 
                                  const EncodedInfo& info);
 
 /**
- * The same evaluation for WebGL 2 (GLSL ES 3.00, no #version or precision lines: the host adds them): no
+ * The same evaluation for WebGL 2 (GLSL ES 3.00, no `#version` or precision lines: the host adds them): no
  * binding qualifiers, and the data textures are RGBA16UI (`usampler2D`, the 16-bit integers as stored)
  * instead of RGBA16 UNORM, which WebGL lacks. Needs the rgba16 encoding.
  */

@@ -42,8 +42,11 @@ enum class GrassView : int {
 
 /** Per-draw options. */
 struct GrassDrawOptions {
+  /** Shaded, or a debug view. */
   GrassView view = GrassView::Shaded;
+  /** Sun, sky, fog and shadows of the frame. */
   render::Environment environment{};
+  /** The wind the blades bend in. */
   wind::WindSettings wind{};
   /** Count submitted vertices and primitives (GL_ARB_pipeline_statistics_query) when available. */
   bool countPrimitives = false;
@@ -52,6 +55,8 @@ struct GrassDrawOptions {
 /** The grass field's GPU state. */
 class GrassRenderer {
 public:
+  /** Uploads `field` (patch, blade types, density and terrain maps) and sizes the instance lists for
+   * `settings`. */
   GrassRenderer(const shader::Library& library, std::shared_ptr<const GrassField> field,
                 const CullSettings& settings = {});
 
@@ -59,6 +64,7 @@ public:
   void reloadShaders(const shader::Library& library);
   /** New culling settings (validated); the instance lists grow when the draw distance needs more room. */
   void setCullSettings(const CullSettings& settings);
+  /** The culling settings in use. */
   const CullSettings& cullSettings() const { return mSettings; }
 
   /**
@@ -82,6 +88,7 @@ public:
   gpu::GrassCounters readCounters() const;
   /** Vertices and primitives submitted by the last draw with countPrimitives; -1 when not counted. */
   std::int64_t lastVerticesSubmitted() const { return mLastVertices; }
+  /** Primitives submitted by the last draw with countPrimitives; -1 when not counted. */
   std::int64_t lastPrimitivesSubmitted() const { return mLastPrimitives; }
   /** The instance lists of the levels (not the simulated list) of the last cull, for tests. */
   std::vector<VisibleBlade> readInstances() const;
@@ -105,7 +112,9 @@ public:
   std::size_t capacity() const { return mCapacity; }
   /** Bytes of GPU memory held (patch, types, maps, lists). */
   std::size_t gpuBytes() const;
+  /** The field drawn. */
   const GrassField& field() const { return *mField; }
+  /** The field drawn, shared. */
   const std::shared_ptr<const GrassField>& fieldPointer() const { return mField; }
 
 private:

@@ -17,11 +17,14 @@
 
 namespace sylva::grass {
 
+/** The blade solver in compute shaders: TileSimulation's steps on the GPU, the same constants as the CPU
+ * solver. */
 class GrassSimulator : public SimulationBackend {
 public:
   /** Buffers for `sim`'s pool; reads the field's patch, types and terrain through `renderer`. */
   GrassSimulator(const shader::Library& library, GrassRenderer& renderer, const TileSimulation& sim);
 
+  /** Recompiles the solver's shaders from `library`; keeps the old ones and throws on error. */
   void reloadShaders(const shader::Library& library);
 
   void step(const TileSimulation& sim, float seconds, const std::vector<int>& slots,
@@ -41,6 +44,7 @@ public:
   std::vector<glm::vec3> readPositions() const;
   /** Pool slots and blades per tile. */
   int slots() const { return mSlots; }
+  /** Blades per tile. */
   int bladesPerTile() const { return mPerTile; }
 
 private:

@@ -12,9 +12,13 @@
 
 namespace sylva::physics {
 
+/** Draws a World's bodies (spheres, capsules, boxes) lit by the frame's environment. Needs a current context.
+ */
 class BodyRenderer {
 public:
+  /** Compiles the body shaders from `library`. */
   explicit BodyRenderer(const shader::Library& library);
+  /** Recompiles from `library`; keeps the old programs when compiling fails (and throws). */
   void reloadShaders(const shader::Library& library);
   /** Draws every body of `world` into the bound framebuffer. */
   void draw(const World& world, const render::Camera& camera, int width, int height, double time,

@@ -35,6 +35,7 @@ float demoHeightReference(const DemoSettings& settings, double time, int i, int 
  */
 class DemoScene {
 public:
+  /** Compiles the programs from `library` and allocates the height texture `settings` describe. */
   DemoScene(const shader::Library& library, const DemoSettings& settings = {});
 
   /** Recompiles the programs from `library` (viewer hot reload); keeps the old ones and throws on error. */
@@ -44,7 +45,9 @@ public:
               bool wireframe = false);
   /** A camera that frames the scene. */
   Camera defaultCamera() const;
+  /** The settings the scene was made with. */
   const DemoSettings& settings() const { return mSettings; }
+  /** The r32f height texture the compute pass writes. */
   const gl::Texture& heights() const { return mHeights; }
 
 private:

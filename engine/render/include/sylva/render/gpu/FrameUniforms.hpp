@@ -23,7 +23,9 @@ public:
   FrameUniformBuffer& operator=(const FrameUniformBuffer&) = delete;
   /** Fills and uploads the block for `camera` on a `width`×`height` pixel target at `time` seconds. */
   void update(const Camera& camera, int width, int height, double time, const Environment& environment = {});
+  /** Binds the block at its binding point (shared/Frame.h) for the passes that follow. */
   void bind() const;
+  /** The values last uploaded. */
   const gpu::FrameUniforms& data() const { return mData; }
 
   /** Whether the block was last filled for `camera` (same view matrix and position). */

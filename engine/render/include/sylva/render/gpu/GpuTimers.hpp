@@ -26,6 +26,7 @@ struct PassCounts {
   std::int64_t clippedPrimitives = -1;   ///< primitives that left clipping (what the rasteriser received)
   std::int64_t fragmentInvocations = -1; ///< fragment-shader runs (pixels shaded, overdraw included)
   std::int64_t computeInvocations = -1;  ///< compute-shader runs (culling, simulation, LOD)
+  /** Whether the counts were measured (-1: not counted). */
   bool counted() const { return verticesSubmitted >= 0; }
   /** {"vertices_submitted": …, …} for benchmark JSON. */
   nlohmann::json toJson() const;
@@ -36,9 +37,9 @@ PassCounts medianCounts(const std::vector<PassCounts>& frames);
 
 /** Timing of one named pass in one frame, milliseconds. GPU time is -1 until its query result is known. */
 struct PassTiming {
-  std::string name;
-  double cpuMs = 0.0;
-  double gpuMs = -1.0;
+  std::string name;    ///< the pass, as given to begin()
+  double cpuMs = 0.0;  ///< CPU time between begin() and end()
+  double gpuMs = -1.0; ///< GPU time between the pass's timestamps
   /**
    * Synchronous mode only: wall time from begin() until the pass's work has finished (glFinish). The honest
    * figure on llvmpipe, whose timestamps do not cover rasterisation deferred to its worker threads; -1
@@ -62,9 +63,13 @@ public:
    */
   explicit GpuTimers(int latency = 3, bool synchronous = false, bool countWork = false);
 
+  /** Starts a frame (collects the results of the frame `latency` frames ago). */
   void beginFrame();
+  /** Starts timing pass `pass`. */
   void begin(const std::string& pass);
+  /** Ends the current pass. */
   void end();
+  /** Ends the frame (synchronous mode: waits for its results). */
   void endFrame();
   /** The most recent frame whose GPU results are complete. */
   const std::vector<PassTiming>& lastFrame() const { return mLast; }
@@ -93,6 +98,7 @@ private:
  */
 class GpuTimerScope {
 public:
+  /** Begins pass `name` of `timers` (nothing when null). */
   GpuTimerScope(GpuTimers* timers, const std::string& name) : mTimers(timers) {
     if (mTimers != nullptr) {
       mTimers->begin(name);

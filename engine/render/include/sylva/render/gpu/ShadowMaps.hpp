@@ -21,8 +21,8 @@ public:
   /** `size` texels per side (16..16384), `cascades` layers (1..4); throws sylva::Error otherwise. */
   ShadowMaps(int size, int cascades);
 
-  int size() const { return mSize; }
-  int cascades() const { return mCascades; }
+  int size() const { return mSize; }         ///< texels per side
+  int cascades() const { return mCascades; } ///< layers
 
   /**
    * Starts rendering cascade `cascade`: remembers the bound draw framebuffer, viewport and the state changed
@@ -39,6 +39,7 @@ public:
   /** Unbinds SYLVA_SHADOW_MAP_UNIT (texture 0). */
   static void unbind();
 
+  /** The depth array texture. */
   const gl::Texture& texture() const { return mDepth; }
   /** Depth of layer `cascade` as a 1-channel F32 image (rows bottom-up), for tests and pictures. */
   Image downloadDepth(int cascade) const;

@@ -29,6 +29,7 @@ struct FlareSettings {
  */
 class SkyRenderer {
 public:
+  /** Compiles the sky and flare programs from `library`; needs a current context. */
   explicit SkyRenderer(const shader::Library& library);
 
   /** Recompiles the programs from `library` (viewer hot reload); keeps the old ones and throws on error. */

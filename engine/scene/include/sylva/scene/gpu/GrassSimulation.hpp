@@ -54,14 +54,19 @@ public:
   /** Draws the bodies into the bound framebuffer. */
   void drawBodies(const render::Camera& camera, int width, int height, double time,
                   const render::Environment& environment);
+  /** Recompiles the solver and body shaders from `library`; keeps the old ones and throws on error. */
   void reloadShaders(const shader::Library& library);
 
   /** Real time: the grass steps only the tiles within `focus` (grass::TileSimulation::setFocus); null: all.
    */
   void setFocus(std::optional<grass::SimFocus> focus) { mTiles->setFocus(focus); }
+  /** Counts of the last step: active, held and refused tiles, simulated blades. */
   const grass::SimStats& stats() const { return mTiles->stats(); }
+  /** Bodies in the world. */
   std::size_t bodies() const { return mWorld->bodyCount(); }
+  /** Simulated time, seconds. */
   double time() const { return mTime; }
+  /** Whether the solver runs in compute shaders (else on the CPU). */
   bool onGpu() const { return mGpu; }
 
 private:

@@ -35,6 +35,7 @@ const char* passName(Pass pass);
 struct PassInput {
   const render::Camera& camera; ///< the view camera (or, in a shadow draw, the cascade's sun camera)
   int width = 0;                ///< target size, pixels
+  /** Target height, pixels. */
   int height = 0;
   double time = 0.0;                      ///< scene seconds
   const render::Environment& environment; ///< sun, sky, haze, shadow cascades of this frame
@@ -45,6 +46,7 @@ struct PassInput {
   bool shadow = false;
 };
 
+/** A pass's draw callback. */
 using PassDraw = std::function<void(const PassInput&)>;
 
 /**
@@ -68,6 +70,7 @@ double farCascadeTime(double time, int cascade, int cascades, double fps);
  */
 class ScenePasses {
 public:
+  /** The passes of `scene`'s frame (environment, sky, shadows) with shaders from `library`. */
   ScenePasses(const shader::Library& library, const SceneDesc& scene);
   ~ScenePasses();
   ScenePasses(const ScenePasses&) = delete;
@@ -77,6 +80,7 @@ public:
   void set(Pass pass, PassDraw draw, PassDraw shadow = {});
   /** Turns a pass on or off (viewer toggles); Shadows off: everything fully sunlit. */
   void setEnabled(Pass pass, bool on) { mEnabled[static_cast<int>(pass)] = on; }
+  /** Whether `pass` is on. */
   bool enabled(Pass pass) const { return mEnabled[static_cast<int>(pass)]; }
   /** Whether anything is registered for `pass` (the sky, flare and shadows always are). */
   bool present(Pass pass) const;
@@ -104,6 +108,7 @@ public:
    * is fully sunlit, as with the pass toggled off, without touching the toggle.
    */
   void setShadowsAllowed(bool on);
+  /** Whether shadows may be drawn at all (the quality step). */
   bool shadowsAllowed() const { return mShadowsAllowed; }
   /** Forgets the cached far cascades (casters changed in a way the cache key does not see). */
   void invalidateShadows() { mShadowCache.clear(); }
@@ -118,6 +123,7 @@ public:
   const render::Environment& environment() const { return mEnvironment; }
   /** GPU bytes of the shared resources (shadow maps). */
   std::size_t gpuBytes() const;
+  /** Recompiles the shared shaders from `library`; keeps the old ones and throws on error. */
   void reloadShaders(const shader::Library& library);
 
 private:

@@ -34,9 +34,13 @@ class ShoreWater;
 
 /** How a world is shown: the debugging views of each subsystem and the trees' level of detail. */
 struct SceneDrawOptions {
+  /** The terrain's view (shaded or a debug view). */
   terrain::TerrainView terrainView = terrain::TerrainView::Shaded;
+  /** Draw every subsystem's triangles as lines. */
   bool wireframe = false;
+  /** The grass's view. */
   grass::GrassView grassView = grass::GrassView::Shaded;
+  /** The trees' view. */
   trees::TreeView treeView = trees::TreeView::Shaded;
   /** The trees' tessellation rule in the view (shadow draws keep it, with pieces under
    * render::kCasterMinTexels skipped). */
@@ -77,6 +81,7 @@ public:
   SceneWorld(const SceneWorld&) = delete;
   SceneWorld& operator=(const SceneWorld&) = delete;
 
+  /** The description the world was built from (with the viewer's edits). */
   const SceneDesc& desc() const { return mDesc; }
   /** Seconds of frame `frame` on the scene's fixed clock (frame / fps). */
   double frameTime(int frame) const { return static_cast<double>(frame) / mDesc.output.fps; }
@@ -102,6 +107,7 @@ public:
 
   /** Views and tree LOD of the next frames (default: shaded, the default TreeLod). */
   void setDrawOptions(const SceneDrawOptions& options);
+  /** The views of the next frames. */
   const SceneDrawOptions& drawOptions() const { return mDrawOptions; }
 
   /**
@@ -118,12 +124,16 @@ public:
    * scales the frame up (the viewer; `sylva bench scene --quality auto`).
    */
   void setQuality(const QualityStep& step);
+  /** The interactive quality step of the next frames. */
   const QualityStep& quality() const { return mQuality; }
 
   /** The frame environment (sun, sky, fog) the passes share; shadows are filled per frame. */
   const render::Environment& environment() const { return mPasses->environment(); }
+  /** The frame's passes. */
   ScenePasses& passes() { return *mPasses; }
+  /** The wind the grass and trees share. */
   const wind::WindSettings& wind() const { return mWind; }
+  /** The terrain. */
   terrain::TerrainScene& terrain() { return *mTerrain; }
   /** Drawn terrain height at world (x, z) (exaggerated metres); NaN outside or over nodata. */
   float groundHeight(float x, float z) const;
@@ -145,6 +155,7 @@ public:
   GrassSimulation* simulation() { return mSimulation.get(); }
   /** Grass layers, forests (in the description's order). */
   std::size_t grassCount() const { return mGrass.size(); }
+  /** Forests in the world. */
   std::size_t forestCount() const { return mForests.size(); }
   /**
    * Replaces grass layer `i` with `layer`, or adds it at i == grassCount() (the viewer's panel). Builds the
@@ -175,6 +186,7 @@ public:
   int simulatedLayer() const { return mSimulatedGrass; }
   /** Bytes of GPU memory the scene's subsystems hold (those that report it). */
   std::size_t gpuBytes() const;
+  /** Recompiles every subsystem's shaders from `library` (the viewer's F5). */
   void reloadShaders(const shader::Library& library);
 
 private:

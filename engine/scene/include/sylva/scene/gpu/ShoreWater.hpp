@@ -42,6 +42,7 @@ public:
   int drawnCells() const { return mWetCells; }
   /** Vertices drawn for them (scene::waterTriangles: flat rectangles as fans), three per triangle. */
   int drawnVertices() const { return mVertexCount; }
+  /** Cells of the water grid. */
   int gridCells() const { return mCellsX * mCellsZ; }
   /** Draw every cell of the grid instead of the wet ones (comparisons: the pixels must not change). */
   void setDrawEveryCell(bool on) { mDrawEveryCell = on; }
@@ -77,8 +78,11 @@ public:
   void draw(const render::Camera& camera, int width, int height, double time,
             const render::Environment& environment);
 
+  /** Selects what the water shows: shaded, or the shore band (debug). */
   void setView(ShoreWaterView view) { mView = view; }
+  /** What the water shows. */
   ShoreWaterView view() const { return mView; }
+  /** The shore settings the water was made with. */
   const ShoreSettings& settings() const { return mSettings; }
   /** The project's longest profile period, seconds (what settings.period 0 plays). */
   double projectPeriod() const { return mProjectPeriod; }
@@ -89,6 +93,7 @@ public:
    * work per level (SceneWorld::setQuality).
    */
   void setSwashLevel(int level);
+  /** The finest mip level of the swash texture in use. */
   int swashLevel() const { return mSwashLevel; }
   /** The swash texture (RGBA8, row 0 of the folding image at the top, i.e. at t = 1). */
   const gl::Texture& swashTexture() const { return mSwash; }

@@ -39,10 +39,12 @@ render::Camera placedCamera(const terrain::TerrainScene& terrain, const CameraPl
 
 /** What the first view of an options-built world starts from. */
 struct StartSettings {
+  /** Where the first camera is. */
   CameraPlacement camera;
   float windDirectionDegrees = 0.0f; ///< the grass camera looks along the wind (the options' direction)
   /** Balls dropped into the first grass layer (needs simulated grass); 0: none. */
   int balls = 0;
+  /** Seed of where the balls drop. */
   std::uint64_t ballSeed = 1;
   /** Where they drop (world x, z, metres); none: the steepest grassy slope near the camera. */
   std::optional<glm::vec2> ballsAt;
@@ -50,6 +52,7 @@ struct StartSettings {
 
 /** The first camera and where its balls dropped. */
 struct StartView {
+  /** The first camera. */
   render::Camera camera;
   std::optional<glm::vec2> dropCentre; ///< world x, z of the ball drop, metres; none without balls
 };

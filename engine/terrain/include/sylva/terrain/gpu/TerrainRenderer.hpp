@@ -45,17 +45,18 @@ struct GroundTint {
   /** Texture (first channel 0..1, linear filtering) whose sample (i, j) sits at world (i·spacing.x,
    * j·spacing.y); not owned, must outlive the draw; null: no tint. */
   const gl::Texture* texture = nullptr;
-  glm::vec2 spacing{1.0f};
-  glm::ivec2 size{1};
+  glm::vec2 spacing{1.0f}; ///< metres between the texture's samples along x and z
+  glm::ivec2 size{1};      ///< the texture's samples along x and z
   /** Linear colour the ground moves towards, and how far (0..1) where the map is 1. */
   glm::vec3 colour{0.2f, 0.4f, 0.1f};
+  /** How far (0..1) the ground moves towards `colour` where the map is 1. */
   float strength = 0.85f;
 };
 
 /** Per-draw options of TerrainRenderer::draw. */
 struct TerrainDrawOptions {
-  TerrainView view = TerrainView::Shaded;
-  bool wireframe = false;
+  TerrainView view = TerrainView::Shaded; ///< shaded, or one of the debug views (LOD levels, normals, …)
+  bool wireframe = false;                 ///< draw the triangles' edges only
   /**
    * Crack check: after the surface, draw skirts (vertical curtains under every patch edge shared with other
    * terrain, magenta, pushed back by polygon offset) inside a GL_SAMPLES_PASSED query. Surface ∪ skirts is
@@ -84,6 +85,7 @@ struct TerrainDrawOptions {
   bool vertexPoints = false;
   /** Count tessellation-evaluation invocations (GL_ARB_pipeline_statistics_query) when available. */
   bool countVertices = false;
+  /** Sun, sky, fog and shadows of the frame. */
   render::Environment environment{};
   /**
    * World height (metres, already exaggerated) of a still water surface drawn over the samples below it, in
@@ -140,6 +142,7 @@ public:
   Image downloadNormals() const;
   /** The GPU splat pages as RGBA F32 images (page k = layers 4k..4k+3), stored as RGBA8 (steps of 1/255). */
   std::vector<Image> downloadSplat() const;
+  /** The splat layers the renderer was built with. */
   const std::vector<SplatLayer>& layers() const { return mLayers; }
 
 private:

@@ -62,6 +62,7 @@ public:
   /** Culls against this frustum instead of the camera's (viewer "freeze frustum"); nullopt = follow camera.
    */
   void setFrozenFrustum(std::optional<Frustum> frustum) { mFrozen = frustum; }
+  /** Whether culling uses a frozen frustum. */
   bool frustumFrozen() const { return mFrozen.has_value(); }
 
   /**
@@ -88,6 +89,7 @@ public:
   std::optional<float> seaLevel() const { return mOptions.seaLevel; }
   /** Whether drawOptions() turns geomorphing on. */
   bool geomorph() const { return mOptions.geomorph; }
+  /** Turns geomorphing in drawOptions() on or off. */
   void setGeomorph(bool on) { mOptions.geomorph = on; }
   /**
    * Draw options for a shaded frame from `camera`: environment, water at the (exaggerated) sea level,
@@ -97,13 +99,19 @@ public:
   /** CPU time of the last update() (selection + neighbour levels), milliseconds. */
   double lastUpdateMs() const { return mLastUpdateMs; }
 
+  /** The heights, metres as loaded (not exaggerated). */
   const HeightField& field() const { return mField; }
+  /** The LOD quadtree. */
   Quadtree& quadtree() { return mQuadtree; }
+  /** The GL renderer. */
   TerrainRenderer& renderer() { return *mRenderer; }
+  /** The GL renderer. */
   const TerrainRenderer& renderer() const { return *mRenderer; }
+  /** The nodes the last update() selected. */
   const QuadtreeSelection& selection() const { return mSelection; }
   /** Height range of the valid samples, metres as drawn (× exaggeration). */
   float minHeight() const { return mInfo.minHeight; }
+  /** Highest valid sample, metres as drawn (× exaggeration). */
   float maxHeight() const { return mInfo.maxHeight; }
 
 private:

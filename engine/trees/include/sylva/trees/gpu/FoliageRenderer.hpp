@@ -35,6 +35,7 @@ struct FoliageStats {
   std::size_t anchors = 0;
   /** Side of the cloud texture, texels. */
   int textureSize = 0;
+  /** Triangles of the leaf cloud baked. */
   std::size_t leafTriangles = 0;
   /** Times pass 1 has run since construction. */
   std::size_t bakes = 0;
@@ -84,8 +85,11 @@ public:
   const gl::Texture& needleTexture() const { return mNeedles.colour; }
   /** The basis of the last bake. */
   const FoliageBasis& basis() const { return mBasis; }
+  /** The billboards, one per foliage-bearing piece instance. */
   const std::vector<FoliageAnchor>& anchors() const { return mAnchors; }
+  /** The settings the foliage was made with. */
   const FoliageSettings& settings() const { return mSettings; }
+  /** Counts for stats panels and benchmarks. */
   FoliageStats stats() const;
   /** Bytes of GPU memory held. */
   std::size_t gpuBytes() const;

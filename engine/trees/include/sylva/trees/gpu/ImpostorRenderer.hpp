@@ -74,6 +74,7 @@ ImpostorBakeOptions sceneBakeOptions(const shader::Library& library, std::vector
 struct TreeImpostorBake {
   int views = 8;  ///< views per side of the hemi-octahedral grid
   int cell = 128; ///< pixels per view
+  /** Bake the foliage into the views. */
   bool foliage = true;
   /** The bark tiles the tree is drawn with; none: flat bark colour. */
   std::optional<BarkSet> bark;
@@ -90,8 +91,11 @@ ImpostorAtlas bakeTreeImpostor(const shader::Library& library, const PieceSet& p
                                const TreeTopology& topology, const std::vector<glm::vec2>& pose, float scale,
                                const TreeImpostorBake& bake);
 
+/** Far trees as hemi-octahedral impostors: bakes each species' views into a texture array, culls and draws
+ * the far trees in one indirect draw, leaning in the wind. */
 class ImpostorRenderer {
 public:
+  /** The renderer's programs and its atlas array sized by `settings`; needs a current context. */
   ImpostorRenderer(const shader::Library& library, const ImpostorSettings& settings = {});
 
   /** Recompiles the programs (keeps the old ones and throws on error); later bakes use this library. */
@@ -106,6 +110,7 @@ public:
 
   /** The far trees to draw (instance buffer; grows as needed). */
   void setTrees(std::span<const FarTree> trees);
+  /** Far trees set. */
   std::size_t treeCount() const { return mTreeCount; }
 
   /**
@@ -127,7 +132,9 @@ public:
   /** Trees the last draw's cull kept (synchronous readback). */
   std::uint32_t readVisibleCount() const;
 
+  /** The settings the renderer was made with. */
   const ImpostorSettings& settings() const { return mSettings; }
+  /** Species baked. */
   int speciesCount() const { return mSpecies; }
   /** Species s's bounding sphere: centre relative to the base (xyz) and radius (w), in crown heights. */
   glm::vec4 speciesSphere(int species) const;

@@ -33,6 +33,8 @@ enum class JointWindSolve {
   Auto,
 };
 
+/** The joint springs of a forest in the wind, stepped in compute shaders or on the CPU, writing the joint
+ * frames the trees are drawn with. */
 class JointWindGpu {
 public:
   /** Uploads `rest` (copied; the object keeps a copy only when it solves on the CPU), starts at rest (θ = ω =

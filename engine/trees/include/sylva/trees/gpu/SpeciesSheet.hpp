@@ -16,6 +16,7 @@ namespace sylva::trees {
 /** Height of the person-sized marker beside each tree, metres. */
 inline constexpr float kSheetMarkerHeight = 1.75f;
 
+/** What renderSpeciesSheet() draws: one tree of each species in a row, with a person-sized marker. */
 struct SpeciesSheetOptions {
   /** Seed of every tree (the same as `sylva tree generate --seed`). */
   std::uint64_t seed = 1;

@@ -86,8 +86,11 @@ struct TreeLod {
 
 /** Per-draw options. */
 struct TreeDrawOptions {
+  /** Shaded, or a debug view. */
   TreeView view = TreeView::Shaded;
+  /** Which faces are drawn: front, back or both (the watertightness check). */
   TreeFaces faces = TreeFaces::Front;
+  /** Sun, sky, fog and shadows of the frame. */
   render::Environment environment{};
   /** Debug: shrink every root rim by 3 % so seams open (the watertightness test's control). */
   bool breakRims = false;
@@ -96,6 +99,7 @@ struct TreeDrawOptions {
 /** A forest's GPU state. */
 class TreeRenderer {
 public:
+  /** Uploads `forest`'s pieces, instances and joints; needs a current context. */
   TreeRenderer(const shader::Library& library, std::shared_ptr<const Forest> forest);
 
   /** Recompiles the programs (viewer hot reload); keeps the old ones and throws on error. */
@@ -120,6 +124,7 @@ public:
   /** Per tree: base position (world xyz, metres) and crown height (w, metres), as at
    * SYLVA_TREE_CENTRE_BINDING. */
   const std::vector<glm::vec4>& treeCentres() const { return mCentres; }
+  /** The buffer holding treeCentres(). */
   const gl::Buffer& centresBuffer() const { return mCentreBuffer; }
 
   /**
@@ -149,9 +154,11 @@ public:
   /** The visible instance indices of piece type `type` (unordered), for tests. */
   std::vector<std::uint32_t> readVisible(std::size_t type) const;
 
+  /** The forest drawn. */
   const Forest& forest() const { return *mForest; }
   /** The forest, shared (for passes that draw with this renderer, e.g. FoliageRenderer). */
   const std::shared_ptr<const Forest>& sharedForest() const { return mForest; }
+  /** The instances, grouped by piece type. */
   const PackedInstances& instances() const { return mPacked; }
   /** Model-space bounding sphere (xyz centre, w radius; rim units) of piece type `type`. */
   glm::vec4 pieceSphere(std::size_t type) const { return mPieceTable[type].sphere; }
@@ -220,11 +227,17 @@ private:
 
 /** The GPU vertex of a piece (56 bytes): position, normal, weights, uv, joints, rim << 8 | corner (or -1). */
 struct PieceVertexGpu {
+  /** Position, model space (rim units). */
   float position[3];
+  /** Unit normal, model space. */
   float normal[3];
+  /** The four joints' weights. */
   float weights[4];
+  /** u, v texture coordinates. */
   float uv[2];
+  /** Up to four joint indices. */
   std::uint8_t joints[4];
+  /** rim << 8 | corner, or -1 for interior vertices. */
   std::int32_t rim;
 };
 static_assert(sizeof(PieceVertexGpu) == 56);
