@@ -55,6 +55,14 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_COMPRESSION_TYPE xz)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME sylva)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
+# What dpkg-shlibdeps cannot see: the OpenGL contexts come through glvnd's libEGL (loaded at run time, never
+# linked), which needs a vendor driver; Mesa's software rasteriser (llvmpipe, in libgl1-mesa-dri) draws without a
+# GPU, a GPU's own EGL driver replaces it. ffmpeg encodes `--mp4`; slurm-client runs `sylva farm`. On a fresh
+# Debian 12, `apt install ./sylva_*.deb` without these gave a program that could not render (caught by
+# installing the package into a debootstrap root, docs/library.md).
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_DEPENDS "libegl1")
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "libgl1-mesa-dri")
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_SUGGESTS "ffmpeg, slurm-client")
 # Debian descriptions: a synopsis line, then the long description (CPack indents it).
 set(CPACK_DEBIAN_RUNTIME_DESCRIPTION "real-time procedural nature: terrain, grass, trees, folding textures
 The sylva program renders scene files of terrain with continuous level of

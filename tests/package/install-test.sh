@@ -18,6 +18,11 @@ fail() { echo "PackageInstall: $*" >&2; exit 1; }
 
 mapfile -t debs < <("$source/scripts/package.sh" "$build")
 [ ${#debs[@]} -eq 2 ] || fail "scripts/package.sh gave ${#debs[@]} packages"
+# What dpkg-shlibdeps cannot see (scripts/test-fresh-install.sh found it on a fresh Debian 12): contexts come
+# through glvnd's libEGL, loaded at run time, and need a driver (Mesa's llvmpipe without a GPU).
+runtime="$(printf '%s\n' "${debs[@]}" | grep '/sylva_')"
+dpkg-deb -f "$runtime" Depends | grep -qw libegl1 || fail "sylva's Depends lacks libegl1"
+dpkg-deb -f "$runtime" Recommends | grep -qw libgl1-mesa-dri || fail "sylva's Recommends lacks libgl1-mesa-dri"
 root="$work/root"
 for deb in "${debs[@]}"; do
   dpkg -x "$deb" "$root"
