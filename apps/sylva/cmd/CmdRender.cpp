@@ -177,7 +177,7 @@ void registerRender(CLI::App& app) {
       options.wireframe = o->wireframe;
       if (renderFrames(*o, frameCount, target, [&](double time) {
             target.begin(glm::vec4(options.environment.fogColor, 1.0f));
-            scene->update(camera, target.aspect());
+            scene->update(camera, target.aspect(), o->height);
             scene->draw(camera, o->width, o->height, time, nullptr, options);
           })) {
         return;

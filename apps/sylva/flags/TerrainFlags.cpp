@@ -162,6 +162,13 @@ void TerrainFlags::add(CLI::App& command) {
   command.add_option("--lod-factor", quadtree.lodDistanceFactor, "Split when distance < factor x node size")
       ->check(finiteRange(terrain::kMinRestrictedLodFactor, 64.0))
       ->capture_default_str();
+  command
+      .add_option(
+          "--lod-error", quadtree.lodErrorPixels,
+          "Screen-space-error LOD: split a patch while its geometric error projects to more than this "
+          "many pixels (e.g. 1; --lod-factor is then unused); 0 = distance LOD")
+      ->check(finiteRange(0.0, 1000.0))
+      ->capture_default_str();
   command.add_flag("--terrain-geomorph,!--no-terrain-geomorph", geomorph,
                    "Geomorphing: terrain heights blend between LOD levels by distance, so patches do not pop "
                    "when they split or merge (default: off)");

@@ -37,7 +37,7 @@ struct TerrainFlags {
   bool geomorph = false;
 
   /** Adds the source options (SourceOptions) and --layers, --exaggeration, --sea-level, --method, --tess,
-   * --roots, --max-depth, --lod-factor, --terrain-geomorph. */
+   * --roots, --max-depth, --lod-factor, --lod-error, --terrain-geomorph. */
   void add(CLI::App& command);
   /** The terrain the options describe (throws naming the option when they do not go together). */
   terrain::TerrainSetup setup() const;

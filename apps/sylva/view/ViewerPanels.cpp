@@ -137,6 +137,7 @@ void TerrainPanel::show(scene::SceneWorld& world, const render::Camera& camera, 
     changed |= ImGui::SliderInt("tessellation", &lod.patchTessLevel, 1, terrain::kMaxPatchTessLevel);
     changed |= ImGui::SliderFloat("LOD distance factor", &lod.lodDistanceFactor,
                                   terrain::kMinRestrictedLodFactor, 8.0f);
+    changed |= ImGui::SliderFloat("screen error (px, 0: distance LOD)", &lod.lodErrorPixels, 0.0f, 8.0f);
     changed |= ImGui::SliderInt("max depth", &lod.maxDepth, 0, 8);
     changed |= ImGui::Checkbox("LOD enabled", &lod.lodEnabled);
     ImGui::SameLine();

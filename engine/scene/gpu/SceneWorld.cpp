@@ -122,7 +122,7 @@ void SceneWorld::registerPasses() {
         {
           const render::GpuTimerScope timed(in.timers, "lod (cpu)");
           mTerrain->setFrozenFrustum(mDrawOptions.frozenFrustum);
-          mTerrain->update(in.camera, aspect);
+          mTerrain->update(in.camera, aspect, in.height);
         }
         terrain::TerrainDrawOptions options = mTerrain->drawOptions(in.camera);
         options.environment = in.environment;

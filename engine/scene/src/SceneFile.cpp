@@ -142,7 +142,7 @@ constexpr double kBig = 1e7; ///< generic upper bound for lengths in metres
 
 void readTerrain(const Node& n, TerrainDesc& t) {
   n.object({"dem", "seed", "size", "spacing", "relief", "exaggeration", "sea_level", "tess_level",
-            "lod_factor", "max_depth", "geomorph"});
+            "lod_factor", "lod_error", "max_depth", "geomorph"});
   if (n.has("dem")) {
     t.dem = n["dem"].file({".png", ".exr", ".npy", ".npz", ".tif", ".tiff", ".nc", ".asc", ".hgt"});
     for (const char* proceduralOnly : {"seed", "size", "relief"}) {
@@ -175,6 +175,9 @@ void readTerrain(const Node& n, TerrainDesc& t) {
   }
   if (n.has("lod_factor")) {
     t.lodFactor = n["lod_factor"].real(terrain::kMinRestrictedLodFactor, 64.0);
+  }
+  if (n.has("lod_error")) {
+    t.lodError = n["lod_error"].real(0.0, 1000.0);
   }
   if (n.has("max_depth")) {
     t.maxDepth = n["max_depth"].integer(-1, 16);

@@ -31,6 +31,7 @@ terrain::TerrainSetup terrainSetup(const TerrainDesc& t) {
   s.geomorph = t.geomorph;
   s.quadtree.patchTessLevel = t.tessLevel;
   s.quadtree.lodDistanceFactor = t.lodFactor;
+  s.quadtree.lodErrorPixels = t.lodError;
   if (t.maxDepth >= 0) {
     s.maxDepth = t.maxDepth;
   }

@@ -3,6 +3,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Log.hpp>
 #include <sylva/shader/Compiler.hpp>
+#include <sylva/terrain/Geomorph.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 
 #include <algorithm>
@@ -268,7 +269,7 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
     mVao.bind();
     // Geomorphing follows the selection's camera and LOD distances (off: w = 0, the plain surface).
     const QuadtreeConfig& lod = selection.config;
-    const bool morph = options.geomorph && lod.lodEnabled;
+    const bool morph = options.geomorph && GeomorphParams::of(lod).enabled;
     surface.setUniform("uMorphCamera", glm::vec4(selection.camera, morph ? 1.0f : 0.0f));
     surface.setUniform("uMorphLod", glm::vec4(lod.rootSize, static_cast<float>(lod.maxDepth),
                                               static_cast<float>(lod.patchTessLevel), lod.lodDistanceFactor));

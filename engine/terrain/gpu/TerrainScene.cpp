@@ -76,8 +76,17 @@ TerrainScene::TerrainScene(const shader::Library& library, HeightField field, co
                                                 mOptions.exaggeration);
 }
 
-const QuadtreeSelection& TerrainScene::update(const render::Camera& camera, float aspect) {
+const QuadtreeSelection& TerrainScene::update(const render::Camera& camera, float aspect,
+                                              int viewportHeightPx) {
   const Frustum frustum = mFrozen ? *mFrozen : camera.frustum(aspect);
+  if (viewportHeightPx > 0 && mQuadtree.config().lodErrorPixels > 0.0f && camera.orthoHeight <= 0.0f) {
+    const float scale = QuadtreeConfig::pixelsPerRadianFor(static_cast<float>(viewportHeightPx), camera.fovY);
+    if (scale != mQuadtree.config().pixelsPerRadian) {
+      QuadtreeConfig config = mQuadtree.config();
+      config.pixelsPerRadian = scale;
+      mQuadtree.setConfig(config);
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   mQuadtree.select(camera.position, &frustum, mSelection);
   mLastUpdateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -90,11 +99,7 @@ void TerrainScene::draw(const render::Camera& camera, int width, int height, dou
 }
 
 void TerrainScene::setQuadtreeConfig(const QuadtreeConfig& config) {
-  const QuadtreeConfig& current = mQuadtree.config();
-  const bool sameLayout = (config.rootsX == 0 || config.rootsX == current.rootsX) &&
-                          (config.rootsZ == 0 || config.rootsZ == current.rootsZ) &&
-                          config.rootSize == current.rootSize && config.maxDepth == current.maxDepth;
-  if (sameLayout) {
+  if (mQuadtree.canSetConfig(config)) {
     mQuadtree.setConfig(config);
   } else {
     mQuadtree = Quadtree(config, mField);

@@ -13,7 +13,10 @@ GeomorphParams GeomorphParams::of(const QuadtreeConfig& config) {
   p.maxDepth = config.maxDepth;
   p.patchTessLevel = config.patchTessLevel;
   p.lodDistanceFactor = config.lodDistanceFactor;
-  p.enabled = config.lodEnabled;
+  // Screen-space-error LOD bounds what a split changes on screen by its threshold already, and its leaves
+  // can be much finer than their distance implies: morphing them towards distance-based levels would throw
+  // away the detail the error asked for (and move the surface outside the boxes culling trusts).
+  p.enabled = config.lodEnabled && config.lodErrorPixels <= 0.0f;
   return p;
 }
 

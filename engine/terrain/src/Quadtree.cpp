@@ -1,6 +1,8 @@
 #include <sylva/terrain/Quadtree.hpp>
 
 #include <sylva/core/Error.hpp>
+#include <sylva/core/Parallel.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
 
 #include <algorithm>
 #include <bit>
@@ -39,6 +41,12 @@ void validatePolicy(const QuadtreeConfig& c) {
   if (c.restrictSelection && c.lodDistanceFactor < kMinRestrictedLodFactor) {
     fail("QuadtreeConfig.lodDistanceFactor: {} is below {} (needed for a restricted selection)",
          c.lodDistanceFactor, kMinRestrictedLodFactor);
+  }
+  if (!std::isfinite(c.lodErrorPixels) || c.lodErrorPixels < 0.0f || c.lodErrorPixels > 1000.0f) {
+    fail("QuadtreeConfig.lodErrorPixels: {} is outside 0..1000 pixels (0 = distance LOD)", c.lodErrorPixels);
+  }
+  if (c.lodErrorPixels > 0.0f && !(std::isfinite(c.pixelsPerRadian) && c.pixelsPerRadian > 0.0f)) {
+    fail("QuadtreeConfig.pixelsPerRadian: {} must be a positive number", c.pixelsPerRadian);
   }
   if (c.method != CrackMethod::None && c.method != CrackMethod::PaperSearch &&
       c.method != CrackMethod::RestrictedLevelMap) {
@@ -86,6 +94,19 @@ QuadtreeConfig QuadtreeConfig::forRootCount(int rootCount, float extentX, float 
     }
   }
   return best;
+}
+
+float QuadtreeConfig::pixelsPerRadianFor(float viewportHeightPx, float fovY) {
+  if (!(viewportHeightPx > 0.0f) || !(fovY > 0.0f && fovY < 3.14f)) {
+    fail(
+        "QuadtreeConfig::pixelsPerRadianFor: viewport height {} px and field of view {} rad must be positive",
+        viewportHeightPx, fovY);
+  }
+  return 0.5f * viewportHeightPx / std::tan(0.5f * fovY);
+}
+
+float QuadtreeConfig::finestVertexSpacing() const {
+  return std::ldexp(rootSize, -maxDepth) / static_cast<float>(patchTessLevel);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -164,6 +185,9 @@ Quadtree::Quadtree(const QuadtreeConfig& config, const HeightField& field) {
     return scanRange(field, i0, static_cast<int>(i1), j0, static_cast<int>(j1));
   });
   buildLodRanges();
+  if (mConfig.lodErrorPixels > 0.0f) {
+    buildErrors(field);
+  }
 }
 
 Quadtree::Quadtree(const QuadtreeConfig& config, float extentX, float extentZ, MinMaxPyramid nodeRanges) {
@@ -178,6 +202,134 @@ Quadtree::Quadtree(const QuadtreeConfig& config, float extentX, float extentZ, M
   }
   mRanges = std::move(nodeRanges);
   buildLodRanges();
+  if (mConfig.lodErrorPixels > 0.0f) {
+    fail(
+        "Quadtree: screen-space-error LOD (lodErrorPixels {}) needs the heights to measure node errors; this "
+        "quadtree is built from a node range pyramid alone",
+        mConfig.lodErrorPixels);
+  }
+}
+
+void Quadtree::buildErrors(const HeightField& field) {
+  // The reference is the surface drawn at the deepest level: the bilinear heights (heightAt) on the finest
+  // vertex lattice L_D (spacing σ_D = rootSize / (2^maxDepth · T)), triangulated either way. A depth-d patch
+  // draws a triangulation of the same heights on L_d ⊂ L_D. Its error bound is the largest |B_d − h| over
+  // the L_D points of the node (B_d: the bilinear interpolation over L_d; B_d − B_D is bilinear on every L_D
+  // cell, so its extremes are at those points) plus a quarter of the largest L_d cell twist
+  // |h00 − h10 − h01 + h11| (how far a triangulation of a cell lies from its bilinear patch); B_D lies
+  // between the two triangulations of L_D, so the bound holds against either. Deepest nodes: 0.
+  // docs/terrain-lod.md, "Screen-space error".
+  const int depths = mConfig.maxDepth + 1;
+  const int tess = mConfig.patchTessLevel;
+  const double finest = mSizes[static_cast<std::size_t>(mConfig.maxDepth)] / tess;
+  mError.assign(static_cast<std::size_t>(depths), {});
+  for (int d = 0; d < depths; ++d) {
+    const int w = gridWidth(d);
+    const int h = gridHeight(d);
+    std::vector<float>& out = mError[static_cast<std::size_t>(d)];
+    out.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0.0f);
+    if (d == mConfig.maxDepth) {
+      continue;
+    }
+    const int ratio = 1 << (mConfig.maxDepth - d); // L_D points per L_d interval
+    const int m = ratio * tess;                    // L_D intervals per node side
+    parallelFor(
+        static_cast<std::size_t>(h),
+        [&](std::size_t begin, std::size_t end) {
+          std::vector<float> fine(static_cast<std::size_t>(m + 1) * static_cast<std::size_t>(m + 1));
+          const auto at = [&](int a, int b) -> float& {
+            return fine[static_cast<std::size_t>(b) * static_cast<std::size_t>(m + 1) +
+                        static_cast<std::size_t>(a)];
+          };
+          for (std::size_t z = begin; z < end; ++z) {
+            for (int x = 0; x < w; ++x) {
+              const int gz = static_cast<int>(z);
+              if (!mRanges.node(mConfig.maxDepth - d, x, gz).present()) {
+                continue;
+              }
+              // Lattice coordinates as integers times σ_D, the way the patches place their vertices.
+              const long long i0 = static_cast<long long>(x) * m;
+              const long long j0 = static_cast<long long>(gz) * m;
+              for (int b = 0; b <= m; ++b) {
+                for (int a = 0; a <= m; ++a) {
+                  at(a, b) = heightAt(field, static_cast<float>(static_cast<double>(i0 + a) * finest),
+                                      static_cast<float>(static_cast<double>(j0 + b) * finest));
+                }
+              }
+              float twist = 0.0f;
+              for (int b = 0; b < m; b += ratio) {
+                for (int a = 0; a < m; a += ratio) {
+                  const float t =
+                      std::abs(at(a, b) - at(a + ratio, b) - at(a, b + ratio) + at(a + ratio, b + ratio));
+                  if (t == t) { // NaN next to absent samples: the renderer fills those, no data to compare
+                    twist = std::max(twist, t);
+                  }
+                }
+              }
+              float deviation = 0.0f;
+              const float inv = 1.0f / static_cast<float>(ratio);
+              for (int b = 0; b <= m; ++b) {
+                const int cb = std::min(b / ratio, tess - 1) * ratio;
+                const float fz = static_cast<float>(b - cb) * inv;
+                for (int a = 0; a <= m; ++a) {
+                  const int ca = std::min(a / ratio, tess - 1) * ratio;
+                  const float fx = static_cast<float>(a - ca) * inv;
+                  const float top = at(ca, cb) + (at(ca + ratio, cb) - at(ca, cb)) * fx;
+                  const float bottom =
+                      at(ca, cb + ratio) + (at(ca + ratio, cb + ratio) - at(ca, cb + ratio)) * fx;
+                  const float e = std::abs(top + (bottom - top) * fz - at(a, b));
+                  if (e == e) {
+                    deviation = std::max(deviation, e);
+                  }
+                }
+              }
+              out[z * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] = deviation + 0.25f * twist;
+            }
+          }
+        },
+        1);
+  }
+  // Saturate (a node's error is at least its children's), then dilate over the 3×3 same-depth neighbourhood
+  // for the restricted split rule, as the LOD height ranges are.
+  for (int d = depths - 2; d >= 0; --d) {
+    const int w = gridWidth(d);
+    const int h = gridHeight(d);
+    const int cw = gridWidth(d + 1);
+    std::vector<float>& out = mError[static_cast<std::size_t>(d)];
+    const std::vector<float>& child = mError[static_cast<std::size_t>(d + 1)];
+    for (int z = 0; z < h; ++z) {
+      for (int x = 0; x < w; ++x) {
+        float& e =
+            out[static_cast<std::size_t>(z) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+        for (int k = 0; k < 4; ++k) {
+          const std::size_t c = static_cast<std::size_t>(2 * z + (k >> 1)) * static_cast<std::size_t>(cw) +
+                                static_cast<std::size_t>(2 * x + (k & 1));
+          e = std::max(e, child[c]);
+        }
+      }
+    }
+  }
+  mLodError.assign(static_cast<std::size_t>(depths), {});
+  for (int d = 0; d < depths; ++d) {
+    const int w = gridWidth(d);
+    const int h = gridHeight(d);
+    const std::vector<float>& in = mError[static_cast<std::size_t>(d)];
+    std::vector<float>& out = mLodError[static_cast<std::size_t>(d)];
+    out.assign(in.size(), 0.0f);
+    for (int z = 0; z < h; ++z) {
+      for (int x = 0; x < w; ++x) {
+        float e = 0.0f;
+        for (int dz = std::max(z - 1, 0); dz <= std::min(z + 1, h - 1); ++dz) {
+          for (int dx = std::max(x - 1, 0); dx <= std::min(x + 1, w - 1); ++dx) {
+            e = std::max(e, in[static_cast<std::size_t>(dz) * static_cast<std::size_t>(w) +
+                               static_cast<std::size_t>(dx)]);
+          }
+        }
+        out[static_cast<std::size_t>(z) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] = e;
+      }
+    }
+  }
+  mErrorTess = tess;
 }
 
 void Quadtree::buildLodRanges() {
@@ -219,6 +371,13 @@ void Quadtree::buildLodRanges() {
   }
 }
 
+bool Quadtree::canSetConfig(const QuadtreeConfig& config) const {
+  const bool sameLayout = (config.rootsX == 0 || config.rootsX == mConfig.rootsX) &&
+                          (config.rootsZ == 0 || config.rootsZ == mConfig.rootsZ) &&
+                          config.rootSize == mConfig.rootSize && config.maxDepth == mConfig.maxDepth;
+  return sameLayout && (config.lodErrorPixels <= 0.0f || mErrorTess == config.patchTessLevel);
+}
+
 void Quadtree::setConfig(const QuadtreeConfig& config) {
   if ((config.rootsX != 0 && config.rootsX != mConfig.rootsX) ||
       (config.rootsZ != 0 && config.rootsZ != mConfig.rootsZ) || config.rootSize != mConfig.rootSize ||
@@ -226,6 +385,13 @@ void Quadtree::setConfig(const QuadtreeConfig& config) {
     fail("Quadtree::setConfig: the layout (rootsX, rootsZ, rootSize, maxDepth) is fixed at construction");
   }
   validatePolicy(config);
+  if (config.lodErrorPixels > 0.0f && mErrorTess != config.patchTessLevel) {
+    fail(
+        "Quadtree::setConfig: screen-space-error LOD at base level {} needs node errors for that level ({}); "
+        "build the quadtree from the heights with this config",
+        config.patchTessLevel,
+        mErrorTess == 0 ? "none computed" : fmt::format("computed for {}", mErrorTess));
+  }
   const int rx = mConfig.rootsX;
   const int rz = mConfig.rootsZ;
   mConfig = config;
@@ -265,10 +431,23 @@ HeightRange Quadtree::lodRange(int level, int gridX, int gridZ) const {
   return mRanges.node(mConfig.maxDepth - level, gridX, gridZ);
 }
 
+float Quadtree::nodeError(const NodeId& node) const {
+  if (mError.empty() || node.level < 0 || node.level > mConfig.maxDepth || node.gridX < 0 || node.gridZ < 0 ||
+      node.gridX >= gridWidth(node.level) || node.gridZ >= gridHeight(node.level)) {
+    return 0.0f;
+  }
+  return mError[static_cast<std::size_t>(node.level)]
+               [static_cast<std::size_t>(node.gridZ) * static_cast<std::size_t>(gridWidth(node.level)) +
+                static_cast<std::size_t>(node.gridX)];
+}
+
 std::size_t Quadtree::memoryBytes() const {
   std::size_t bytes = mRanges.memoryBytes();
   for (const auto& level : mLodY) {
     bytes += level.size() * sizeof(HeightRange);
+  }
+  for (std::size_t d = 0; d < mError.size(); ++d) {
+    bytes += (mError[d].size() + mLodError[d].size()) * sizeof(float);
   }
   return bytes;
 }
@@ -289,6 +468,9 @@ void Quadtree::select(const glm::vec3& cameraPos, const Frustum* frustum, Quadtr
   const bool levelMap = c.method == CrackMethod::RestrictedLevelMap;
   const int maxSplitDepth = c.lodEnabled ? c.maxDepth : 0;
   const float factor = c.lodDistanceFactor;
+  // Screen-space error: split while K·e / dist > τ or dist < floor·size, i.e. dist < K·e/τ + floor·size.
+  const bool errorLod = c.lodErrorPixels > 0.0f;
+  const float errorScale = errorLod ? c.pixelsPerRadian / c.lodErrorPixels : 0.0f;
 
   out.nodes.clear();
   out.culled.clear();
@@ -340,7 +522,15 @@ void Quadtree::select(const glm::vec3& cameraPos, const Frustum* frustum, Quadtr
       const float dx = std::max(std::max(x0 - cameraPos.x, cameraPos.x - (x0 + size)), 0.0f);
       const float dy = std::max(std::max(lod.min - cameraPos.y, cameraPos.y - lod.max), 0.0f);
       const float dz = std::max(std::max(z0 - cameraPos.z, cameraPos.z - (z0 + size)), 0.0f);
-      const float limit = factor * size;
+      float limit = factor * size;
+      if (errorLod) {
+        const std::size_t index =
+            static_cast<std::size_t>(item.gridZ) * static_cast<std::size_t>(gridWidth(item.level)) +
+            static_cast<std::size_t>(item.gridX);
+        const float e =
+            (c.restrictSelection ? mLodError : mError)[static_cast<std::size_t>(item.level)][index];
+        limit = errorScale * e + kErrorLodDistanceFloor * size;
+      }
       split = dx * dx + dy * dy + dz * dz < limit * limit;
     }
 
@@ -377,6 +567,7 @@ void Quadtree::select(const glm::vec3& cameraPos, const Frustum* frustum, Quadtr
     node.level = item.level;
     node.gridX = item.gridX;
     node.gridZ = item.gridZ;
+    node.error = nodeError(NodeId{item.level, item.gridX, item.gridZ});
     out.nodes.push_back(node);
     if (paper) {
       mLeafTree.push_back(treeIndex);

@@ -83,6 +83,9 @@ QuadtreeConfig quadtreeFor(const TerrainSetup& setup, const HeightField& field,
     fail("{}: {} is not in [{}, 64]", fieldName(name, "lod_factor"), config.lodDistanceFactor,
          kMinRestrictedLodFactor);
   }
+  if (!(config.lodErrorPixels >= 0.0f && config.lodErrorPixels <= 1000.0f)) {
+    fail("{}: {} is not in [0, 1000] pixels", fieldName(name, "lod_error"), config.lodErrorPixels);
+  }
   if (setup.roots < 0 || setup.roots > 4096) {
     fail("{}: {} is not in [0, 4096]", fieldName(name, "roots"), setup.roots);
   }

@@ -4,7 +4,8 @@
 // then skirts under every interior patch edge inside a GL_SAMPLES_PASSED query: surface ∪ skirts is the
 // terrain's footprint, and a skirt sample passes the depth test only where the background would show through
 // the surface. Zero samples in every frame = no crack pixel. With crack removal disabled the same check must
-// find cracks, so it is known to work. The same holds with geomorphing on (TerrainCracksGeomorph).
+// find cracks, so it is known to work. The same holds with geomorphing on (TerrainCracksGeomorph) and with
+// screen-space-error LOD (TerrainCracksErrorLod).
 #include <sylva/core/Random.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightSources.hpp>
@@ -53,17 +54,20 @@ public:
         mRenderer(library, mField, defaultSplatLayers(heightFieldInfo(mField).minHeight, mMax)) {}
 
   /** Crack samples of pose `index` with `method` at base level `tess`. */
-  std::int64_t cracks(CrackMethod method, int tess, int index, bool geomorph = false) {
+  /** With `lodError` > 0: screen-space-error LOD at that many pixels of this target's height. */
+  std::int64_t cracks(CrackMethod method, int tess, int index, bool geomorph = false, float lodError = 0.0f) {
+    const render::Camera camera = crackPose(mField, mMax, index);
     QuadtreeConfig config = QuadtreeConfig::forRootCount(16, mField.extentX(), mField.extentZ());
     config.maxDepth = 5;
     config.patchTessLevel = tess;
     config.method = method;
-    if (!mQuadtree) {
+    config.lodErrorPixels = lodError;
+    config.pixelsPerRadian = QuadtreeConfig::pixelsPerRadianFor(static_cast<float>(kHeight), camera.fovY);
+    if (!mQuadtree || !mQuadtree->canSetConfig(config)) {
       mQuadtree = std::make_unique<Quadtree>(config, mField);
     } else {
       mQuadtree->setConfig(config);
     }
-    const render::Camera camera = crackPose(mField, mMax, index);
     const Frustum frustum = camera.frustum(mTarget.aspect());
     mQuadtree->select(camera.position, &frustum, mSelection);
     mTarget.begin(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
@@ -178,6 +182,53 @@ std::vector<CrackCase> geomorphCases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Geomorph, TerrainCracksGeomorph, ::testing::ValuesIn(geomorphCases()),
+                         [](const ::testing::TestParamInfo<CrackCase>& info) {
+                           return fmt::format(
+                               "{}_t{:02}", info.param.method == CrackMethod::PaperSearch ? "paper" : "ours",
+                               info.param.tess);
+                         });
+
+// The same proof with screen-space-error LOD (levels chosen by each node's geometric error projected into
+// the 120-pixel-high target, τ = 0.5 px, plus the distance floor that keeps the selection restricted); the
+// geomorph option is set on every other pose and must change nothing (error LOD draws unmorphed). CI: both
+// methods at seven levels over 20 poses; SYLVA_FULL=1: both methods, every level, all 200 poses.
+class TerrainCracksErrorLod : public TerrainCracks {};
+
+TEST_P(TerrainCracksErrorLod, NoBackgroundThroughTheSurfaceWithScreenErrorLod) {
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
+  CrackRig rig(shaders());
+  long long levelChanges = 0;
+  for (int pose = 0; pose < kGeomorphPoses; ++pose) {
+    const bool geomorph = pose % 2 == 1;
+    const std::int64_t cracks = rig.cracks(GetParam().method, GetParam().tess, pose, geomorph, 0.5f);
+    levelChanges += rig.lastLevelChanges();
+    if (cracks != 0) {
+      saveImage(std::filesystem::path(SYLVA_BINARY_DIR) / "golden-out" /
+                    fmt::format("crack_error_lod_{}_t{}_pose{}.png", crackMethodName(GetParam().method),
+                                GetParam().tess, pose),
+                rig.target().readColor());
+    }
+    ASSERT_EQ(cracks, 0) << "pose " << pose << (geomorph ? " (geomorph)" : "") << ": " << cracks
+                         << " crack pixels (image in golden-out/)";
+  }
+  EXPECT_GT(levelChanges, kGeomorphPoses);
+  RecordProperty("doubled_edges", std::to_string(levelChanges));
+}
+
+std::vector<CrackCase> errorLodCases() {
+  if (test::fullMode()) {
+    return allCases();
+  }
+  std::vector<CrackCase> cases;
+  for (CrackMethod method : {CrackMethod::PaperSearch, CrackMethod::RestrictedLevelMap}) {
+    for (int tess : {1, 2, 3, 5, 8, 16, 32}) {
+      cases.push_back({method, tess});
+    }
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(ErrorLod, TerrainCracksErrorLod, ::testing::ValuesIn(errorLodCases()),
                          [](const ::testing::TestParamInfo<CrackCase>& info) {
                            return fmt::format(
                                "{}_t{:02}", info.param.method == CrackMethod::PaperSearch ? "paper" : "ours",

@@ -1,5 +1,9 @@
 #include <sylva/terrain/Quadtree.hpp>
 
+#include <sylva/terrain/Geomorph.hpp>
+#include <sylva/terrain/HeightQuery.hpp>
+#include <sylva/terrain/ScreenError.hpp>
+
 #include <sylva/core/Error.hpp>
 #include <sylva/core/Random.hpp>
 
@@ -700,6 +704,280 @@ TEST(QuadtreeTest, InvalidConfigsAreRejected) {
   changed.method = CrackMethod::None;
   EXPECT_NO_THROW(qt.setConfig(changed));
   EXPECT_EQ(qt.config().method, CrackMethod::None);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Screen-space-error LOD (docs/terrain-lod.md, "Screen-space error")
+
+QuadtreeConfig errorConfig(QuadtreeConfig c, float pixels, float pixelsPerRadian, int tess) {
+  c.lodErrorPixels = pixels;
+  c.pixelsPerRadian = pixelsPerRadian;
+  c.patchTessLevel = tess;
+  return c;
+}
+
+// The drawn patch is a triangulation of the lattice heights (spacing size / T); whichever diagonal the
+// tessellator picks in a cell, the surface stays within nodeError of the surface the deepest patches draw
+// (the finest lattice, triangulated either way). Checked densely for nodes of every depth.
+TEST(QuadtreeTest, NodeErrorBoundsEveryTriangulationOfThePatch) {
+  const HeightField field = rollingField();
+  Rng rng(404);
+  for (const int tess : {1, 3, 8}) {
+    Quadtree qt(errorConfig(rollingConfig(), 1.0f, kDefaultPixelsPerRadian, tess), field);
+    ASSERT_TRUE(qt.hasNodeErrors());
+    ASSERT_EQ(qt.nodeErrorTessLevel(), tess);
+    int checked = 0;
+    for (int level = 0; level <= qt.config().maxDepth; ++level) {
+      for (int k = 0; k < 12; ++k) {
+        const NodeId id{level, static_cast<int>(rng.below(static_cast<std::uint32_t>(qt.gridWidth(level)))),
+                        static_cast<int>(rng.below(static_cast<std::uint32_t>(qt.gridHeight(level))))};
+        if (!qt.nodeRange(id).present()) {
+          continue;
+        }
+        const float bound = qt.nodeError(id);
+        const float size = qt.nodeSize(level);
+        const float sigma = size / static_cast<float>(tess);
+        const float x0 = static_cast<float>(id.gridX) * size;
+        const float z0 = static_cast<float>(id.gridZ) * size;
+        float worst = 0.0f;
+        const int n = std::max(8, static_cast<int>(size / 0.5f)); // points every ≤ 0.5 m
+        for (int b = 0; b <= n; ++b) {
+          for (int a = 0; a <= n; ++a) {
+            const float x = x0 + size * static_cast<float>(a) / static_cast<float>(n);
+            const float z = z0 + size * static_cast<float>(b) / static_cast<float>(n);
+            if (x > qt.extentX() || z > qt.extentZ()) {
+              continue;
+            }
+            const int ca = std::min(static_cast<int>((x - x0) / sigma), tess - 1);
+            const int cb = std::min(static_cast<int>((z - z0) / sigma), tess - 1);
+            const float fx = (x - x0) / sigma - static_cast<float>(ca);
+            const float fz = (z - z0) / sigma - static_cast<float>(cb);
+            const auto h = [&](int i, int j) {
+              return heightAt(field, x0 + static_cast<float>(ca + i) * sigma,
+                              z0 + static_cast<float>(cb + j) * sigma);
+            };
+            const float h00 = h(0, 0);
+            const float h10 = h(1, 0);
+            const float h01 = h(0, 1);
+            const float h11 = h(1, 1);
+            // Diagonal 00–11 and diagonal 10–01.
+            const float d1 = fz <= fx ? h00 + (h10 - h00) * fx + (h11 - h10) * fz
+                                      : h00 + (h11 - h01) * fx + (h01 - h00) * fz;
+            const float d2 = fx + fz <= 1.0f ? h00 + (h10 - h00) * fx + (h01 - h00) * fz
+                                             : h11 + (h01 - h11) * (1.0f - fx) + (h10 - h11) * (1.0f - fz);
+            if (std::isnan(h00) || std::isnan(h10) || std::isnan(h01) || std::isnan(h11)) {
+              continue; // next to absent samples: the renderer fills them, the error covers valid cells
+            }
+            // The reference: the finest lattice triangulated either way (what the deepest patches draw).
+            for (const float d : {d1, d2}) {
+              const float gap = fullResolutionGap(field, {x, d, z}, qt.config().finestVertexSpacing());
+              if (!std::isnan(gap)) {
+                worst = std::max(worst, gap);
+              }
+            }
+          }
+        }
+        ASSERT_LE(worst, bound + 1e-3f)
+            << "tess " << tess << " node " << level << "/" << id.gridX << "/" << id.gridZ;
+        ++checked;
+        // Saturated: no child has a larger error.
+        if (level < qt.config().maxDepth) {
+          for (int c = 0; c < 4; ++c) {
+            EXPECT_LE(qt.nodeError({level + 1, 2 * id.gridX + (c & 1), 2 * id.gridZ + (c >> 1)}), bound);
+          }
+        }
+      }
+    }
+    EXPECT_GT(checked, 40);
+  }
+}
+
+// A plane is drawn exactly by any patch: every error is ~0 and the selection keeps only the distance floor.
+// A field whose deepest lattice is its sample grid has error 0 there (the patch is the full-resolution mesh).
+TEST(QuadtreeTest, NodeErrorIsZeroWhereThePatchIsExact) {
+  HeightField plane(129, 129, 1.0f, 1.0f);
+  for (int j = 0; j < plane.height(); ++j) {
+    for (int i = 0; i < plane.width(); ++i) {
+      plane.at(i, j) = 3.0f + 0.25f * static_cast<float>(i) - 0.5f * static_cast<float>(j);
+    }
+  }
+  QuadtreeConfig c;
+  c.rootSize = 128.0f;
+  c.maxDepth = 3; // leaves of 16 m with T = 16: the lattice is the 1 m sample grid
+  c.patchTessLevel = 16;
+  Quadtree flat(errorConfig(c, 1.0f, kDefaultPixelsPerRadian, 16), plane);
+  for (int level = 0; level <= 3; ++level) {
+    EXPECT_LE(flat.nodeError({level, 0, 0}), 1e-4f) << "level " << level;
+  }
+  const HeightField rough = rollingField();
+  QuadtreeConfig r;
+  r.rootSize = 48.0f; // the deepest lattice (12 m leaves, T = 8: 1.5 m) is not the 1.5 × 2 m sample grid
+  r.maxDepth = 2;
+  r.patchTessLevel = 8;
+  Quadtree rolling(errorConfig(r, 1.0f, kDefaultPixelsPerRadian, 8), rough);
+  EXPECT_GT(rolling.nodeError({1, 1, 1}), 0.0f);
+  EXPECT_EQ(rolling.nodeError({2, 3, 3}), 0.0f); // the deepest level is the reference
+  HeightField grid(65, 65, 2.0f, 2.0f);
+  Rng rng(9);
+  for (float& h : grid.samples()) {
+    h = rng.uniform(0.0f, 10.0f);
+  }
+  QuadtreeConfig g;
+  g.rootSize = 128.0f;
+  g.maxDepth = 2; // 32 m leaves, T = 16: lattice spacing 2 m = the samples
+  g.patchTessLevel = 16;
+  Quadtree exact(errorConfig(g, 1.0f, kDefaultPixelsPerRadian, 16), grid);
+  EXPECT_EQ(exact.nodeError({2, 1, 1}), 0.0f);
+  EXPECT_GT(exact.nodeError({1, 0, 0}), 1.0f); // random heights: the coarser lattice misses them
+}
+
+// Every leaf the error rule keeps either projects its error to at most τ pixels from the camera (measured to
+// its own box) or stops at the deepest level; the selection is restricted and crack-free for both methods,
+// which select the same leaves, over random cameras, thresholds and projections.
+TEST(QuadtreeTest, ScreenErrorSelectionMeetsItsThresholdAndStaysCrackFree) {
+  const HeightField rolling = rollingField();
+  const HeightField needle = needleField();
+  Rng rng(2027);
+  long long jumps = 0;
+  long long finer = 0;
+  for (const HeightField* field : {&rolling, &needle}) {
+    QuadtreeConfig config = rollingConfig();
+    config.rootSize = field == &needle ? 128.0f : 64.0f;
+    config.maxDepth = 5;
+    for (const int tess : {1, 4, 16}) {
+      Quadtree qt(errorConfig(config, 1.0f, kDefaultPixelsPerRadian, tess), *field);
+      for (int cam = 0; cam < 60; ++cam) {
+        const Camera c = randomCamera(rng, qt.extentX(), qt.extentZ(), -50.0f, 900.0f);
+        QuadtreeConfig policy = qt.config();
+        policy.lodErrorPixels = rng.uniform(0.25f, 8.0f);
+        policy.pixelsPerRadian = rng.uniform(200.0f, 2000.0f);
+        policy.frustumCull = cam % 2 == 0;
+        std::vector<SelectedNode> first;
+        for (const CrackMethod method : {CrackMethod::PaperSearch, CrackMethod::RestrictedLevelMap}) {
+          policy.method = method;
+          qt.setConfig(policy);
+          const QuadtreeSelection sel = qt.select(c.position, &c.frustum);
+          const EdgeReport r = analyse(qt, sel.nodes);
+          ASSERT_EQ(r.restrictionViolations, 0) << "camera " << cam << " tess " << tess;
+          ASSERT_EQ(r.crackedEdges, 0) << "camera " << cam << " tess " << tess;
+          jumps += r.levelJumps;
+          for (const SelectedNode& n : sel.nodes) {
+            if (n.level == qt.config().maxDepth) {
+              continue;
+            }
+            const glm::vec3 lo(n.x, n.minY, n.z);
+            const glm::vec3 hi(n.x + n.size, n.maxY, n.z + n.size);
+            const float dist = glm::length(glm::max(glm::max(lo - c.position, c.position - hi), 0.0f));
+            ASSERT_LE(policy.pixelsPerRadian * n.error, policy.lodErrorPixels * dist * 1.0001f + 1e-3f)
+                << "camera " << cam << ": a leaf above the threshold was not split";
+            ASSERT_GE(dist, kErrorLodDistanceFloor * n.size * 0.999f) << "camera " << cam;
+            EXPECT_EQ(n.error, qt.nodeError({n.level, n.gridX, n.gridZ}));
+          }
+          if (method == CrackMethod::PaperSearch) {
+            first = sel.nodes;
+          } else {
+            ASSERT_EQ(first.size(), sel.nodes.size()) << "camera " << cam;
+            for (std::size_t i = 0; i < first.size(); ++i) {
+              ASSERT_EQ(first[i].level, sel.nodes[i].level);
+              ASSERT_EQ(first[i].gridX, sel.nodes[i].gridX);
+              ASSERT_EQ(first[i].gridZ, sel.nodes[i].gridZ);
+              ASSERT_EQ(first[i].tessOuter, sel.nodes[i].tessOuter);
+            }
+          }
+        }
+        // A stricter threshold never selects fewer leaves.
+        QuadtreeConfig strict = policy;
+        strict.lodErrorPixels = 0.5f * policy.lodErrorPixels;
+        qt.setConfig(strict);
+        const auto fine = qt.select(c.position, nullptr).nodes.size();
+        qt.setConfig(policy);
+        const auto coarse = qt.select(c.position, nullptr).nodes.size();
+        EXPECT_GE(fine, coarse) << "camera " << cam;
+        finer += fine > coarse ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(jumps, 2000) << "the property must not hold vacuously";
+  EXPECT_GT(finer, 50) << "halving τ must refine many views";
+}
+
+// Flat ground needs no detail: at equal camera the error rule selects far fewer leaves than distance LOD.
+// Geomorphing is off with it (a split changes at most τ pixels already).
+TEST(QuadtreeTest, ScreenErrorSpendsLeavesWhereTheSurfaceNeedsThem) {
+  HeightField field(513, 513, 2.0f, 2.0f);
+  for (int j = 0; j < field.height(); ++j) {
+    for (int i = 0; i < field.width(); ++i) {
+      // Flat west half, rough east half.
+      const float x = static_cast<float>(i) * 2.0f;
+      const float z = static_cast<float>(j) * 2.0f;
+      field.at(i, j) = i < 256 ? 10.0f : 10.0f + 8.0f * std::sin(0.21f * x) * std::cos(0.17f * z);
+    }
+  }
+  QuadtreeConfig config;
+  config.rootSize = 256.0f;
+  config.maxDepth = 5;
+  config.patchTessLevel = 8;
+  config.lodDistanceFactor = 4.0f;
+  config.frustumCull = false;
+  Quadtree distance(config, field);
+  Quadtree error(errorConfig(config, 1.0f, kDefaultPixelsPerRadian, 8), field);
+  const glm::vec3 camera(150.0f, 30.0f, 512.0f); // over the flat half
+  const QuadtreeSelection byDistance = distance.select(camera, nullptr);
+  const QuadtreeSelection byError = error.select(camera, nullptr);
+  int westDistance = 0;
+  int westError = 0;
+  // Leaves west of x = 384 m: their 3×3 neighbourhoods (the restriction's dilation) are flat too.
+  for (const SelectedNode& n : byDistance.nodes) {
+    westDistance += n.x + n.size <= 384.0f ? 1 : 0;
+  }
+  for (const SelectedNode& n : byError.nodes) {
+    westError += n.x + n.size <= 384.0f ? 1 : 0;
+  }
+  int eastDistance = static_cast<int>(byDistance.nodes.size()) - westDistance;
+  int eastError = static_cast<int>(byError.nodes.size()) - westError;
+  EXPECT_GT(eastError, 0);
+  EXPECT_GT(eastDistance, 0);
+  EXPECT_LT(4 * westError, westDistance) << "flat half: " << westError << " vs " << westDistance;
+  EXPECT_FALSE(GeomorphParams::of(error.config()).enabled);
+  EXPECT_TRUE(GeomorphParams::of(distance.config()).enabled);
+}
+
+TEST(QuadtreeTest, ScreenErrorConfigsAreCheckedAndNeedErrors) {
+  const HeightField field = rollingField();
+  QuadtreeConfig c = rollingConfig();
+  Quadtree plain(c, field);
+  EXPECT_FALSE(plain.hasNodeErrors());
+  EXPECT_EQ(plain.nodeError({0, 0, 0}), 0.0f);
+  QuadtreeConfig e = errorConfig(plain.config(), 1.0f, kDefaultPixelsPerRadian, c.patchTessLevel);
+  EXPECT_FALSE(plain.canSetConfig(e));
+  EXPECT_THROW(plain.setConfig(e), sylva::Error);
+  Quadtree withErrors(e, field);
+  EXPECT_TRUE(withErrors.canSetConfig(e));
+  QuadtreeConfig otherTess = e;
+  otherTess.patchTessLevel = c.patchTessLevel + 1;
+  EXPECT_FALSE(withErrors.canSetConfig(otherTess));
+  EXPECT_THROW(withErrors.setConfig(otherTess), sylva::Error);
+  QuadtreeConfig back = e;
+  back.lodErrorPixels = 0.0f;
+  back.patchTessLevel = 3;
+  EXPECT_TRUE(withErrors.canSetConfig(back)); // distance LOD needs no errors
+  for (const float bad : {-1.0f, 1001.0f, std::numeric_limits<float>::quiet_NaN()}) {
+    QuadtreeConfig b = e;
+    b.lodErrorPixels = bad;
+    EXPECT_THROW(Quadtree(b, field), sylva::Error) << bad;
+  }
+  QuadtreeConfig noProjection = e;
+  noProjection.pixelsPerRadian = 0.0f;
+  EXPECT_THROW(Quadtree(noProjection, field), sylva::Error);
+  EXPECT_NEAR(QuadtreeConfig::pixelsPerRadianFor(720.0f, glm::radians(50.0f)), kDefaultPixelsPerRadian, 0.5f);
+  EXPECT_THROW(QuadtreeConfig::pixelsPerRadianFor(0.0f, 1.0f), sylva::Error);
+  const MinMaxPyramid pyramid =
+      MinMaxPyramid::fromLeaves(plain.gridWidth(c.maxDepth), plain.gridHeight(c.maxDepth), [](int, int) {
+        return HeightRange{0.0f, 1.0f};
+      });
+  e.rootsX = plain.config().rootsX;
+  e.rootsZ = plain.config().rootsZ;
+  EXPECT_THROW(Quadtree(e, plain.extentX(), plain.extentZ(), pyramid), sylva::Error);
 }
 
 } // namespace

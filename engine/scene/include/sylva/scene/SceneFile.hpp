@@ -62,6 +62,7 @@ struct TerrainDesc {
   std::optional<float> seaLevel; ///< metres (data heights); below it the terrain reads as sea floor
   int tessLevel = 16;            ///< tessellation level per patch edge, [1, 32]
   float lodFactor = 2.0f;        ///< CDLOD distance factor, [1.05, 64]
+  float lodError = 0.0f;         ///< screen-space-error LOD threshold, pixels, [0, 1000]; 0: distance LOD
   int maxDepth = -1;             ///< quadtree depth limit, [0, 16]; -1: automatic
   bool geomorph = true;          ///< morph vertices across LOD boundaries
   /** Code only: the terrain as the terrain module describes it, used instead of the fields above. */

@@ -28,7 +28,10 @@ struct GeomorphParams {
   /** False: no morph (the plain bilinear height); also when the config has LOD disabled. */
   bool enabled = true;
 
-  /** The parameters of `config` (enabled = config.lodEnabled). */
+  /**
+   * The parameters of `config`: enabled when config.lodEnabled and distance LOD (screen-space-error LOD
+   * bounds what a split changes on screen by its threshold, so it draws without a morph).
+   */
   static GeomorphParams of(const QuadtreeConfig& config);
 };
 

@@ -64,6 +64,14 @@ inline constexpr int kMaxPatchTessLevel = 32;
  * extra 5 % keeps it robust to float rounding of distances.
  */
 inline constexpr float kMinRestrictedLodFactor = 1.05f;
+/**
+ * Distance floor of the screen-space-error split rule, as a multiple of the node size: a node closer than
+ * this splits whatever its error. The restriction proof needs a floor ≥ 1 (docs/terrain-lod.md, "Screen-space
+ * error").
+ */
+inline constexpr float kErrorLodDistanceFloor = kMinRestrictedLodFactor;
+/** Pixels per radian of a 720-pixel-high view with a 50° vertical field of view: 360 / tan(25°). */
+inline constexpr float kDefaultPixelsPerRadian = 772.0f;
 /** Largest node grid at the deepest level (nodes), bounding the min/max memory. */
 inline constexpr long long kMaxQuadtreeLeafNodes = 1LL << 24;
 
@@ -83,6 +91,18 @@ struct QuadtreeConfig {
    * when restrictSelection, > 0 otherwise.
    */
   float lodDistanceFactor = 2.0f;
+  /**
+   * Screen-space-error LOD: > 0 splits a node while its geometric error (Quadtree::nodeError, metres) seen
+   * from the camera projects to more than this many pixels, or while the camera is closer than
+   * kErrorLodDistanceFloor × its size; lodDistanceFactor is then unused. 0 (the default): distance LOD.
+   * At most 1000.
+   */
+  float lodErrorPixels = 0.0f;
+  /**
+   * Projection of the view the error is measured in: pixels per radian at the image centre, viewport height
+   * / (2·tan(fovY / 2)); see pixelsPerRadianFor(). Only used when lodErrorPixels > 0.
+   */
+  float pixelsPerRadian = kDefaultPixelsPerRadian;
   /** Base tessellation level of every patch edge and of the inner levels, 1..kMaxPatchTessLevel. */
   int patchTessLevel = 16;
   /** False: draw every present root at depth 0 regardless of distance (the paper's "LOD disabled" rows). */
@@ -106,6 +126,14 @@ struct QuadtreeConfig {
    * dropped by select(). Throws sylva::Error for rootCount < 1 or a non-positive extent.
    */
   static QuadtreeConfig forRootCount(int rootCount, float extentX, float extentZ);
+  /** Pixels per radian of a view `viewportHeightPx` pixels high with vertical field of view `fovY` radians.
+   */
+  static float pixelsPerRadianFor(float viewportHeightPx, float fovY);
+  /**
+   * Spacing of the vertices of the deepest patches, metres: rootSize / (2^maxDepth · patchTessLevel). The
+   * surface drawn at that depth everywhere is the reference of the screen-space error ("full resolution").
+   */
+  float finestVertexSpacing() const;
 };
 
 /** One patch to draw: a selected quadtree leaf. */
@@ -126,6 +154,11 @@ struct SelectedNode {
   int gridX = 0;
   /** Index of the node in the depth-`level` grid along z. */
   int gridZ = 0;
+  /**
+   * Geometric error of drawing this patch at its depth (Quadtree::nodeError, metres); 0 when the quadtree
+   * has not computed errors (distance LOD).
+   */
+  float error = 0.0f;
   /** Bit e (PatchEdge) set when the leaf across edge e is one depth finer and the edge level was doubled. */
   std::uint32_t edgeFlags = 0;
   /** gl_TessLevelOuter[0..3] in PatchEdge order: base level, or twice it on flagged edges. */
@@ -212,11 +245,17 @@ public:
   /** The config in use, with rootsX/rootsZ resolved. */
   const QuadtreeConfig& config() const { return mConfig; }
   /**
-   * Changes the per-view policy (lodDistanceFactor, patchTessLevel, lodEnabled, method, frustumCull,
-   * restrictSelection). Throws sylva::Error if the layout (rootsX, rootsZ, rootSize, maxDepth) differs (0 for
-   * rootsX/Z means "keep") or a value is invalid.
+   * Changes the per-view policy (lodDistanceFactor, lodErrorPixels, pixelsPerRadian, patchTessLevel,
+   * lodEnabled, method, frustumCull, restrictSelection). Throws sylva::Error if the layout (rootsX, rootsZ,
+   * rootSize, maxDepth) differs (0 for rootsX/Z means "keep"), a value is invalid, or it asks for
+   * screen-space-error LOD at a patchTessLevel the node errors were not computed for (canSetConfig()).
    */
   void setConfig(const QuadtreeConfig& config);
+  /**
+   * True when setConfig(config) would succeed: same layout and, for screen-space-error LOD, node errors
+   * computed for its patchTessLevel. Otherwise build a new Quadtree from the heights.
+   */
+  bool canSetConfig(const QuadtreeConfig& config) const;
 
   /** Terrain extent along x, metres. */
   float extentX() const { return mExtentX; }
@@ -232,6 +271,24 @@ public:
   HeightRange nodeRange(const NodeId& node) const;
   /** World AABB of a node: footprint × nodeRange (y is NaN when absent). */
   Aabb nodeBounds(const NodeId& node) const;
+  /**
+   * Geometric error of drawing `node` at its depth, metres: an upper bound on the vertical distance between
+   * the patch as tessellated at the base level (a triangulation of the bilinear heights on a lattice of
+   * spacing size / patchTessLevel) and the surface the deepest patches draw there (the same on the finest
+   * lattice, QuadtreeConfig::finestVertexSpacing, triangulated either way), over the node's footprint; at
+   * least the error of each of its children (saturated); 0 at the deepest level. With the finest lattice at
+   * the sample spacing the reference is the full-resolution mesh of the samples. 0 outside the grid or the
+   * data, and when hasNodeErrors() is false.
+   */
+  float nodeError(const NodeId& node) const;
+  /**
+   * True when the node errors were computed: by the HeightField constructor when its config asks for
+   * screen-space-error LOD (lodErrorPixels > 0; O(samples × depths), in parallel). They hold for the
+   * patchTessLevel of that config (nodeErrorTessLevel()).
+   */
+  bool hasNodeErrors() const { return !mError.empty(); }
+  /** The base tessellation level the node errors were computed for; 0 without errors. */
+  int nodeErrorTessLevel() const { return mErrorTess; }
 
   /**
    * Selects the leaves to draw for a camera at `cameraPos` (world metres), culling against `frustum` when it
@@ -262,6 +319,7 @@ private:
   };
 
   void init(const QuadtreeConfig& config, float extentX, float extentZ, bool needRoots);
+  void buildErrors(const HeightField& field);
   void buildLodRanges();
   HeightRange lodRange(int level, int gridX, int gridZ) const;
   bool paperFinerNeighbour(std::int32_t treeIndex, int edge, long long& steps) const;
@@ -274,6 +332,9 @@ private:
   std::vector<float> mSizes;                   // node size per depth, metres
   MinMaxPyramid mRanges;                       // level k = depth maxDepth − k
   std::vector<std::vector<HeightRange>> mLodY; // per depth: union over the 3×3 same-depth neighbourhood
+  std::vector<std::vector<float>> mError;      // per depth: saturated node error (metres)
+  std::vector<std::vector<float>> mLodError;   // per depth: max of mError over the 3×3 neighbourhood
+  int mErrorTess = 0;                          // patchTessLevel the errors hold for (0: none)
 
   // Per-view scratch.
   std::vector<StackItem> mStack;

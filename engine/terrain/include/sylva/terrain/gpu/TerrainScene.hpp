@@ -51,13 +51,20 @@ public:
   static std::unique_ptr<TerrainScene> fromSetup(const shader::Library& library, const TerrainSetup& setup,
                                                  const TerrainFieldName& name = {});
 
-  /** Runs LOD selection and neighbour levels for `camera` at `aspect`; returns the selection. */
-  const QuadtreeSelection& update(const render::Camera& camera, float aspect);
+  /**
+   * Runs LOD selection and neighbour levels for `camera` at `aspect`; returns the selection. With
+   * screen-space-error LOD and `viewportHeightPx` > 0, the error is projected into a view that many pixels
+   * high with the camera's field of view (QuadtreeConfig::pixelsPerRadian); 0 keeps the last projection.
+   */
+  const QuadtreeSelection& update(const render::Camera& camera, float aspect, int viewportHeightPx = 0);
   /** Draws the last selection. */
   void draw(const render::Camera& camera, int width, int height, double time,
             render::GpuTimers* timers = nullptr, const TerrainDrawOptions& options = {});
 
-  /** Applies a new LOD policy; rebuilds the quadtree when the layout (roots, root size, depth) changes. */
+  /**
+   * Applies a new LOD policy; rebuilds the quadtree when the layout (roots, root size, depth) changes or
+   * screen-space-error LOD needs node errors it does not have (Quadtree::canSetConfig).
+   */
   void setQuadtreeConfig(const QuadtreeConfig& config);
   /** Culls against this frustum instead of the camera's (viewer "freeze frustum"); nullopt = follow camera.
    */
