@@ -146,6 +146,14 @@ void benchDemo(const BenchOptions& o, const platform::GlContext& context, nlohma
 /** `bench terrain`: the paper's Table 8, both crack methods, popping (BenchTerrain.cpp). */
 void benchTerrain(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
 /**
+ * `bench terrain-error`: over `o.frames` camera poses on three fields (Jacksboro, the elev.tif GeoTIFF, a
+ * ridged procedural field of `proceduralSize`² samples at 2 m), distance LOD and screen-space-error LOD each
+ * tuned to the cheapest setting whose measured worst error is ≤ 1 px against the full-depth surface, then
+ * their leaves, vertices, triangles, LOD and frame times side by side (BenchTerrainError.cpp).
+ */
+void benchTerrainError(const BenchOptions& o, const platform::GlContext& context, int proceduralSize,
+                       nlohmann::json& report);
+/**
  * `bench soak`: memory, GL errors and frame-time drift over a long orbit (BenchTerrain.cpp); report["passed"]
  * is false (and a line on stderr says why) when memory grew more than maxGrowthPercent or a GL error
  * occurred.

@@ -731,6 +731,36 @@ TEST(CliBench, EveryPassOfEveryAreaReportsItsWork) {
   EXPECT_EQ(surface.at("counts").at("compute_invocations"), 0);
 }
 
+// `bench terrain-error` end to end on tiny fields: four fields, both methods tuned, a measured worst error at
+// or under 1 px for every method that reached the goal, vertices counted. Bad sizes are refused up front.
+TEST(CliBench, TerrainErrorComparesBothMethodsAtEqualError) {
+  test::TempDir dir;
+  const fs::path report = dir / "error.json";
+  const RunResult r =
+      runSylva(dir, "bench terrain-error --frames 2 --field-size 129 --width 96 --height 64 -o " +
+                        quote(report.string()));
+  if (r.status != 0 && r.err.find("fetch-sample-data") != std::string::npos) {
+    GTEST_SKIP() << "sample data missing: " << r.err;
+  }
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json json = loadJsonFile(report);
+  ASSERT_EQ(json.at("fields").size(), 4u);
+  for (const nlohmann::json& field : json.at("fields")) {
+    for (const char* method : {"distance", "error"}) {
+      const nlohmann::json& m = field.at(method);
+      if (m.at("goal_reached").get<bool>()) {
+        EXPECT_LE(m.at("worst_px").get<double>(), 1.0) << field.at("field") << " " << method;
+      }
+      EXPECT_GT(m.at("vertices_mean").get<double>(), 0.0) << field.at("field") << " " << method;
+      EXPECT_GT(m.at("probes").get<int>(), 0);
+    }
+    EXPECT_GT(field.at("vertex_ratio").get<double>(), 0.0);
+  }
+  const RunResult bad = runSylva(dir, "bench terrain-error --field-size 5");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.err.find("--field-size"), std::string::npos) << bad.err;
+}
+
 TEST(CliBench, GpuBenchScriptRefusesSoftwareAndStoresEveryReport) {
   // scripts/gpu-bench.sh is for NVIDIA machines, which CI never has: here it must refuse llvmpipe in one line
   // before any work, and with --allow-software run what it is given and store each report.

@@ -30,6 +30,7 @@ struct BenchFlags {
   std::string sceneFile; // empty: the data folder's scenes/meadow.json
   std::string quality = "default";
   double targetFps = 10.0;
+  int fieldSize = 4097; // terrain-error: samples per side of the ridged procedural fields
 
   /** What the area measures; throws naming the option when the terrain options do not go together. */
   bench::BenchOptions options() const {
@@ -61,6 +62,8 @@ void runGlBench(const BenchFlags& o, const bench::BenchOptions& options, nlohman
   auto context = platform::createHeadlessContext(options.context);
   if (o.area == "terrain") {
     bench::benchTerrain(options, *context, report);
+  } else if (o.area == "terrain-error") {
+    bench::benchTerrainError(options, *context, o.fieldSize, report);
   } else if (o.area == "grass") {
     bench::benchGrass(options, *context, report);
   } else if (o.area == "grass-sim") {
@@ -91,7 +94,9 @@ void registerBench(CLI::App& app) {
   command
       ->add_option(
           "area", o->area,
-          "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or soak (long "
+          "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or terrain-error "
+          "(distance LOD against screen-space-error LOD at the same measured worst error of 1 px, "
+          "--frames camera poses on each of three fields) or soak (long "
           "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure) "
           "or fold (folding-texture targets on a generated 1 MP case) or capture (grass capture: "
           "extraction latency per 640x480 frame, refining) or grass (the paper's 955,264-blade field "
@@ -100,8 +105,8 @@ void registerBench(CLI::App& app) {
           "workloads instanced and per piece, tessellation cost, foliage, 1,000 animated + 100,000 impostor "
           "trees, generation, wind on joints, bark tile sets) or scene (a scene file's frames, --scene: "
           "per-pass CPU, GPU and wall times, frames per second, memory)")
-      ->check(CLI::IsMember(
-          {"demo", "terrain", "soak", "fold", "capture", "grass", "grass-sim", "trees", "scene"}))
+      ->check(CLI::IsMember({"demo", "terrain", "terrain-error", "soak", "fold", "capture", "grass",
+                             "grass-sim", "trees", "scene"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -130,6 +135,12 @@ void registerBench(CLI::App& app) {
           "auto (the viewer's loop: quality steps chosen to keep --target-fps, scene time moving on by each "
           "frame's wall time)")
       ->check(CLI::IsMember({"default", "full", "auto"}))
+      ->capture_default_str();
+  command
+      ->add_option("--field-size", o->fieldSize,
+                   "terrain-error: samples per side of the two ridged procedural fields (2 m spacing; 16384 "
+                   "needs a GPU: every pose is also drawn at full depth)")
+      ->check(CLI::Range(17, 16384))
       ->capture_default_str();
   command->add_option("--target-fps", o->targetFps, "scene --quality auto: frames per second to keep to")
       ->check(CLI::Range(1.0, 240.0))

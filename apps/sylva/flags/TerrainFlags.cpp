@@ -171,7 +171,8 @@ void TerrainFlags::add(CLI::App& command) {
       ->capture_default_str();
   command.add_flag("--terrain-geomorph,!--no-terrain-geomorph", geomorph,
                    "Geomorphing: terrain heights blend between LOD levels by distance, so patches do not pop "
-                   "when they split or merge (default: off)");
+                   "when they split or merge (default: off; not with --lod-error, whose splits change at most "
+                   "that many pixels)");
 }
 
 std::string terrainOption(std::string_view field) {

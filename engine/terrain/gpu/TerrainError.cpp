@@ -27,10 +27,10 @@ Image PositionTarget::draw(TerrainRenderer& renderer, const QuadtreeSelection& s
 }
 
 ScreenErrorStats PositionTarget::measure(TerrainRenderer& renderer, const HeightField& field,
-                                         const QuadtreeSelection& selection, const render::Camera& camera,
-                                         const TerrainDrawOptions& options) {
+                                         const QuadtreeSelection& selection, const Image& reference,
+                                         const render::Camera& camera, const TerrainDrawOptions& options) {
   const Image positions = draw(renderer, selection, camera, options);
-  return measureScreenError(field, positions, camera.viewProjection(aspect()),
+  return measureScreenError(field, positions, reference, camera.viewProjection(aspect()),
                             selection.config.finestVertexSpacing());
 }
 

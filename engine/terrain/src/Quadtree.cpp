@@ -105,6 +105,25 @@ float QuadtreeConfig::pixelsPerRadianFor(float viewportHeightPx, float fovY) {
   return 0.5f * viewportHeightPx / std::tan(0.5f * fovY);
 }
 
+std::uint64_t patchTriangles(const SelectedNode& node) {
+  const auto outer = [&](int e) { return static_cast<std::uint64_t>(std::lround(node.tessOuter[e])); };
+  const auto inner = static_cast<std::uint64_t>(std::lround(node.tessInner));
+  const std::uint64_t sum = outer(0) + outer(1) + outer(2) + outer(3);
+  if (inner <= 1 && sum == 4) {
+    return 2;
+  }
+  const std::uint64_t n = std::max<std::uint64_t>(inner, 2) - 2; // segments of the innermost ring
+  return 2 * n * n + 4 * n + sum;
+}
+
+QuadtreeConfig QuadtreeConfig::fullDepth() const {
+  QuadtreeConfig c = *this;
+  c.lodEnabled = true;
+  c.lodErrorPixels = 0.0f;
+  c.lodDistanceFactor = 1.0e30f; // every box is nearer than this many node sizes
+  return c;
+}
+
 float QuadtreeConfig::finestVertexSpacing() const {
   return std::ldexp(rootSize, -maxDepth) / static_cast<float>(patchTessLevel);
 }

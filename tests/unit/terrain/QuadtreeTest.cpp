@@ -942,6 +942,20 @@ TEST(QuadtreeTest, ScreenErrorSpendsLeavesWhereTheSurfaceNeedsThem) {
   EXPECT_TRUE(GeomorphParams::of(distance.config()).enabled);
 }
 
+TEST(QuadtreeTest, PatchTrianglesFollowTheTessellatorsCount) {
+  SelectedNode n;
+  const auto levels = [&](float inner, std::array<float, 4> outer) {
+    n.tessInner = inner;
+    n.tessOuter = outer;
+    return patchTriangles(n);
+  };
+  EXPECT_EQ(levels(1, {1, 1, 1, 1}), 2u);
+  EXPECT_EQ(levels(1, {2, 1, 1, 1}), 5u);        // inner 1 becomes 2: a fan of 5 outer segments
+  EXPECT_EQ(levels(2, {2, 2, 2, 2}), 8u);        // a 2×2 grid
+  EXPECT_EQ(levels(16, {16, 16, 16, 16}), 512u); // 2·16²
+  EXPECT_EQ(levels(16, {32, 16, 16, 16}), 528u); // a doubled edge adds its 16 extra segments
+}
+
 TEST(QuadtreeTest, ScreenErrorConfigsAreCheckedAndNeedErrors) {
   const HeightField field = rollingField();
   QuadtreeConfig c = rollingConfig();

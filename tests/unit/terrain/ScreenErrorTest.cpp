@@ -43,42 +43,58 @@ TEST(ScreenErrorTest, GapIsZeroOnEitherTriangulationAndVerticalElsewhere) {
   EXPECT_TRUE(std::isnan(fullResolutionGap(holes, {0.5f, 0.0f, 0.5f})));
 }
 
-// A flat field seen straight down from 10 m with a 90° field of view on 100 × 100 pixels: 1 m at 10 m spans
-// 5 pixels at the image centre. A drawn surface 1 m low at the centre pixel gives ~5 px there.
-TEST(ScreenErrorTest, ProjectsTheVerticalGapIntoPixels) {
-  HeightField flat(21, 21, 1.0f, 1.0f, 0.0f);
-  const glm::vec3 eye(10.0f, 10.0f, 10.0f);
-  const glm::mat4 viewProj = glm::perspective(glm::radians(90.0f), 1.0f, 0.1f, 100.0f) *
-                             glm::lookAt(eye, glm::vec3(10.0f, 0.0f, 10.0f), glm::vec3(0.0f, 0.0f, -1.0f));
-  Image positions(100, 100, 4, PixelType::F32);
-  // Exact surface everywhere except one pixel, and some uncovered pixels.
-  for (int y = 0; y < 100; ++y) {
-    for (int x = 0; x < 100; ++x) {
-      if (x < 10) {
-        continue; // alpha 0: no terrain
-      }
-      positions.set(x, y, 0, 5.0f + 0.1f * static_cast<float>(x));
-      positions.set(x, y, 1, 0.0f);
-      positions.set(x, y, 2, 5.0f + 0.1f * static_cast<float>(y));
-      positions.set(x, y, 3, 1.0f);
+// Seen straight down from 10 m with a 90° field of view on 100 × 100 pixels, a point x metres off the axis at
+// depth z sits 50·x/z pixels from the image centre.
+TEST(ScreenErrorTest, ProjectsTheVerticalOffsetFromTheReferenceSurfaceIntoPixels) {
+  HeightField slope(21, 21, 1.0f, 1.0f);
+  for (int j = 0; j < 21; ++j) {
+    for (int i = 0; i < 21; ++i) {
+      slope.at(i, j) = 0.5f * static_cast<float>(i); // y = 0.5·x
     }
   }
-  ScreenErrorStats exact = measureScreenError(flat, positions, viewProj);
-  EXPECT_EQ(exact.pixels, 90u * 100u);
-  EXPECT_EQ(exact.worstPx, 0.0);
-  positions.set(50, 50, 0, 10.0f);
-  positions.set(50, 50, 1, -1.0f);
-  positions.set(50, 50, 2, 10.0f);
-  const ScreenErrorStats one = measureScreenError(flat, positions, viewProj);
-  // Straight down, a vertical segment projects to the image centre: 0 px. Move it off-axis.
-  EXPECT_LT(one.worstPx, 1e-3);
-  positions.set(50, 50, 0, 15.0f);
-  const ScreenErrorStats side = measureScreenError(flat, positions, viewProj);
-  // From (10, 10, 10) the segment (15, −1 … 0, 10) spans x/depth 5/11 … 5/10 of the half-width (50 px).
-  EXPECT_NEAR(side.worstPx, 50.0 * (5.0 / 10.0 - 5.0 / 11.0), 0.05);
-  EXPECT_GT(side.meanPx, 0.0);
-  EXPECT_EQ(side.p999Px, 0.0); // one pixel in 9,000 is beyond the 99.9th percentile
-  EXPECT_THROW(measureScreenError(flat, Image(4, 4, 3, PixelType::F32), viewProj), sylva::Error);
+  const glm::vec3 eye(10.0f, 30.0f, 10.0f);
+  const glm::mat4 viewProj = glm::perspective(glm::radians(90.0f), 1.0f, 0.1f, 100.0f) *
+                             glm::lookAt(eye, glm::vec3(10.0f, 0.0f, 10.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+  Image reference(100, 100, 4, PixelType::F32);
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 10; x < 100; ++x) { // columns 0..9: no terrain
+      const float wx = 5.0f + 0.1f * static_cast<float>(x);
+      reference.set(x, y, 0, wx);
+      reference.set(x, y, 1, 0.5f * wx);
+      reference.set(x, y, 2, 5.0f + 0.1f * static_cast<float>(y));
+      reference.set(x, y, 3, 1.0f);
+    }
+  }
+  const ScreenErrorStats same = measureScreenError(slope, reference, reference, viewProj, 1.0f);
+  EXPECT_EQ(same.pixels, 90u * 100u);
+  EXPECT_EQ(same.worstPx, 0.0);
+  EXPECT_EQ(same.coverageMismatch, 0u);
+  // A point moved along the reference plane: the surfaces agree, error 0.
+  Image along = reference;
+  along.set(50, 50, 0, reference.get(50, 50, 0) + 1.0f);
+  along.set(50, 50, 1, reference.get(50, 50, 1) + 0.5f);
+  EXPECT_LT(measureScreenError(slope, along, reference, viewProj, 1.0f).worstPx, 1e-4);
+  // A point 1 m below the plane, at (15, 6.5, 10): the segment to (15, 7.5, 10) spans 50·5/23.5 … 50·5/22.5
+  // px.
+  Image below = reference;
+  below.set(50, 50, 0, 15.0f);
+  below.set(50, 50, 1, 6.5f);
+  below.set(50, 50, 2, 10.0f);
+  below.set(50, 51, 0, 15.0f);
+  below.set(50, 51, 1, 6.5f);
+  below.set(50, 51, 2, 10.0f);
+  reference.set(50, 51, 0, 15.0f);
+  reference.set(50, 51, 1, 7.5f);
+  reference.set(50, 51, 2, 10.0f);
+  below.set(60, 60, 3, 0.0f); // terrain in the reference only
+  const ScreenErrorStats one = measureScreenError(slope, below, reference, viewProj, 1.0f);
+  EXPECT_NEAR(one.worstPx, 50.0 * (5.0 / 22.5 - 5.0 / 23.5), 0.02) << "1 m below R at (15, 7.5, 10)";
+  EXPECT_EQ(one.coverageMismatch, 1u);
+  EXPECT_EQ(one.pixels, 90u * 100u - 1u);
+  EXPECT_THROW(measureScreenError(slope, Image(4, 4, 3, PixelType::F32), reference, viewProj, 1.0f),
+               sylva::Error);
+  EXPECT_THROW(measureScreenError(slope, Image(4, 4, 4, PixelType::F32), reference, viewProj, 1.0f),
+               sylva::Error);
 }
 
 } // namespace

@@ -134,6 +134,11 @@ struct QuadtreeConfig {
    * surface drawn at that depth everywhere is the reference of the screen-space error ("full resolution").
    */
   float finestVertexSpacing() const;
+  /**
+   * This layout with every node split down to maxDepth (distance LOD with an unbounded factor, no error
+   * LOD): the full-resolution reference view of the screen-space error measures.
+   */
+  QuadtreeConfig fullDepth() const;
 };
 
 /** One patch to draw: a selected quadtree leaf. */
@@ -166,6 +171,12 @@ struct SelectedNode {
   /** gl_TessLevelInner[0] and [1]: the base level. */
   float tessInner = 0.0f;
 };
+
+/**
+ * Triangles the GPU tessellator makes for `node`'s quad patch with equal spacing (OpenGL 4.5 §11.2.2.2):
+ * 2 when every level is 1; otherwise, with the inner level n (1 counts as 2), 2(n−2)² + 4(n−2) + Σ outer.
+ */
+std::uint64_t patchTriangles(const SelectedNode& node);
 
 /** Identifies a quadtree node: depth and grid index. */
 struct NodeId {

@@ -37,12 +37,12 @@ public:
              TerrainDrawOptions options = {});
 
   /**
-   * draw() followed by measureScreenError against `field` (the heights the renderer was built from) on the
-   * finest vertex lattice of the selection's config: the error against the same view drawn at full depth.
+   * draw() followed by measureScreenError against `reference` (positions of the same view, e.g. draw() of a
+   * selection made with QuadtreeConfig::fullDepth()); `field` is the heights the renderer was built from.
    */
   ScreenErrorStats measure(TerrainRenderer& renderer, const HeightField& field,
-                           const QuadtreeSelection& selection, const render::Camera& camera,
-                           const TerrainDrawOptions& options = {});
+                           const QuadtreeSelection& selection, const Image& reference,
+                           const render::Camera& camera, const TerrainDrawOptions& options = {});
 
 private:
   int mWidth;
