@@ -43,6 +43,41 @@ struct TerrainMapsUniforms {
 };
 SYLVA_ASSERT_SIZE(TerrainMapsUniforms, 32);
 
+// GPU quadtree selection (sylva::terrain::GpuQuadtreeSelection, shaders/terrain/select.comp).
+#define SYLVA_TERRAIN_SELECT_NODE_BINDING 6    // std430: TerrainSelectNode per node, every depth
+#define SYLVA_TERRAIN_SELECT_PARAMS_BINDING 7  // std430: TerrainSelectParams
+#define SYLVA_TERRAIN_SELECT_LIST_BINDING 8    // std430: two candidate lists (uvec2 grid x, z), ping-pong
+#define SYLVA_TERRAIN_SELECT_SPLIT_BINDING 9   // std430: split bits, every depth
+#define SYLVA_TERRAIN_SELECT_COUNTER_BINDING 10 // std430: TerrainSelectCounters (the indirect draw first)
+#define SYLVA_TERRAIN_SELECT_GROUP_SIZE 256
+#define SYLVA_TERRAIN_SELECT_MAX_DEPTH 27 // depths 0..27 fit the offset tables (7 uvec4)
+
+// One quadtree node's data: own height range, the LOD box's (3x3-dilated) range, the LOD error (metres).
+struct TerrainSelectNode {
+  vec4 range; // x, y: min, max height (metres; min > max: absent); z, w: LOD box min, max
+  vec4 error; // x: LOD error (saturated, dilated when the selection is restricted), metres; y, z, w: unused
+};
+SYLVA_ASSERT_SIZE(TerrainSelectNode, 32);
+
+// The view and the policy of one selection (the CPU Quadtree's config and select() arguments).
+struct TerrainSelectParams {
+  vec4 camera;         // xyz: camera (world metres); w: root size (metres)
+  vec4 lod;            // x: distance factor; y: error scale K/tau (0: distance LOD); z: distance floor; w: tess T
+  ivec4 grid;          // x, y: roots along x, z; z: max depth; w: deepest depth that may split (max depth or 0)
+  ivec4 flags;         // x: frustum culling; y: stitch edges (crack method != none); z: list capacity; w: unused
+  vec4 planes[6];      // frustum planes (n.xyz, d), inward, normalised (sylva::Frustum)
+  uvec4 offsets[7];    // first node of depth d: offsets[d / 4][d % 4]
+  uvec4 bitOffsets[7]; // first split bit of depth d
+};
+SYLVA_ASSERT_SIZE(TerrainSelectParams, 384);
+
+// Counters: the DrawArraysIndirect command of the selected patches first (count 4, one instance per leaf).
+struct TerrainSelectCounters {
+  uvec4 draw;    // x: 4 control points; y: leaves (instances); z: first; w: base instance
+  uvec4 lists;   // x, y: candidates in list 0 and 1; z: overflow (candidates dropped, list full); w: unused
+};
+SYLVA_ASSERT_SIZE(TerrainSelectCounters, 32);
+
 SYLVA_GPU_END
 
 #endif

@@ -5,6 +5,7 @@
 #include <sylva/shader/Compiler.hpp>
 #include <sylva/terrain/Geomorph.hpp>
 #include <sylva/terrain/HeightSources.hpp>
+#include <sylva/terrain/gpu/GpuQuadtreeSelection.hpp>
 
 #include <algorithm>
 #include <bit>
@@ -230,26 +231,6 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
     }
     mNodes.setSubData(0, bytes, nodes.data());
     mNodes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TERRAIN_NODE_BINDING);
-
-    gpu::TerrainUniforms u{};
-    u.field = glm::ivec4(mField.width, mField.height, mSplatMap.layers(), static_cast<int>(mLayers.size()));
-    u.spacing = glm::vec4(mField.spacingX, mField.spacingZ, options.textureTiling, options.skirtDepth);
-    u.extent = glm::vec4(mField.extentX, mField.extentZ, static_cast<float>(options.view), 0.0f);
-    u.heightRange = glm::vec4(mMinHeight, mMaxHeight, 0.0f, 0.0f);
-    mUniforms.setSubData(0, sizeof(u), &u);
-    mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
-    mFrame.bind(camera, width, height, time, options.environment);
-    mHeights.bind(0);
-    mValid.bind(1);
-    mNormalMap.bind(2);
-    mSplatMap.bind(3);
-    mLayerAlbedo.bind(4);
-    if (options.vertexPoints && !mSurfacePoints) {
-      mSurfacePoints = shader::compileProgram(*mLibrary, {"terrain surface points",
-                                                          {"terrain/patch.vert", "terrain/patch.tesc",
-                                                           "terrain/patch.tese", "terrain/patch.frag"},
-                                                          {{"SYLVA_TERRAIN_POINTS", "1"}}});
-    }
     // Depth only: without holes in the data or patches past its extent nothing is discarded, and a fragment
     // shader without discard lets the rasteriser reject hidden fragments before shading.
     bool depthOnly = options.view == TerrainView::Depth && !options.vertexPoints && !mHoles;
@@ -258,44 +239,9 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
       depthOnly =
           n.x >= 0.0f && n.z >= 0.0f && n.x + n.size <= mField.extentX && n.z + n.size <= mField.extentZ;
     }
-    if (depthOnly && !mSurfaceDepth) {
-      mSurfaceDepth = shader::compileProgram(*mLibrary, {"terrain surface depth",
-                                                         {"terrain/patch.vert", "terrain/patch.tesc",
-                                                          "terrain/patch.tese", "terrain/patch.frag"},
-                                                         {{"SYLVA_TERRAIN_DEPTH_ONLY", "1"}}});
-    }
-    gl::Program& surface = options.vertexPoints ? mSurfacePoints : depthOnly ? mSurfaceDepth : mSurface;
-    surface.use();
-    mVao.bind();
-    // Geomorphing follows the selection's camera and LOD distances (off: w = 0, the plain surface).
-    const QuadtreeConfig& lod = selection.config;
-    const bool morph = options.geomorph && GeomorphParams::of(lod).enabled;
-    surface.setUniform("uMorphCamera", glm::vec4(selection.camera, morph ? 1.0f : 0.0f));
-    surface.setUniform("uMorphLod", glm::vec4(lod.rootSize, static_cast<float>(lod.maxDepth),
-                                              static_cast<float>(lod.patchTessLevel), lod.lodDistanceFactor));
-    glPatchParameteri(GL_PATCH_VERTICES, 4);
-    glPolygonMode(GL_FRONT_AND_BACK, options.wireframe ? GL_LINE : GL_FILL);
-    const bool count = options.countVertices && mInvocations;
-    if (count) {
-      mInvocations.begin();
-    }
     const auto surfaces = static_cast<GLsizei>(selection.nodes.size());
-    surface.setUniform("uNodeOffset", 0);
-    if (options.groundTint && options.groundTint->texture != nullptr) {
-      const GroundTint& tint = *options.groundTint;
-      tint.texture->bind(5);
-      surface.setUniform("uGroundTint", glm::vec4(tint.colour, std::clamp(tint.strength, 0.0f, 1.0f)));
-      surface.setUniform("uGroundTintMap",
-                         glm::vec4(1.0f / tint.spacing.x, 1.0f / tint.spacing.y,
-                                   static_cast<float>(tint.size.x), static_cast<float>(tint.size.y)));
-    } else {
-      surface.setUniform("uGroundTint", glm::vec4(0.0f));
-    }
-    glDrawArraysInstanced(GL_PATCHES, 0, 4, surfaces);
-    if (count) {
-      mInvocations.end();
-      mLastInvocations = static_cast<std::int64_t>(*mInvocations.result(true));
-    }
+    gl::Program& surface = drawSurface(selection.config, selection.camera, depthOnly, surfaces, nullptr,
+                                       camera, width, height, time, options);
     if (options.skirts && !options.vertexPoints) {
       // Skirts lose depth ties against the surface they hang from (exactly shared edge points).
       if (!mCrackSamples) {
@@ -326,6 +272,83 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
       glDisable(GL_BLEND);
     }
   }
+}
+
+gl::Program& TerrainRenderer::drawSurface(const QuadtreeConfig& lod, const glm::vec3& selectionCamera,
+                                          bool depthOnly, GLsizei surfaces, const gl::Buffer* indirect,
+                                          const render::Camera& camera, int width, int height, double time,
+                                          const TerrainDrawOptions& options) {
+  gpu::TerrainUniforms u{};
+  u.field = glm::ivec4(mField.width, mField.height, mSplatMap.layers(), static_cast<int>(mLayers.size()));
+  u.spacing = glm::vec4(mField.spacingX, mField.spacingZ, options.textureTiling, options.skirtDepth);
+  u.extent = glm::vec4(mField.extentX, mField.extentZ, static_cast<float>(options.view), 0.0f);
+  u.heightRange = glm::vec4(mMinHeight, mMaxHeight, 0.0f, 0.0f);
+  mUniforms.setSubData(0, sizeof(u), &u);
+  mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_TERRAIN_BINDING);
+  mFrame.bind(camera, width, height, time, options.environment);
+  mHeights.bind(0);
+  mValid.bind(1);
+  mNormalMap.bind(2);
+  mSplatMap.bind(3);
+  mLayerAlbedo.bind(4);
+  if (options.vertexPoints && !mSurfacePoints) {
+    mSurfacePoints = shader::compileProgram(
+        *mLibrary, {"terrain surface points",
+                    {"terrain/patch.vert", "terrain/patch.tesc", "terrain/patch.tese", "terrain/patch.frag"},
+                    {{"SYLVA_TERRAIN_POINTS", "1"}}});
+  }
+  if (depthOnly && !mSurfaceDepth) {
+    mSurfaceDepth = shader::compileProgram(
+        *mLibrary, {"terrain surface depth",
+                    {"terrain/patch.vert", "terrain/patch.tesc", "terrain/patch.tese", "terrain/patch.frag"},
+                    {{"SYLVA_TERRAIN_DEPTH_ONLY", "1"}}});
+  }
+  gl::Program& surface = options.vertexPoints ? mSurfacePoints : depthOnly ? mSurfaceDepth : mSurface;
+  surface.use();
+  mVao.bind();
+  // Geomorphing follows the selection's camera and LOD distances (off: w = 0, the plain surface).
+  const bool morph = options.geomorph && GeomorphParams::of(lod).enabled;
+  surface.setUniform("uMorphCamera", glm::vec4(selectionCamera, morph ? 1.0f : 0.0f));
+  surface.setUniform("uMorphLod", glm::vec4(lod.rootSize, static_cast<float>(lod.maxDepth),
+                                            static_cast<float>(lod.patchTessLevel), lod.lodDistanceFactor));
+  glPatchParameteri(GL_PATCH_VERTICES, 4);
+  glPolygonMode(GL_FRONT_AND_BACK, options.wireframe ? GL_LINE : GL_FILL);
+  const bool count = options.countVertices && mInvocations;
+  if (count) {
+    mInvocations.begin();
+  }
+  surface.setUniform("uNodeOffset", 0);
+  if (options.groundTint && options.groundTint->texture != nullptr) {
+    const GroundTint& tint = *options.groundTint;
+    tint.texture->bind(5);
+    surface.setUniform("uGroundTint", glm::vec4(tint.colour, std::clamp(tint.strength, 0.0f, 1.0f)));
+    surface.setUniform("uGroundTintMap",
+                       glm::vec4(1.0f / tint.spacing.x, 1.0f / tint.spacing.y,
+                                 static_cast<float>(tint.size.x), static_cast<float>(tint.size.y)));
+  } else {
+    surface.setUniform("uGroundTint", glm::vec4(0.0f));
+  }
+  if (indirect != nullptr) {
+    indirect->bind(GL_DRAW_INDIRECT_BUFFER);
+    glDrawArraysIndirect(GL_PATCHES, nullptr);
+  } else {
+    glDrawArraysInstanced(GL_PATCHES, 0, 4, surfaces);
+  }
+  if (count) {
+    mInvocations.end();
+    mLastInvocations = static_cast<std::int64_t>(*mInvocations.result(true));
+  }
+  return surface;
+}
+
+void TerrainRenderer::draw(const GpuQuadtreeSelection& selection, const render::Camera& camera, int width,
+                           int height, double time, render::GpuTimers* timers,
+                           const TerrainDrawOptions& options) {
+  const render::GpuTimerScope timed(timers, "terrain");
+  selection.nodes().bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TERRAIN_NODE_BINDING);
+  drawSurface(selection.quadtree().config(), selection.camera(), false, 0, &selection.command(), camera,
+              width, height, time, options);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 
 Image TerrainRenderer::downloadNormals() const {

@@ -450,6 +450,24 @@ HeightRange Quadtree::lodRange(int level, int gridX, int gridZ) const {
   return mRanges.node(mConfig.maxDepth - level, gridX, gridZ);
 }
 
+HeightRange Quadtree::lodBoxRange(const NodeId& node) const {
+  if (node.level < 0 || node.level > mConfig.maxDepth || node.gridX < 0 || node.gridZ < 0 ||
+      node.gridX >= gridWidth(node.level) || node.gridZ >= gridHeight(node.level)) {
+    return HeightRange::absent();
+  }
+  return lodRange(node.level, node.gridX, node.gridZ);
+}
+
+float Quadtree::lodRuleError(const NodeId& node) const {
+  if (mError.empty() || node.level < 0 || node.level > mConfig.maxDepth || node.gridX < 0 || node.gridZ < 0 ||
+      node.gridX >= gridWidth(node.level) || node.gridZ >= gridHeight(node.level)) {
+    return 0.0f;
+  }
+  return (mConfig.restrictSelection ? mLodError : mError)[static_cast<std::size_t>(
+      node.level)][static_cast<std::size_t>(node.gridZ) * static_cast<std::size_t>(gridWidth(node.level)) +
+                   static_cast<std::size_t>(node.gridX)];
+}
+
 float Quadtree::nodeError(const NodeId& node) const {
   if (mError.empty() || node.level < 0 || node.level > mConfig.maxDepth || node.gridX < 0 || node.gridZ < 0 ||
       node.gridX >= gridWidth(node.level) || node.gridZ >= gridHeight(node.level)) {

@@ -263,6 +263,17 @@ public:
    */
   void setConfig(const QuadtreeConfig& config);
   /**
+   * Height range of the LOD box the split rule measures `node`'s distance to (metres): the union over its
+   * 3×3 same-depth neighbourhood when config().restrictSelection, else its own range. Absent outside the
+   * grid.
+   */
+  HeightRange lodBoxRange(const NodeId& node) const;
+  /**
+   * The error the screen-space-error split rule reads for `node` (metres): the largest nodeError over its 3×3
+   * neighbourhood when config().restrictSelection, else its own; 0 without errors or outside the grid.
+   */
+  float lodRuleError(const NodeId& node) const;
+  /**
    * True when setConfig(config) would succeed: same layout and, for screen-space-error LOD, node errors
    * computed for its patchTessLevel. Otherwise build a new Quadtree from the heights.
    */

@@ -21,6 +21,8 @@
 
 namespace sylva::terrain {
 
+class GpuQuadtreeSelection;
+
 /** What the terrain fragment shader shows. */
 enum class TerrainView : int {
   Shaded = 0,
@@ -130,6 +132,13 @@ public:
    */
   void draw(const QuadtreeSelection& selection, const render::Camera& camera, int width, int height,
             double time, render::GpuTimers* timers = nullptr, const TerrainDrawOptions& options = {});
+  /**
+   * Draws the leaves a GpuQuadtreeSelection left on the GPU with one indirect draw (no CPU readback), as the
+   * overload above draws a CPU selection; skirts and vertexPoints are not drawn on this path, and depth-only
+   * views use the program that discards outside the data.
+   */
+  void draw(const GpuQuadtreeSelection& selection, const render::Camera& camera, int width, int height,
+            double time, render::GpuTimers* timers = nullptr, const TerrainDrawOptions& options = {});
 
   /** Skirt samples that passed the depth test in the last draw with skirts (crack pixels), else -1. */
   std::int64_t lastCrackSamples() const { return mLastCrackSamples; }
@@ -146,6 +155,11 @@ public:
   const std::vector<SplatLayer>& layers() const { return mLayers; }
 
 private:
+  /** Uniforms, textures, program and the surface draw (instanced, or indirect from `indirect`); the program.
+   */
+  gl::Program& drawSurface(const QuadtreeConfig& lod, const glm::vec3& selectionCamera, bool depthOnly,
+                           GLsizei surfaces, const gl::Buffer* indirect, const render::Camera& camera,
+                           int width, int height, double time, const TerrainDrawOptions& options);
   void uploadLayerTextures();
 
   /** The field's shape only: its heights live in the textures (no CPU copy is kept). */
