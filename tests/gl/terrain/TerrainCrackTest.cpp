@@ -17,7 +17,9 @@
 
 #include <fmt/format.h>
 
+#include <functional>
 #include <memory>
+#include <string>
 
 namespace sylva::terrain {
 namespace {
@@ -106,24 +108,43 @@ void PrintTo(const CrackCase& c, std::ostream* os) {
 
 class TerrainCracks : public test::GlTest, public ::testing::WithParamInterface<CrackCase> {};
 
-TEST_P(TerrainCracks, NoBackgroundThroughTheSurfaceOnJacksboro) {
-  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
-  CrackRig rig(shaders());
+/**
+ * Draws `poses` crack checks with `c`'s method and level (geomorph and screen-space-error LOD as
+ * `geomorph(pose)` and `lodError` say) and fails at the first frame with a crack pixel, saving it as
+ * golden-out/<prefix>_….png; the poses must exercise stitching (more doubled edges than poses).
+ */
+void expectNoCracks(const shader::Library& library, const CrackCase& c, int poses, const char* prefix,
+                    const std::function<bool(int)>& geomorph, float lodError,
+                    const std::function<void(const std::string&, const std::string&)>& record) {
+  CrackRig rig(library);
   long long levelChanges = 0;
-  for (int pose = 0; pose < kPoses; ++pose) {
-    const std::int64_t cracks = rig.cracks(GetParam().method, GetParam().tess, pose);
+  for (int pose = 0; pose < poses; ++pose) {
+    const bool morph = geomorph(pose);
+    const std::int64_t cracks = rig.cracks(c.method, c.tess, pose, morph, lodError);
     levelChanges += rig.lastLevelChanges();
     if (cracks != 0) {
       saveImage(std::filesystem::path(SYLVA_BINARY_DIR) / "golden-out" /
-                    fmt::format("crack_{}_t{}_pose{}.png", crackMethodName(GetParam().method),
-                                GetParam().tess, pose),
+                    fmt::format("{}_{}_t{}_pose{}.png", prefix, crackMethodName(c.method), c.tess, pose),
                 rig.target().readColor());
     }
-    ASSERT_EQ(cracks, 0) << "pose " << pose << ": " << cracks << " crack pixels (image in golden-out/)";
+    EXPECT_EQ(cracks, 0) << "pose " << pose << (morph ? " (geomorph)" : "") << ": " << cracks
+                         << " crack pixels (image in golden-out/)";
   }
   // The poses must actually exercise stitching, or zero cracks would prove nothing.
-  EXPECT_GT(levelChanges, kPoses);
-  RecordProperty("doubled_edges", std::to_string(levelChanges));
+  EXPECT_GT(levelChanges, poses);
+  record("doubled_edges", std::to_string(levelChanges));
+}
+
+std::string caseName(const ::testing::TestParamInfo<CrackCase>& info) {
+  return fmt::format("{}_t{:02}", info.param.method == CrackMethod::PaperSearch ? "paper" : "ours",
+                     info.param.tess);
+}
+
+TEST_P(TerrainCracks, NoBackgroundThroughTheSurfaceOnJacksboro) {
+  SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
+  expectNoCracks(
+      shaders(), GetParam(), kPoses, "crack", [](int) { return false; }, 0.0f,
+      [this](const std::string& k, const std::string& v) { RecordProperty(k, v); });
 }
 
 std::vector<CrackCase> allCases() {
@@ -136,12 +157,7 @@ std::vector<CrackCase> allCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(BothMethodsAllLevels, TerrainCracks, ::testing::ValuesIn(allCases()),
-                         [](const ::testing::TestParamInfo<CrackCase>& info) {
-                           return fmt::format(
-                               "{}_t{:02}", info.param.method == CrackMethod::PaperSearch ? "paper" : "ours",
-                               info.param.tess);
-                         });
+INSTANTIATE_TEST_SUITE_P(BothMethodsAllLevels, TerrainCracks, ::testing::ValuesIn(allCases()), caseName);
 
 // The same proof with geomorphing on: morphed heights are a function of a vertex's lattice xz and the camera,
 // so shared edge vertices stay bit-identical (skirt tops use the same height). CI: the "ours" method at seven
@@ -153,21 +169,9 @@ class TerrainCracksGeomorph : public TerrainCracks {};
 
 TEST_P(TerrainCracksGeomorph, NoBackgroundThroughTheMorphedSurfaceOnJacksboro) {
   SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
-  CrackRig rig(shaders());
-  long long levelChanges = 0;
-  for (int pose = 0; pose < kGeomorphPoses; ++pose) {
-    const std::int64_t cracks = rig.cracks(GetParam().method, GetParam().tess, pose, true);
-    levelChanges += rig.lastLevelChanges();
-    if (cracks != 0) {
-      saveImage(std::filesystem::path(SYLVA_BINARY_DIR) / "golden-out" /
-                    fmt::format("crack_geomorph_{}_t{}_pose{}.png", crackMethodName(GetParam().method),
-                                GetParam().tess, pose),
-                rig.target().readColor());
-    }
-    ASSERT_EQ(cracks, 0) << "pose " << pose << ": " << cracks << " crack pixels (image in golden-out/)";
-  }
-  EXPECT_GT(levelChanges, kGeomorphPoses);
-  RecordProperty("doubled_edges", std::to_string(levelChanges));
+  expectNoCracks(
+      shaders(), GetParam(), kGeomorphPoses, "crack_geomorph", [](int) { return true; }, 0.0f,
+      [this](const std::string& k, const std::string& v) { RecordProperty(k, v); });
 }
 
 std::vector<CrackCase> geomorphCases() {
@@ -181,12 +185,7 @@ std::vector<CrackCase> geomorphCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Geomorph, TerrainCracksGeomorph, ::testing::ValuesIn(geomorphCases()),
-                         [](const ::testing::TestParamInfo<CrackCase>& info) {
-                           return fmt::format(
-                               "{}_t{:02}", info.param.method == CrackMethod::PaperSearch ? "paper" : "ours",
-                               info.param.tess);
-                         });
+INSTANTIATE_TEST_SUITE_P(Geomorph, TerrainCracksGeomorph, ::testing::ValuesIn(geomorphCases()), caseName);
 
 // The same proof with screen-space-error LOD (levels chosen by each node's geometric error projected into
 // the 120-pixel-high target, τ = 0.5 px, plus the distance floor that keeps the selection restricted); the
@@ -196,23 +195,9 @@ class TerrainCracksErrorLod : public TerrainCracks {};
 
 TEST_P(TerrainCracksErrorLod, NoBackgroundThroughTheSurfaceWithScreenErrorLod) {
   SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
-  CrackRig rig(shaders());
-  long long levelChanges = 0;
-  for (int pose = 0; pose < kGeomorphPoses; ++pose) {
-    const bool geomorph = pose % 2 == 1;
-    const std::int64_t cracks = rig.cracks(GetParam().method, GetParam().tess, pose, geomorph, 0.5f);
-    levelChanges += rig.lastLevelChanges();
-    if (cracks != 0) {
-      saveImage(std::filesystem::path(SYLVA_BINARY_DIR) / "golden-out" /
-                    fmt::format("crack_error_lod_{}_t{}_pose{}.png", crackMethodName(GetParam().method),
-                                GetParam().tess, pose),
-                rig.target().readColor());
-    }
-    ASSERT_EQ(cracks, 0) << "pose " << pose << (geomorph ? " (geomorph)" : "") << ": " << cracks
-                         << " crack pixels (image in golden-out/)";
-  }
-  EXPECT_GT(levelChanges, kGeomorphPoses);
-  RecordProperty("doubled_edges", std::to_string(levelChanges));
+  expectNoCracks(
+      shaders(), GetParam(), kGeomorphPoses, "crack_error_lod", [](int pose) { return pose % 2 == 1; }, 0.5f,
+      [this](const std::string& k, const std::string& v) { RecordProperty(k, v); });
 }
 
 std::vector<CrackCase> errorLodCases() {
@@ -228,12 +213,7 @@ std::vector<CrackCase> errorLodCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(ErrorLod, TerrainCracksErrorLod, ::testing::ValuesIn(errorLodCases()),
-                         [](const ::testing::TestParamInfo<CrackCase>& info) {
-                           return fmt::format(
-                               "{}_t{:02}", info.param.method == CrackMethod::PaperSearch ? "paper" : "ours",
-                               info.param.tess);
-                         });
+INSTANTIATE_TEST_SUITE_P(ErrorLod, TerrainCracksErrorLod, ::testing::ValuesIn(errorLodCases()), caseName);
 
 using TerrainCrackCheck = test::GlTest;
 
