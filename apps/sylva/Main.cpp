@@ -13,11 +13,14 @@ namespace {
 
 /**
  * Ctrl-C: long work (anything showing progress) stops cleanly and the command exits with its one-line
- * "cancelled" error, writing no output. Otherwise (and for SIGTERM) the process says so in one line, removes
- * the temporary file of any write in progress and ends as the signal asks. Everything here is
- * async-signal-safe.
+ * "cancelled" error, writing no output; once every output is written (markOutputsComplete) it is ignored.
+ * Otherwise (and for SIGTERM) the process says so in one line, removes the temporary file of any write in
+ * progress and ends as the signal asks. Everything here is async-signal-safe.
  */
 extern "C" void onInterrupt(int signal) {
+  if (signal == SIGINT && sylva::outputsComplete()) {
+    return; // every output is written: finish normally
+  }
   if (signal == SIGINT && sylva::Progress::anyActive()) {
     sylva::Progress::cancelAll();
     return;

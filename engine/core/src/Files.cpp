@@ -86,6 +86,19 @@ void removeStaleTemporaries(const std::filesystem::path& path) {
 
 } // namespace
 
+namespace {
+std::atomic<bool> gOutputsComplete{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "read from a signal handler");
+} // namespace
+
+void markOutputsComplete() noexcept {
+  gOutputsComplete.store(true);
+}
+
+bool outputsComplete() noexcept {
+  return gOutputsComplete.load();
+}
+
 void removeTemporaryFilesForSignal() noexcept {
   for (TempSlot& slot : gTempSlots) {
     if (slot.state.load() == 2) {

@@ -66,6 +66,9 @@ std::vector<std::string> writeAnimation(const AnimationOutputs& o, std::span<con
       }
       report.push_back(fmt::format("{} ({} frames)", o.pngDir, count));
     }
+    // Everything is written: a Ctrl-C from here on must not turn finished files into a failed run (the
+    // "writing" progress is still active, so nothing can slip in between).
+    markOutputsComplete();
   } catch (...) {
     for (const fs::path& path : written) {
       fs::remove(path, ec);

@@ -26,6 +26,15 @@ void writeFileAtomically(const std::filesystem::path& path,
 void removeTemporaryFilesForSignal() noexcept;
 
 /**
+ * Marks the command's outputs as all written: from here on the `sylva` program ignores SIGINT (the work is
+ * done), so an interrupted command leaves either no output or every output, never finished files with a
+ * failed exit. Call it last, while the final step's Progress is still active.
+ */
+void markOutputsComplete() noexcept;
+/** Whether markOutputsComplete() was called; async-signal-safe. */
+bool outputsComplete() noexcept;
+
+/**
  * Sylva's data folder (scenes, blade models, folding projects, fetched sample data), whatever the working
  * directory: $SYLVA_DATA_DIR when set, else `share/sylva/data` beside the running program's directory (an
  * installed layout: PREFIX/bin/sylva, PREFIX/share/sylva/data), else the source tree's data/ the libraries

@@ -30,8 +30,9 @@ struct AnimationOutputs {
  * file this call wrote (and the PNG folder when this call created it), then throws sylva::Error (a
  * cancellation:
  * "`label`: cancelled; the outputs written so far were removed"). Videos go first: they are the outputs most
- * likely to fail (ffmpeg, codecs), and then nothing else is written. Returns one line per output for a
- * report.
+ * likely to fail (ffmpeg, codecs), and then nothing else is written. When every file is written it calls
+ * markOutputsComplete() (a later Ctrl-C is ignored): call it as a command's last step. Returns one line per
+ * output for a report.
  */
 std::vector<std::string> writeAnimation(const AnimationOutputs& outputs, std::span<const Image> frames,
                                         const std::string& label);
