@@ -144,7 +144,7 @@ TEST_P(TerrainCracks, NoBackgroundThroughTheSurfaceOnJacksboro) {
   SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
   expectNoCracks(
       shaders(), GetParam(), kPoses, "crack", [](int) { return false; }, 0.0f,
-      [this](const std::string& k, const std::string& v) { RecordProperty(k, v); });
+      [](const std::string& k, const std::string& v) { ::testing::Test::RecordProperty(k, v); });
 }
 
 std::vector<CrackCase> allCases() {
@@ -171,7 +171,7 @@ TEST_P(TerrainCracksGeomorph, NoBackgroundThroughTheMorphedSurfaceOnJacksboro) {
   SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
   expectNoCracks(
       shaders(), GetParam(), kGeomorphPoses, "crack_geomorph", [](int) { return true; }, 0.0f,
-      [this](const std::string& k, const std::string& v) { RecordProperty(k, v); });
+      [](const std::string& k, const std::string& v) { ::testing::Test::RecordProperty(k, v); });
 }
 
 std::vector<CrackCase> geomorphCases() {
@@ -197,7 +197,7 @@ TEST_P(TerrainCracksErrorLod, NoBackgroundThroughTheSurfaceWithScreenErrorLod) {
   SYLVA_REQUIRE_EXTERNAL_DATA(test::externalData("jacksboro_fault_dem.npz"));
   expectNoCracks(
       shaders(), GetParam(), kGeomorphPoses, "crack_error_lod", [](int pose) { return pose % 2 == 1; }, 0.5f,
-      [this](const std::string& k, const std::string& v) { RecordProperty(k, v); });
+      [](const std::string& k, const std::string& v) { ::testing::Test::RecordProperty(k, v); });
 }
 
 std::vector<CrackCase> errorLodCases() {
