@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <new>
 #include <thread>
 #include <unistd.h>
 
@@ -115,6 +116,10 @@ int runCli(Cli& cli, int argc, const char* const* argv) {
     return 2;
   } catch (const Error& e) {
     std::fprintf(stderr, "sylva: error: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "sylva: error: out of memory: the input needs more memory than this process may use "
+                         "(see ulimit -v; DEMs larger than memory: sylva terrain pyramid)\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sylva: internal error: %s\n", e.what());

@@ -14,12 +14,15 @@
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/Quadtree.hpp>
 #include <sylva/terrain/TerrainMaps.hpp>
+#include <sylva/terrain/TilePyramid.hpp>
+#include <sylva/scene/Sequence.hpp>
 
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <cstddef>
 #include <cmath>
@@ -331,17 +334,133 @@ void registerQuery(CLI::App& terrainCommand) {
   });
 }
 
+void registerPyramid(CLI::App& terrainCommand) {
+  auto* command = terrainCommand.add_subcommand(
+      "pyramid",
+      "Cut a DEM into a tile pyramid (docs/terrain-data.md): compressed tiles of (T+1)^2 heights at every "
+      "level of detail, with height ranges and geometric errors, built tile by tile in bounded memory on all "
+      "cores; resumes an interrupted build; --shard splits level 0 across Slurm array tasks");
+  struct Options {
+    std::string dem;
+    std::string out;
+    int tileSize = 256;
+    std::string shard;
+    float pngScale = 100.0f;
+    float spacing = 0.0f;
+    std::string npzArray;
+    bool geographic = false;
+    bool flipY = false;
+  };
+  auto o = std::make_shared<Options>();
+  command
+      ->add_option("dem", o->dem,
+                   "The DEM: any GDAL raster (GeoTIFF, ...; read window by window, so it may be larger "
+                   "than memory), or .png/.exr/.npy/.npz (loaded whole)")
+      ->required();
+  command->add_option("-o,--out", o->out, "The pyramid's folder (created; an unfinished build there resumes)")
+      ->required();
+  command
+      ->add_option("--tile-size", o->tileSize,
+                   fmt::format("Samples per tile edge T (a tile holds (T+1)^2 heights), {}..{}",
+                               terrain::kMinTileSize, terrain::kMaxTileSize))
+      ->default_val(256)
+      ->check(CLI::Range(terrain::kMinTileSize, terrain::kMaxTileSize));
+  command->add_option(
+      "--shard", o->shard,
+      "i/n: build only level 0's tiles k with k mod n = i (counted from 0), for one task of a "
+      "job array; a last run without --shard builds the coarser levels and reuses them");
+  command->add_option("--spacing", o->spacing, "Metres between samples, overriding the file's coordinates")
+      ->check(finiteRange(kMinSpacing, kMaxSpacing));
+  command->add_flag("--geographic", o->geographic,
+                    "Read the file's coordinates as longitude/latitude degrees");
+  command->add_flag("--flip-y", o->flipY, "Reverse the rows (for files that are wrong about north)");
+  command->add_option("--png-scale", o->pngScale, "Metres of PNG value 1.0 (PNG without sidecar)")
+      ->check(finiteRange(1e-6, kMaxHeightScale));
+  command->add_option("--npz-array", o->npzArray, "Array inside an .npz (default: the first 2D array)");
+  command->callback([o] {
+    scene::Shard shard;
+    if (!o->shard.empty()) {
+      shard = scene::parseShard(o->shard);
+    }
+    const std::filesystem::path out = o->out;
+    std::error_code ec;
+    if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec)) {
+      fail("-o {}: exists and is not a folder", out.string());
+    }
+    terrain::LoadOptions load;
+    load.heightScale = o->pngScale;
+    load.spacing = o->spacing;
+    load.npzArray = o->npzArray;
+    load.horizontal = o->geographic ? terrain::HorizontalUnits::Degrees : terrain::HorizontalUnits::Auto;
+    load.flipY = o->flipY;
+    const auto start = std::chrono::steady_clock::now();
+    const auto raster = terrain::HeightRaster::open(o->dem, load);
+    const terrain::PyramidInfo plan = terrain::PyramidInfo::plan(
+        raster->width(), raster->height(), raster->spacingX(), raster->spacingZ(), o->tileSize);
+    std::printf("%s: %dx%d samples at %g x %g m; %d levels of %dx%d tiles (T = %d), %llu tiles in all\n",
+                o->dem.c_str(), raster->width(), raster->height(), static_cast<double>(raster->spacingX()),
+                static_cast<double>(raster->spacingZ()), plan.levels, plan.level(0).tilesX,
+                plan.level(0).tilesY, o->tileSize, static_cast<unsigned long long>(plan.tiles));
+    std::fflush(stdout);
+    std::optional<Progress> progress;
+    terrain::PyramidOptions options;
+    options.tileSize = o->tileSize;
+    options.shardIndex = shard.index;
+    options.shardCount = shard.count;
+    options.source = o->dem;
+    options.onTile = [&progress](std::size_t, std::size_t total) {
+      if (!progress) {
+        return;
+      }
+      if (progress->cancelled()) {
+        fail("pyramid: cancelled (finished tiles are kept; run again to resume)");
+      }
+      progress->advance();
+      (void)total;
+    };
+    {
+      const terrain::PyramidLevel base = plan.level(0);
+      const std::size_t baseTiles =
+          static_cast<std::size_t>(base.tilesX) * static_cast<std::size_t>(base.tilesY);
+      const std::size_t mine = (baseTiles + shard.count - 1 - shard.index) / shard.count;
+      progress.emplace("pyramid tiles", shard.count > 1 ? mine : static_cast<std::size_t>(plan.tiles));
+    }
+    const terrain::PyramidBuild build = terrain::buildPyramid(*raster, out, options);
+    progress.reset();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (shard.count > 1) {
+      std::printf(
+          "shard %d/%d: level 0 tiles: %zu written, %zu kept (%.1f MB) in %.1f s; run without --shard "
+          "to finish\n",
+          shard.index, shard.count, build.written, build.kept,
+          static_cast<double>(build.writtenBytes) / 1.0e6, seconds);
+      return;
+    }
+    const double raw = static_cast<double>(build.info.tiles) * static_cast<double>(o->tileSize + 1) *
+                       static_cast<double>(o->tileSize + 1) * 4.0;
+    std::printf(
+        "%s: %zu tiles written, %zu kept; %.1f MB on disk (%.2fx smaller than raw floats), heights "
+        "%.3f .. %.3f m, in %.1f s\n",
+        out.string().c_str(), build.written, build.kept, static_cast<double>(build.info.bytes) / 1.0e6,
+        raw / std::max(1.0, static_cast<double>(build.info.bytes)), static_cast<double>(build.info.minHeight),
+        static_cast<double>(build.info.maxHeight), seconds);
+  });
+}
+
 } // namespace
 
 void registerTerrain(CLI::App& app) {
   auto* command = app.add_subcommand(
-      "terrain", "Terrain tools: height, normal and splat maps from a DEM or a seed; info; height queries");
+      "terrain",
+      "Terrain tools: height, normal and splat maps from a DEM or a seed; info; height queries; tile "
+      "pyramids");
   command->require_subcommand(1);
   registerHeightmap(*command);
   registerNormals(*command);
   registerSplat(*command);
   registerTerrainInfo(*command);
   registerQuery(*command);
+  registerPyramid(*command);
 }
 
 } // namespace sylva::app

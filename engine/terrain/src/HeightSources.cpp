@@ -1,4 +1,5 @@
 #include <sylva/terrain/HeightSources.hpp>
+#include <sylva/terrain/HeightRaster.hpp>
 
 #include "internal/HeightSourcesInternal.hpp"
 
@@ -513,7 +514,20 @@ std::string guessCorruptFormat(const std::filesystem::path& path) {
   return "not a raster format GDAL can read";
 }
 
-HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& options, LoadReport& report) {
+/** A GDAL raster's band 1 as heights: what describeGdal found out before reading a sample. */
+struct GdalLayout {
+  int width = 0;        ///< samples along x
+  int height = 0;       ///< samples along z
+  double scale = 1.0;   ///< metres per stored unit (scale × elevation unit)
+  double offset = 0.0;  ///< metres added after scaling
+  bool hasMask = false; ///< whether the mask band must be read (nodata, alpha, per-dataset mask)
+  bool flipX = false;   ///< columns run east to west in the file
+  bool flipZ = false;   ///< rows run south to north in the file
+  double gt[6] = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0}; ///< the geotransform (identity when absent)
+  bool haveTransform = false;                    ///< whether the file has a geotransform
+};
+
+DatasetPtr openGdal(const std::filesystem::path& path) {
   requireFile(path);
   detail::checkNetCdfClassicSize(path);
   registerGdal();
@@ -530,35 +544,50 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
     }
     fail("{}: {}", name, message);
   }
-  if (GDALGetRasterCount(dataset.get()) < 1) {
+  return dataset;
+}
+
+/**
+ * Everything about `dataset` that can be checked before a sample is read: bands, size (checkSize), data type,
+ * units, mask, orientation, block layout and missing blocks. Fills report.orientation.
+ */
+template <typename CheckSize>
+GdalLayout describeGdal(const std::filesystem::path& path, GDALDatasetH dataset, LoadReport& report,
+                        const CheckSize& checkSize) {
+  const QuietGdal quiet;
+  const std::string name = path.string();
+  if (GDALGetRasterCount(dataset) < 1) {
     fail("{}: raster has no band", name);
   }
-  const int width = GDALGetRasterXSize(dataset.get());
-  const int height = GDALGetRasterYSize(dataset.get());
-  detail::checkHeightFieldSize(path, width, height, options);
-  GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
+  GdalLayout layout;
+  layout.width = GDALGetRasterXSize(dataset);
+  layout.height = GDALGetRasterYSize(dataset);
+  checkSize(layout.width, layout.height);
+  const int width = layout.width;
+  const int height = layout.height;
+  GDALRasterBandH band = GDALGetRasterBand(dataset, 1);
   if (GDALDataTypeIsComplex(GDALGetRasterDataType(band))) {
     fail("{}: band 1 holds complex numbers, not heights", name);
   }
   int hasScale = 0;
   int hasOffset = 0;
   const double unit = elevationUnitToMetres(path, GDALGetRasterUnitType(band));
-  const double scale = GDALGetRasterScale(band, &hasScale) * unit;
-  const double offset = GDALGetRasterOffset(band, &hasOffset) * unit;
+  layout.scale = GDALGetRasterScale(band, &hasScale) * unit;
+  layout.offset = GDALGetRasterOffset(band, &hasOffset) * unit;
   // The mask band covers nodata values, alpha bands and per-dataset masks alike; 0 = invalid.
   const bool allValid = (GDALGetMaskFlags(band) & GMF_ALL_VALID) != 0;
-  GDALRasterBandH mask = allValid ? nullptr : GDALGetMaskBand(band);
+  layout.hasMask = !allValid;
 
-  double gt[6] = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-  const bool haveTransform = GDALGetGeoTransform(dataset.get(), gt) == CE_None;
+  double* gt = layout.gt;
+  layout.haveTransform = GDALGetGeoTransform(dataset, gt) == CE_None;
   CPLErrorReset();
   const bool axisAligned = gt[2] == 0.0 && gt[4] == 0.0;
-  const bool flipX = haveTransform && axisAligned && gt[1] < 0.0;
-  const bool flipZ = haveTransform && axisAligned && gt[5] > 0.0;
-  if (flipZ || flipX) {
-    report.orientation =
-        fmt::format("{}{}{} (the geotransform says so)", flipZ ? "rows flipped: south-up" : "",
-                    flipZ && flipX ? "; " : "", flipX ? "columns flipped: east-left" : "");
+  layout.flipX = layout.haveTransform && axisAligned && gt[1] < 0.0;
+  layout.flipZ = layout.haveTransform && axisAligned && gt[5] > 0.0;
+  if (layout.flipZ || layout.flipX) {
+    report.orientation = fmt::format(
+        "{}{}{} (the geotransform says so)", layout.flipZ ? "rows flipped: south-up" : "",
+        layout.flipZ && layout.flipX ? "; " : "", layout.flipX ? "columns flipped: east-left" : "");
   }
 
   // GDAL decodes whole blocks (strips or tiles, all bands at once for pixel-interleaved files) into buffers
@@ -569,8 +598,8 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   int blockY = 0;
   GDALGetBlockSize(band, &blockX, &blockY);
   const double typeBytes = GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band));
-  const char* interleave = GDALGetMetadataItem(dataset.get(), "INTERLEAVE", "IMAGE_STRUCTURE");
-  const int bands = GDALGetRasterCount(dataset.get());
+  const char* interleave = GDALGetMetadataItem(dataset, "INTERLEAVE", "IMAGE_STRUCTURE");
+  const int bands = GDALGetRasterCount(dataset);
   const double blockBands = interleave != nullptr && std::string_view(interleave) == "PIXEL" ? bands : 1;
   const double blockBytes = static_cast<double>(blockX) * blockY * typeBytes * blockBands;
   const double rasterBytes = static_cast<double>(width) * height * typeBytes * blockBands;
@@ -593,10 +622,56 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
          name, 100.0 - coverage);
   }
   CPLErrorReset();
+  return layout;
+}
+
+/**
+ * Reads the file window x ∈ [x0, x0 + w), y ∈ [y0, y0 + h) (file order) of band 1 as metres into `out`
+ * (row-major, file order; NaN where masked). `values` and `mask` are scratch of w·h entries.
+ */
+void readGdalWindow(const std::filesystem::path& path, GDALDatasetH dataset, const GdalLayout& layout, int x0,
+                    int y0, int w, int h, std::vector<double>& values, std::vector<unsigned char>& mask,
+                    float* out) {
+  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  values.resize(count);
+  GDALRasterBandH band = GDALGetRasterBand(dataset, 1);
+  CPLErrorReset();
+  // Some drivers report a failed block read without failing the request (the rows come back as zeros).
+  if (GDALRasterIO(band, GF_Read, x0, y0, w, h, values.data(), w, h, GDT_Float64, 0, 0) != CE_None ||
+      CPLGetLastErrorType() >= CE_Failure) {
+    fail("{}: cannot read {}: {}", path.string(),
+         h == 1 ? fmt::format("row {}", y0) : fmt::format("rows {}..{}", y0, y0 + h - 1),
+         QuietGdal::lastMessage("read failed (truncated or corrupt?)"));
+  }
+  if (layout.hasMask) {
+    mask.resize(count);
+    if (GDALRasterIO(GDALGetMaskBand(band), GF_Read, x0, y0, w, h, mask.data(), w, h, GDT_Byte, 0, 0) !=
+            CE_None ||
+        CPLGetLastErrorType() >= CE_Failure) {
+      fail("{}: cannot read the nodata mask of {}: {}", path.string(),
+           h == 1 ? fmt::format("row {}", y0) : fmt::format("rows {}..{}", y0, y0 + h - 1),
+           QuietGdal::lastMessage("read failed"));
+    }
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    out[k] = layout.hasMask && mask[k] == 0 ? kNoHeight
+                                            : detail::toHeight(values[k] * layout.scale + layout.offset);
+  }
+}
+
+HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& options, LoadReport& report) {
+  const DatasetPtr dataset = openGdal(path);
+  const QuietGdal quiet;
+  const GdalLayout layout = describeGdal(path, dataset.get(), report, [&](int width, int height) {
+    detail::checkHeightFieldSize(path, width, height, options);
+  });
+  const int width = layout.width;
+  const int height = layout.height;
 
   HeightField field(width, height);
-  std::vector<double> row(static_cast<std::size_t>(width));
-  std::vector<unsigned char> maskRow(static_cast<std::size_t>(width), 1);
+  std::vector<double> values;
+  std::vector<unsigned char> mask;
+  std::vector<float> row(static_cast<std::size_t>(width));
   std::optional<Progress> progress;
   if (static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > (std::size_t{1} << 20)) {
     progress.emplace(fmt::format("reading {}", path.filename().string()), static_cast<std::size_t>(height));
@@ -604,34 +679,119 @@ HeightField loadGdal(const std::filesystem::path& path, const LoadOptions& optio
   for (int y = 0; y < height; ++y) {
     if (progress) {
       if (progress->cancelled()) {
-        fail("{}: reading cancelled", name);
+        fail("{}: reading cancelled", path.string());
       }
       progress->advance();
     }
-    // Some drivers report a failed block read without failing the request (the rows come back as zeros).
-    if (GDALRasterIO(band, GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_Float64, 0, 0) != CE_None ||
-        CPLGetLastErrorType() >= CE_Failure) {
-      fail("{}: cannot read row {}: {}", name, y,
-           QuietGdal::lastMessage("read failed (truncated or corrupt?)"));
-    }
-    if (mask != nullptr &&
-        (GDALRasterIO(mask, GF_Read, 0, y, width, 1, maskRow.data(), width, 1, GDT_Byte, 0, 0) != CE_None ||
-         CPLGetLastErrorType() >= CE_Failure)) {
-      fail("{}: cannot read the nodata mask of row {}: {}", name, y, QuietGdal::lastMessage("read failed"));
-    }
-    const int j = flipZ ? height - 1 - y : y;
+    readGdalWindow(path, dataset.get(), layout, 0, y, width, 1, values, mask, row.data());
+    const int j = layout.flipZ ? height - 1 - y : y;
     for (int x = 0; x < width; ++x) {
-      const int i = flipX ? width - 1 - x : x;
-      const auto s = static_cast<std::size_t>(x);
-      field.at(i, j) = maskRow[s] == 0 ? kNoHeight : detail::toHeight(row[s] * scale + offset);
+      const int i = layout.flipX ? width - 1 - x : x;
+      field.at(i, j) = row[static_cast<std::size_t>(x)];
     }
   }
 
-  detail::applyCoordinates(path, field, gdalCoordinates(dataset.get(), haveTransform, gt, height), options,
-                           report);
+  detail::applyCoordinates(
+      path, field, gdalCoordinates(dataset.get(), layout.haveTransform, layout.gt, height), options, report);
   detail::finishHeightField(path, field, options, report);
   return field;
 }
+
+/** HeightRaster over a GDAL dataset: windows read on demand through a pool of open datasets. */
+class GdalRaster final : public HeightRaster {
+public:
+  GdalRaster(std::filesystem::path path, GdalLayout layout, bool flipRows, float spacingX, float spacingZ)
+      : HeightRaster(layout.width, layout.height, spacingX, spacingZ), mPath(std::move(path)),
+        mLayout(layout), mFlipRows(flipRows) {}
+
+  void read(int i0, int j0, int w, int h, float* out) const override {
+    checkWindow(i0, j0, w, h);
+    DatasetPtr dataset = take();
+    const QuietGdal quiet;
+    const bool flipZ = mLayout.flipZ != mFlipRows;
+    const int x0 = mLayout.flipX ? width() - i0 - w : i0;
+    const int y0 = flipZ ? height() - j0 - h : j0;
+    std::vector<double> values;
+    std::vector<unsigned char> mask;
+    std::vector<float> window(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    try {
+      readGdalWindow(mPath, dataset.get(), mLayout, x0, y0, w, h, values, mask, window.data());
+    } catch (...) {
+      give(std::move(dataset));
+      throw;
+    }
+    give(std::move(dataset));
+    for (int y = 0; y < h; ++y) {
+      const int j = flipZ ? h - 1 - y : y;
+      for (int x = 0; x < w; ++x) {
+        const int i = mLayout.flipX ? w - 1 - x : x;
+        out[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] =
+            window[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)];
+      }
+    }
+  }
+
+  void prepareSweep(int rows) const override {
+    DatasetPtr dataset = take();
+    GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
+    int blockX = 0;
+    int blockY = 0;
+    GDALGetBlockSize(band, &blockX, &blockY);
+    const double typeBytes = GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band));
+    give(std::move(dataset));
+    blockX = std::max(blockX, 1);
+    blockY = std::max(blockY, 1);
+    // A band of `rows` rows touches ceil(rows / blockY) + 1 rows of blocks; keep two bands (the band after
+    // the one being read shares its border rows), the mask's blocks as many again.
+    const double blockRows = std::ceil(static_cast<double>(rows) / blockY) + 1.0;
+    const double blocksPerRow = std::ceil(static_cast<double>(width()) / blockX);
+    const double bytes =
+        2.0 * blockRows * blocksPerRow * blockX * blockY * typeBytes * (mLayout.hasMask ? 2 : 1);
+    GDALSetCacheMax64(static_cast<std::int64_t>(std::clamp(bytes, 16.0 * 1048576.0, 256.0 * 1048576.0)));
+  }
+
+private:
+  DatasetPtr take() const {
+    {
+      const std::lock_guard lock(mMutex);
+      if (!mPool.empty()) {
+        DatasetPtr dataset = std::move(mPool.back());
+        mPool.pop_back();
+        return dataset;
+      }
+    }
+    return openGdal(mPath);
+  }
+  void give(DatasetPtr dataset) const {
+    const std::lock_guard lock(mMutex);
+    mPool.push_back(std::move(dataset));
+  }
+
+  std::filesystem::path mPath;
+  GdalLayout mLayout;
+  bool mFlipRows;
+  mutable std::mutex mMutex;
+  mutable std::vector<DatasetPtr> mPool;
+};
+
+/** HeightRaster over a field held in memory. */
+class FieldRaster final : public HeightRaster {
+public:
+  explicit FieldRaster(HeightField field)
+      : HeightRaster(field.width(), field.height(), field.spacingX(), field.spacingZ()),
+        mField(std::move(field)) {}
+
+  void read(int i0, int j0, int w, int h, float* out) const override {
+    checkWindow(i0, j0, w, h);
+    for (int y = 0; y < h; ++y) {
+      const float* row = &mField.samples()[static_cast<std::size_t>(j0 + y) * mField.width() + i0];
+      std::copy(row, row + w, out + static_cast<std::size_t>(y) * static_cast<std::size_t>(w));
+    }
+  }
+
+private:
+  HeightField mField;
+};
 
 void saveGeoTiff(const std::filesystem::path& path, const HeightField& field) {
   registerGdal();
@@ -711,6 +871,64 @@ HeightFieldInfo heightFieldInfo(const HeightField& field) {
     info.maxHeight = kNoHeight;
   }
   return info;
+}
+
+void HeightRaster::checkWindow(int i0, int j0, int w, int h) const {
+  if (w < 1 || h < 1 || i0 < 0 || j0 < 0 || i0 > mWidth - w || j0 > mHeight - h) {
+    fail("height raster: window {}x{} at ({}, {}) lies outside the {}x{} samples", w, h, i0, j0, mWidth,
+         mHeight);
+  }
+}
+
+std::shared_ptr<const HeightRaster> HeightRaster::fromField(HeightField field) {
+  if (field.width() < 2 || field.height() < 2) {
+    fail("height raster: {}x{} samples; a height field needs at least 2x2", field.width(), field.height());
+  }
+  return std::make_shared<FieldRaster>(std::move(field));
+}
+
+std::shared_ptr<const HeightRaster> HeightRaster::open(const std::filesystem::path& path,
+                                                       const LoadOptions& options, LoadReport* report) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".png" || ext == ".exr" || ext == ".npy" || ext == ".npz") {
+    return fromField(loadHeightField(path, options, report));
+  }
+  validateOptions(path, options);
+  LoadReport local;
+  LoadReport& r = report != nullptr ? *report : local;
+  r = LoadReport{};
+  const DatasetPtr dataset = openGdal(path);
+  const GdalLayout layout = describeGdal(path, dataset.get(), r, [&](long long width, long long height) {
+    if (width > kMaxRasterSide || height > kMaxRasterSide) {
+      fail("{}: absurd size {}x{} samples (at most {} per side)", path.string(), width, height,
+           kMaxRasterSide);
+    }
+    if (width < 2 || height < 2) {
+      fail("{}: {}x{} samples; a height field needs at least 2x2", path.string(), width, height);
+    }
+  });
+  // The spacing as loadHeightField would set it (coordinates, --spacing), on a stand-in field.
+  HeightField spacing(2, 2);
+  {
+    const QuietGdal quiet;
+    detail::applyCoordinates(path, spacing,
+                             gdalCoordinates(dataset.get(), layout.haveTransform, layout.gt, layout.height),
+                             options, r);
+  }
+  if (options.spacing > 0.0f) {
+    spacing.setSpacing(options.spacing, options.spacing);
+    r.units = "metres";
+    r.reason = fmt::format("--spacing {:g} m overrides the file ({})", options.spacing, r.reason);
+  }
+  if (options.flipY) {
+    r.orientation += "; then flipped north-south (--flip-y)";
+  }
+  const auto usable = [](float s) { return std::isfinite(s) && s > 0.0f; };
+  if (!usable(spacing.spacingX()) || !usable(spacing.spacingZ())) {
+    fail("{}: absurd spacing {} x {} m from the file (must be finite and > 0; set LoadOptions::spacing)",
+         path.string(), spacing.spacingX(), spacing.spacingZ());
+  }
+  return std::make_shared<GdalRaster>(path, layout, options.flipY, spacing.spacingX(), spacing.spacingZ());
 }
 
 HeightField loadHeightField(const std::filesystem::path& path, const LoadOptions& options,
