@@ -15,9 +15,11 @@
 #include <sylva/scene/Sequence.hpp>
 #include <sylva/shader/Library.hpp>
 #include <sylva/shader/Preprocessor.hpp>
+#include <sylva/terrain/HeightRaster.hpp>
 #include <sylva/terrain/HeightSources.hpp>
 #include <sylva/terrain/Noise.hpp>
 #include <sylva/terrain/TerrainMaps.hpp>
+#include <sylva/terrain/TilePyramid.hpp>
 #include <sylva/trees/Foliage.hpp>
 #include <sylva/trees/Import.hpp>
 #include <sylva/trees/Skeleton.hpp>
@@ -120,6 +122,59 @@ void npz(std::span<const std::uint8_t> bytes) {
 }
 void gdal(std::span<const std::uint8_t> bytes) {
   heightFile("input.tif", bytes);
+  // The out-of-core path (tile pyramids): the same file opened window by window, a few windows read.
+  const fs::path path = scratch() / "input.tif";
+  expectCleanRejection([&] {
+    const auto raster = terrain::HeightRaster::open(path);
+    if (static_cast<double>(raster->width()) * raster->height() > double(1 << 26)) {
+      return; // a claim that large would only measure the machine's memory (as in heightFile)
+    }
+    std::vector<float> window(64 * 64);
+    const int w = std::min(64, raster->width());
+    const int h = std::min(64, raster->height());
+    raster->read(0, 0, w, h, window.data());
+    raster->read(raster->width() - w, raster->height() - h, w, h, window.data());
+  });
+}
+
+/**
+ * Tile pyramids: the first byte chooses what the rest is — a tile file (decoded alone, then read through a
+ * small pyramid in place of its tile 0/0/0) or the pyramid's `pyramid.json` — then the pyramid is opened and
+ * queried at every level.
+ */
+void tilePyramid(std::span<const std::uint8_t> bytes) {
+  static const fs::path good = [] {
+    const fs::path dir = scratch() / "pyramid-good";
+    terrain::HeightField field(40, 33, 2.0f, 3.0f);
+    for (int j = 0; j < field.height(); ++j) {
+      for (int i = 0; i < field.width(); ++i) {
+        field.at(i, j) = static_cast<float>((i * 7 + j * 13) % 29);
+      }
+    }
+    terrain::buildPyramid(*terrain::HeightRaster::fromField(field), dir, {.tileSize = 16});
+    return dir;
+  }();
+  const fs::path dir = scratch() / "pyramid";
+  fs::remove_all(dir);
+  fs::copy(good, dir, fs::copy_options::recursive);
+  const bool asTile = !bytes.empty() && (bytes[0] & 1) == 0;
+  const auto rest = bytes.empty() ? bytes : bytes.subspan(1);
+  if (asTile) {
+    expectCleanRejection([&] { (void)terrain::decodeTile(rest.data(), rest.size(), "input.tile"); });
+    std::ofstream(terrain::tilePath(dir, {0, 0, 0}), std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(rest.data()), static_cast<std::streamsize>(rest.size()));
+  } else {
+    std::ofstream(dir / "pyramid.json", std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(rest.data()), static_cast<std::streamsize>(rest.size()));
+  }
+  expectCleanRejection([&] {
+    const auto pyramid = terrain::TilePyramid::open(dir, 4096);
+    for (int level = 0; level < pyramid->info().levels; ++level) {
+      for (const float x : {0.0f, 17.5f, 1.0e9f}) {
+        (void)pyramid->heightAt(x, 0.5f * x, level);
+      }
+    }
+  });
 }
 
 /** Every Sylva JSON file: procedural spec, splat layers, and a height PNG's sidecar. */
@@ -545,7 +600,9 @@ const std::vector<Target>& targets() {
       {"exr", "OpenEXR images and EXR height maps", exr},
       {"npy", "NumPy .npy height arrays", npy},
       {"npz", "NumPy .npz archives (zip of .npy, with dx/dy/extent scalars)", npz},
-      {"gdal", "rasters opened through GDAL (GeoTIFF and every format GDAL identifies)", gdal},
+      {"gdal", "rasters opened through GDAL (GeoTIFF and every format GDAL identifies), whole and by windows",
+       gdal},
+      {"tile_pyramid", "tile pyramids: tile files and pyramid.json, opened and queried", tilePyramid},
       {"json", "Sylva JSON files: procedural spec, splat layers, height-map sidecar", json},
       {"shader", "the shader preprocessor's #include, #pragma once, #version and #line handling", shader},
       {"fold", "folding projects: parsing, validation against images, synthesis and one CPU frame", fold},

@@ -17,7 +17,7 @@ cd "$(dirname "$0")/.."
 target="${1:-all}"
 seconds="${2:-60}"
 merge="${3:-}"
-all=(png exr npy npz gdal json shader fold flow flow_ffmpeg cli blade_models depth_png fakenect tree_json piece_import leaf_model texsynth_tileset scene_file farm_manifest)
+all=(png exr npy npz gdal tile_pyramid json shader fold flow flow_ffmpeg cli blade_models depth_png fakenect tree_json piece_import leaf_model texsynth_tileset scene_file farm_manifest)
 if [ "$target" = all ]; then targets=("${all[@]}"); else targets=("$target"); fi
 for t in "${targets[@]}"; do
   [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t' (targets: ${all[*]})" >&2; exit 2; }

@@ -205,5 +205,40 @@ TEST_F(FarmSlurm, BatchItemsReportTheFailedOneAndFinishAfterAResubmit) {
   EXPECT_EQ(status(dir, out)["done"], 2);
 }
 
+TEST_F(FarmSlurm, APyramidBuiltAsAJobArrayEqualsOneLocalBuild) {
+  test::TempDir dir;
+  // docs/terrain-data.md: level 0 split over the array's tasks with --shard, the coarser levels by one last
+  // run that keeps every tile the tasks wrote.
+  ASSERT_EQ(test::runSylva(dir, "terrain heightmap --seed 5 --type ridged --size 600 -o " +
+                                    test::at(dir, "dem.tif"))
+                .status,
+            0);
+  const std::string dem = test::at(dir, "dem.tif");
+  std::ofstream(dir / "shards.txt") << "0/3\n1/3\n2/3\n";
+  const std::string out = test::at(dir, "farm");
+  const test::RunResult submitted =
+      test::runSylva(dir, "farm each " + test::at(dir, "shards.txt") + " -o " + out +
+                              " --tasks 3 --cpus-per-task 1 -- " + quote(SYLVA_EXE) + " terrain pyramid " +
+                              dem + " -o " + test::at(dir, "array") + " --tile-size 64 --shard {}");
+  ASSERT_EQ(submitted.status, 0) << submitted.err;
+  EXPECT_EQ(waitFor(dir, out), 0);
+  const test::RunResult finish =
+      test::runSylva(dir, "terrain pyramid " + dem + " -o " + test::at(dir, "array") + " --tile-size 64");
+  ASSERT_EQ(finish.status, 0) << finish.err;
+  EXPECT_NE(finish.out.find("100 kept"), std::string::npos) << finish.out; // 10 x 10 level-0 tiles
+  const test::RunResult one =
+      test::runSylva(dir, "terrain pyramid " + dem + " -o " + test::at(dir, "one") + " --tile-size 64");
+  ASSERT_EQ(one.status, 0) << one.err;
+  std::size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "one")) {
+    if (entry.is_regular_file() && entry.path().extension() != ".json") {
+      ++files;
+      EXPECT_TRUE(readAll(entry.path()) == readAll(dir / "array" / fs::relative(entry.path(), dir / "one")))
+          << entry.path();
+    }
+  }
+  EXPECT_EQ(files, 100u + 25u + 9u + 4u + 1u + 5u); // tiles of levels 0..4 and their 5 indexes
+}
+
 } // namespace
 } // namespace sylva

@@ -13,6 +13,7 @@
 #include <gdal_priv.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <random>
@@ -21,11 +22,6 @@
 
 namespace sylva::test {
 namespace {
-
-bool fullMode() {
-  const char* full = std::getenv("SYLVA_FULL");
-  return full != nullptr && std::string(full) == "1";
-}
 
 /** The analytic surface the big file holds, metres: smooth hills plus a finer ripple. */
 float surface(int i, int j) {
@@ -90,6 +86,7 @@ TEST(CliPyramid, DemLargerThanTheMemoryLimitBecomesAPyramid) {
   const RunResult built =
       runLimited(dir, limitKib, "terrain pyramid " + at(dir, "big.tif") + " -o " + at(dir, "pyr"));
   ASSERT_EQ(built.status, 0) << built.out << built.err;
+  std::printf("%s", built.out.c_str()); // the timing and size line, for docs/terrain-data.md
   EXPECT_NE(built.out.find(fmt::format("{}x{} samples at 30 x 30 m", side, side)), std::string::npos)
       << built.out;
 

@@ -439,7 +439,7 @@ void registerPyramid(CLI::App& terrainCommand) {
     const double raw = static_cast<double>(build.info.tiles) * static_cast<double>(o->tileSize + 1) *
                        static_cast<double>(o->tileSize + 1) * 4.0;
     std::printf(
-        "%s: %zu tiles written, %zu kept; %.1f MB on disk (%.2fx smaller than raw floats), heights "
+        "%s: %zu tiles written, %zu kept; %.2f MB on disk (%.2fx smaller than raw floats), heights "
         "%.3f .. %.3f m, in %.1f s\n",
         out.string().c_str(), build.written, build.kept, static_cast<double>(build.info.bytes) / 1.0e6,
         raw / std::max(1.0, static_cast<double>(build.info.bytes)), static_cast<double>(build.info.minHeight),
