@@ -4,6 +4,8 @@
 
 #include <sylva/core/Error.hpp>
 
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -11,6 +13,15 @@ namespace sylva::test {
 
 /** A quiet NaN, for nodata samples and invalid inputs. */
 inline constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+/** Whether two floats have the same bits (NaN equals the same NaN, 0 differs from -0). */
+inline bool sameBits(float a, float b) {
+  std::uint32_t x = 0;
+  std::uint32_t y = 0;
+  std::memcpy(&x, &a, 4);
+  std::memcpy(&y, &b, 4);
+  return x == y;
+}
 
 /** The message of the sylva::Error that `call()` throws, or "(no error)". */
 template <class Call> std::string errorOf(const Call& call) {

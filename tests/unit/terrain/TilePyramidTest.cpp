@@ -28,6 +28,7 @@ namespace sylva::terrain {
 namespace {
 
 using test::kNaN;
+using test::sameBits;
 
 /** A rough procedural field of w × h samples with an absent patch (NaN), spacing 2 × 3 m. */
 HeightField roughField(int w, int h, std::uint64_t seed = 3) {
@@ -49,14 +50,6 @@ HeightField roughField(int w, int h, std::uint64_t seed = 3) {
 std::vector<std::uint8_t> fileBytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-bool sameBits(float a, float b) {
-  std::uint32_t x = 0;
-  std::uint32_t y = 0;
-  std::memcpy(&x, &a, 4);
-  std::memcpy(&y, &b, 4);
-  return x == y;
 }
 
 /** Level `level`'s samples of `field` by the documented rule: sample i of level L + 1 is min(2i, w_L − 1). */
