@@ -78,6 +78,24 @@ struct TerrainSelectCounters {
 };
 SYLVA_ASSERT_SIZE(TerrainSelectCounters, 32);
 
+// Streamed terrain tiles (sylva::terrain::StreamedTerrain, shaders/terrain/stream.*).
+#define SYLVA_STREAM_TILE_BINDING 11 // std430: StreamTileGpu per drawn tile
+#define SYLVA_STREAM_BINDING 12      // uniform block StreamUniforms
+
+// One drawn tile: which samples it holds and where its texture-array layer is.
+struct StreamTileGpu {
+  ivec4 key;   // x: tile column, y: tile row, z: level, w: texture-array layer
+  ivec4 flags; // x: coarser edges (bit e: PatchEdge e keeps every second vertex); y, z, w: unused
+};
+SYLVA_ASSERT_SIZE(StreamTileGpu, 32);
+
+struct StreamUniforms {
+  ivec4 shape;   // x: tile size T, y: patch level P (T / P patches per tile edge), z: patches per tile edge, w: view
+  ivec4 origin;  // x, y: level-0 sample index of the render origin (x, z); z, w: unused
+  vec4 spacing;  // x, z spacing (metres per level-0 sample); z: height scale for colours (m); w: unused
+};
+SYLVA_ASSERT_SIZE(StreamUniforms, 48);
+
 SYLVA_GPU_END
 
 #endif

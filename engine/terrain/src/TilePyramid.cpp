@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <zlib.h>
 
+#include <glm/glm.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -739,31 +741,42 @@ std::shared_ptr<const TileData> TilePyramid::tile(const TileKey& key) const {
   return data;
 }
 
-float TilePyramid::heightAt(float x, float z, int level) const {
-  const PyramidLevel l = mInfo.level(level);
+namespace {
+
+/** Grid coordinates of world (x, z) on level `level`'s samples, clamped to them, as heightAt(field) finds
+ * them. */
+glm::dvec2 levelGrid(const PyramidInfo& info, const PyramidLevel& l, int level, double x, double z) {
   const double scale = std::ldexp(1.0, level);
-  double gx = static_cast<double>(x) / (static_cast<double>(mInfo.spacingX) * scale);
-  double gz = static_cast<double>(z) / (static_cast<double>(mInfo.spacingZ) * scale);
-  if (std::isnan(gx) || std::isnan(gz)) {
-    return kNaN;
-  }
-  // The cell and fractions exactly as heightAt(HeightField, …) finds them (HeightQuery.cpp).
+  double gx = x / (static_cast<double>(info.spacingX) * scale);
+  double gz = z / (static_cast<double>(info.spacingZ) * scale);
   gx = std::clamp(gx, 0.0, static_cast<double>(l.width - 1));
   gz = std::clamp(gz, 0.0, static_cast<double>(l.height - 1));
-  const int i = std::min(static_cast<int>(std::floor(gx)), l.width - 2);
-  const int j = std::min(static_cast<int>(std::floor(gz)), l.height - 2);
-  const double tx = gx - i;
-  const double tz = gz - j;
-  const int T = mInfo.tileSize;
-  const int cx = std::min(i / T, l.tilesX - 1);
-  const int cy = std::min(j / T, l.tilesY - 1);
-  const std::shared_ptr<const TileData> t = tile({level, cx, cy});
-  const int a = i - cx * T;
-  const int b = j - cy * T;
+  return {gx, gz};
+}
+
+} // namespace
+
+float heightInTile(const PyramidInfo& layout, const TileData& tile, double x, double z) {
+  if (std::isnan(x) || std::isnan(z)) {
+    return kNaN;
+  }
+  const PyramidLevel l = layout.level(tile.key.level);
+  const glm::dvec2 g = levelGrid(layout, l, tile.key.level, x, z);
+  const int T = tile.size;
+  // The cell and fractions exactly as heightAt(HeightField, …) finds them (HeightQuery.cpp), kept in the
+  // tile.
+  const int i = std::clamp(std::min(static_cast<int>(std::floor(g.x)), l.width - 2), tile.key.x * T,
+                           tile.key.x * T + T - 1);
+  const int j = std::clamp(std::min(static_cast<int>(std::floor(g.y)), l.height - 2), tile.key.y * T,
+                           tile.key.y * T + T - 1);
+  const double tx = std::clamp(g.x - i, 0.0, 1.0);
+  const double tz = std::clamp(g.y - j, 0.0, 1.0);
+  const int a = i - tile.key.x * T;
+  const int b = j - tile.key.y * T;
   const auto lerp = [](double p, double q, double s) {
     return s == 0.0 ? p : s == 1.0 ? q : p + s * (q - p);
   };
-  const auto row = [&](int db) { return lerp(t->at(a, b + db), t->at(a + 1, b + db), tx); };
+  const auto row = [&](int db) { return lerp(tile.at(a, b + db), tile.at(a + 1, b + db), tx); };
   if (tz == 0.0) {
     return static_cast<float>(row(0));
   }
@@ -771,6 +784,20 @@ float TilePyramid::heightAt(float x, float z, int level) const {
     return static_cast<float>(row(1));
   }
   return static_cast<float>(lerp(row(0), row(1), tz));
+}
+
+float TilePyramid::heightAt(float x, float z, int level) const {
+  if (std::isnan(x) || std::isnan(z)) {
+    return kNaN;
+  }
+  const PyramidLevel l = mInfo.level(level);
+  const glm::dvec2 g = levelGrid(mInfo, l, level, x, z);
+  const int i = std::min(static_cast<int>(std::floor(g.x)), l.width - 2);
+  const int j = std::min(static_cast<int>(std::floor(g.y)), l.height - 2);
+  const int T = mInfo.tileSize;
+  const std::shared_ptr<const TileData> t =
+      tile({level, std::min(i / T, l.tilesX - 1), std::min(j / T, l.tilesY - 1)});
+  return heightInTile(mInfo, *t, x, z);
 }
 
 std::size_t TilePyramid::cachedBytes() const {

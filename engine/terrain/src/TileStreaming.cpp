@@ -358,44 +358,51 @@ TileSelection selectTiles(const PyramidInfo& layout,
   std::unordered_set<std::uint64_t> culled;
   std::vector<TileKey> stack{{top, 0, 0}};
   std::vector<std::vector<TileKey>> splitByLevel(static_cast<std::size_t>(layout.levels));
+  // Whether a tile has data and its box meets the frustum; its box (footprint × height range) in `lo`, `hi`.
+  const auto visible = [&](const TileKey& key, glm::dvec3& lo, glm::dvec3& hi) {
+    const glm::dvec3 f = tileFootprint(layout, key);
+    const TileSummary s = summary(key);
+    if (std::isnan(s.minHeight)) {
+      return false; // nothing to draw
+    }
+    lo = glm::dvec3(f.x, s.minHeight, f.y);
+    hi = glm::dvec3(f.x + f.z, s.maxHeight, f.y + f.z * spacingRatio);
+    if (frustum != nullptr && config.frustumCull) {
+      return frustum->intersects(Aabb{glm::vec3(lo - camera), glm::vec3(hi - camera)});
+    }
+    return true;
+  };
   while (!stack.empty()) {
     const TileKey key = stack.back();
     stack.pop_back();
-    const glm::dvec3 f = tileFootprint(layout, key);
-    const double sizeX = f.z;
-    const double sizeZ = f.z * spacingRatio;
-    const TileSummary s = summary(key);
-    if (std::isnan(s.minHeight)) {
-      culled.insert(packKey(key.level, key.x, key.y)); // nothing to draw
+    glm::dvec3 lo;
+    glm::dvec3 hi;
+    if (!visible(key, lo, hi)) {
+      culled.insert(packKey(key.level, key.x, key.y));
+      ++result.culled;
       continue;
-    }
-    const glm::dvec3 lo(f.x, s.minHeight, f.y);
-    const glm::dvec3 hi(f.x + sizeX, s.maxHeight, f.y + sizeZ);
-    if (frustum != nullptr && config.frustumCull) {
-      const Aabb box{glm::vec3(lo - camera), glm::vec3(hi - camera)};
-      if (!frustum->intersects(box)) {
-        culled.insert(packKey(key.level, key.x, key.y));
-        ++result.culled;
-        continue;
-      }
     }
     if (key.level <= config.finestLevel) {
       continue;
     }
     const glm::dvec3 nearest = glm::clamp(camera, lo, hi);
     const double distance = glm::length(camera - nearest);
-    if (!(distance < config.lodDistanceFactor * std::max(sizeX, sizeZ))) {
+    if (!(distance < config.lodDistanceFactor * std::max(hi.x - lo.x, hi.z - lo.z))) {
       continue;
     }
+    // Split only into children that are all resident, except those that will be culled (never drawn).
     const PyramidLevel below = layout.level(key.level - 1);
     std::vector<TileKey> children;
     bool all = true;
     for (int cy = 2 * key.y; cy <= std::min(2 * key.y + 1, below.tilesY - 1); ++cy) {
       for (int cx = 2 * key.x; cx <= std::min(2 * key.x + 1, below.tilesX - 1); ++cx) {
-        children.push_back({key.level - 1, cx, cy});
-        if (!resident(children.back())) {
+        const TileKey child{key.level - 1, cx, cy};
+        children.push_back(child);
+        glm::dvec3 clo;
+        glm::dvec3 chi;
+        if (!resident(child) && visible(child, clo, chi)) {
           all = false;
-          result.missing.push_back(children.back());
+          result.missing.push_back(child);
         }
       }
     }
@@ -461,6 +468,7 @@ TileSelection selectTiles(const PyramidInfo& layout,
     if (culled.count(packKey(key.level, key.x, key.y)) != 0) {
       continue;
     }
+    result.tree.push_back(key);
     if (split.count(packKey(key.level, key.x, key.y)) != 0) {
       const PyramidLevel below = layout.level(key.level - 1);
       for (int cy = std::min(2 * key.y + 1, below.tilesY - 1); cy >= 2 * key.y; --cy) {

@@ -148,6 +148,13 @@ std::vector<std::uint8_t> encodeTile(const TileData& tile);
 TileData decodeTile(const std::uint8_t* bytes, std::size_t size, const std::string& name);
 
 /**
+ * Bilinear height (metres) at world (x, z) from `tile`'s samples, on its level's lattice of `layout`, with
+ * the cell clamped into the tile (and the level's samples): what TilePyramid::heightAt computes once it has
+ * found the tile. Absent corners with non-zero weight give NaN.
+ */
+float heightInTile(const PyramidInfo& layout, const TileData& tile, double x, double z);
+
+/**
  * A complete pyramid opened for reading: tiles on demand through a cache bounded in bytes (least recently
  * used tiles are dropped first), and height queries at any level. Thread-safe.
  */

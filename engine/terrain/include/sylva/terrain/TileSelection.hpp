@@ -35,6 +35,11 @@ struct SelectedTile {
 /** The result of selectTiles. */
 struct TileSelection {
   std::vector<SelectedTile> tiles; ///< tiles to draw; their footprints cover the visible world once
+  /**
+   * Every visible tile of the selection's tree: the drawn tiles and the split tiles above them (a split
+   * tile's visible children must be resident to split it, even where all of theirs are culled).
+   */
+  std::vector<TileKey> tree;
   /** Tiles the distance rule wanted but that were not resident: their coarser parents stand in. */
   std::vector<TileKey> missing;
   int culled = 0;    ///< tiles dropped by the frustum test
