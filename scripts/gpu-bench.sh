@@ -20,7 +20,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=$root/build/release
 results=
-areas="demo terrain grass grass-sim trees fold capture scene"
+areas="demo terrain terrain-stream grass grass-sim trees fold capture scene"
 quick=0
 tests=1
 software=0
@@ -101,6 +101,14 @@ for area in $areas; do
     run scene-1920x1080 scene "${frames[@]}" --width 1920 --height 1080
     ;;
   demo | terrain | soak) run "$area" "$area" "${frames[@]}" ;;
+  terrain-stream)
+    # The issue's flight: 100 km at 300 m/s over the 2^20 x 2^20-sample world, at full HD (--quick: 1 km).
+    if [ "$quick" = 1 ]; then
+      run terrain-stream terrain-stream --distance 1 --width 1920 --height 1080
+    else
+      run terrain-stream terrain-stream --width 1920 --height 1080
+    fi
+    ;;
   *) run "$area" "$area" ;;
   esac
 done

@@ -158,6 +158,22 @@ void benchTerrainError(const BenchOptions& o, const platform::GlContext& context
  * is false (and a line on stderr says why) when memory grew more than maxGrowthPercent or a GL error
  * occurred.
  */
+/** `sylva bench terrain-stream`: the flight's settings. */
+struct StreamBenchOptions {
+  double distanceKm = 100.0;                      ///< flight length (clipped to the world)
+  double speed = 300.0;                           ///< metres per second
+  double simFps = 30.0;                           ///< simulated frames per second (one update and draw each)
+  double altitude = 250.0;                        ///< metres above the ground (smoothed terrain following)
+  std::uint64_t seed = 7;                         ///< the procedural world's seed
+  std::string pyramid;                            ///< a tile pyramid folder instead of the procedural world
+  std::size_t gpuBudget = std::size_t{256} << 20; ///< bytes of GPU tile cache
+  std::size_t ramBudget = std::size_t{512} << 20; ///< bytes of RAM tile cache
+  int checkEvery = 30;                            ///< frames between height-query checks and memory samples
+};
+/** Flies across a streamed world (docs/terrain-data.md, "Streaming"): memory, loads, waits, query agreement.
+ */
+void benchTerrainStream(const BenchOptions& o, const platform::GlContext& context,
+                        const StreamBenchOptions& s, nlohmann::json& report);
 void benchSoak(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);
 /** `bench grass`: the paper's field, memory, popping (BenchGrass.cpp). */
 void benchGrass(const BenchOptions& o, const platform::GlContext& context, nlohmann::json& report);

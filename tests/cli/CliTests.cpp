@@ -761,6 +761,30 @@ TEST(CliBench, TerrainErrorComparesBothMethodsAtEqualError) {
   EXPECT_NE(bad.err.find("--field-size"), std::string::npos) << bad.err;
 }
 
+TEST(CliBench, TerrainStreamFliesWithinItsBudgets) {
+  // docs/terrain-data.md "Streaming": small budgets force evictions and stand-ins; memory stays within them
+  // and the drawn vertices keep matching the height query.
+  test::TempDir dir;
+  const fs::path report = dir / "stream.json";
+  const RunResult r =
+      runSylva(dir, "bench terrain-stream --distance 1.5 --width 96 --height 64 --gpu-budget 4 "
+                    "--ram-budget 8 -o " +
+                        quote(report.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("frames that waited for a tile"), std::string::npos) << r.out;
+  const nlohmann::json json = loadJsonFile(report);
+  EXPECT_TRUE(json.at("within_budgets").get<bool>());
+  EXPECT_LE(json.at("ram_peak_mb").get<double>(), 8.0);
+  EXPECT_LE(json.at("gpu_tiles_mb").get<double>(), 4.0);
+  EXPECT_GT(json.at("tiles_loaded").get<double>(), 300.0);
+  EXPECT_LE(json.at("height_query_worst_m").get<double>(), 0.01);
+  EXPECT_GT(json.at("height_query_checks").get<int>(), 3);
+  EXPECT_NEAR(json.at("flight_km").get<double>(), 1.5, 1e-9);
+  const RunResult tight = runSylva(dir, "bench terrain-stream --gpu-budget 8 --ram-budget 2");
+  EXPECT_NE(tight.status, 0);
+  EXPECT_NE(tight.err.find("--ram-budget"), std::string::npos) << tight.err;
+}
+
 TEST(CliBench, GpuBenchScriptRefusesSoftwareAndStoresEveryReport) {
   // scripts/gpu-bench.sh is for NVIDIA machines, which CI never has: here it must refuse llvmpipe in one line
   // before any work, and with --allow-software run what it is given and store each report.

@@ -30,7 +30,10 @@ struct BenchFlags {
   std::string sceneFile; // empty: the data folder's scenes/meadow.json
   std::string quality = "default";
   double targetFps = 10.0;
-  int fieldSize = 4097; // terrain-error: samples per side of the ridged procedural fields
+  int fieldSize = 4097;             // terrain-error: samples per side of the ridged procedural fields
+  bench::StreamBenchOptions stream; // terrain-stream
+  double gpuBudgetMb = 256.0;
+  double ramBudgetMb = 512.0;
 
   /** What the area measures; throws naming the option when the terrain options do not go together. */
   bench::BenchOptions options() const {
@@ -64,6 +67,11 @@ void runGlBench(const BenchFlags& o, const bench::BenchOptions& options, nlohman
     bench::benchTerrain(options, *context, report);
   } else if (o.area == "terrain-error") {
     bench::benchTerrainError(options, *context, o.fieldSize, report);
+  } else if (o.area == "terrain-stream") {
+    bench::StreamBenchOptions s = o.stream;
+    s.gpuBudget = static_cast<std::size_t>(o.gpuBudgetMb * 1.0e6);
+    s.ramBudget = static_cast<std::size_t>(o.ramBudgetMb * 1.0e6);
+    bench::benchTerrainStream(options, *context, s, report);
   } else if (o.area == "grass") {
     bench::benchGrass(options, *context, report);
   } else if (o.area == "grass-sim") {
@@ -96,7 +104,10 @@ void registerBench(CLI::App& app) {
           "area", o->area,
           "demo (pipeline scene), terrain (the paper's Table 8, both crack methods) or terrain-error "
           "(distance LOD against screen-space-error LOD at the same measured worst error of 1 px, "
-          "--frames camera poses on each of three fields) or soak (long "
+          "--frames camera poses on each of three fields) or terrain-stream (a flight of --distance km at "
+          "--speed m/s across the 2^20 x 2^20-sample procedural world or a --pyramid, streamed within "
+          "--gpu-budget and --ram-budget: memory, tiles loaded per second, frames that waited, height "
+          "queries against the drawn surface) or soak (long "
           "run of the terrain scene: memory growth, GL errors, frame-time drift; exit 1 on failure) "
           "or fold (folding-texture targets on a generated 1 MP case) or capture (grass capture: "
           "extraction latency per 640x480 frame, refining) or grass (the paper's 955,264-blade field "
@@ -105,8 +116,8 @@ void registerBench(CLI::App& app) {
           "workloads instanced and per piece, tessellation cost, foliage, 1,000 animated + 100,000 impostor "
           "trees, generation, wind on joints, bark tile sets) or scene (a scene file's frames, --scene: "
           "per-pass CPU, GPU and wall times, frames per second, memory)")
-      ->check(CLI::IsMember({"demo", "terrain", "terrain-error", "soak", "fold", "capture", "grass",
-                             "grass-sim", "trees", "scene"}))
+      ->check(CLI::IsMember({"demo", "terrain", "terrain-error", "terrain-stream", "soak", "fold", "capture",
+                             "grass", "grass-sim", "trees", "scene"}))
       ->capture_default_str();
   o->context.add(*command);
   o->terrain.add(*command);
@@ -141,6 +152,28 @@ void registerBench(CLI::App& app) {
                    "terrain-error: samples per side of the two ridged procedural fields (2 m spacing; 16384 "
                    "needs a GPU: every pose is also drawn at full depth)")
       ->check(CLI::Range(17, 16384))
+      ->capture_default_str();
+  command->add_option("--distance", o->stream.distanceKm, "terrain-stream: flight length, km")
+      ->check(CLI::Range(0.01, 1000.0))
+      ->capture_default_str();
+  command->add_option("--speed", o->stream.speed, "terrain-stream: metres per second")
+      ->check(CLI::Range(1.0, 100000.0))
+      ->capture_default_str();
+  command->add_option("--sim-fps", o->stream.simFps, "terrain-stream: simulated frames per second")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  command->add_option(
+      "--pyramid", o->stream.pyramid,
+      "terrain-stream: a tile pyramid folder (sylva terrain pyramid) instead of the procedural "
+      "world");
+  command
+      ->add_option("--gpu-budget", o->gpuBudgetMb,
+                   "terrain-stream: MB (10^6 bytes) of GPU tile cache (a texture array; at most "
+                   "GL_MAX_ARRAY_TEXTURE_LAYERS tiles)")
+      ->check(CLI::Range(1.0, 1.0e6))
+      ->capture_default_str();
+  command->add_option("--ram-budget", o->ramBudgetMb, "terrain-stream: MB (10^6 bytes) of tiles held in RAM")
+      ->check(CLI::Range(1.0, 1.0e6))
       ->capture_default_str();
   command->add_option("--target-fps", o->targetFps, "scene --quality auto: frames per second to keep to")
       ->check(CLI::Range(1.0, 240.0))
