@@ -99,6 +99,7 @@ void benchTerrainStream(const BenchOptions& o, const platform::GlContext& contex
       gl::queryContextInfo().renderer.c_str());
 
   render::RenderTarget target(o.width, o.height);
+  const render::Environment environment = terrain::StreamedTerrain::wideEnvironment();
   const int pw = std::max(o.width / 4, 16);
   const int ph = std::max(o.height / 4, 16);
   gl::Texture positions = gl::Texture::create2D(GL_RGBA32F, pw, ph);
@@ -132,8 +133,8 @@ void benchTerrainStream(const BenchOptions& o, const platform::GlContext& contex
     const terrain::StreamedFrame frame = terrain.update(eye, look, velocity, fov, aspect, farPlane);
     const auto t1 = std::chrono::steady_clock::now();
     const render::Camera camera = terrain.relativeCamera(fov, 0.5f, farPlane);
-    target.begin(glm::vec4(0.55f, 0.68f, 0.85f, 1.0f));
-    terrain.draw(camera, o.width, o.height, f * dt);
+    target.begin(terrain::StreamedTerrain::clearColour(environment));
+    terrain.draw(camera, o.width, o.height, f * dt, terrain::StreamedView::Shaded, environment);
     glFinish();
     const auto t2 = std::chrono::steady_clock::now();
     updateMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());

@@ -13,7 +13,9 @@
 #include <sylva/trees/gpu/ForestScene.hpp>
 
 #include "cmd/CmdScene.hpp"
+#include "flags/StreamFlags.hpp"
 #include "flags/WorldFlags.hpp"
+#include "view/Viewer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,6 +31,7 @@ struct Options {
   ContextFlags context;
   std::string scene = "terrain";
   WorldFlags world;
+  StreamFlags stream;
   std::string frames;
   SceneRenderOptions sceneFile;
   CLI::Option* outOption = nullptr;
@@ -73,6 +76,50 @@ bool renderFrames(const Options& o, int count, render::RenderTarget& target,
   return true;
 }
 
+/**
+ * A still of streamed terrain (--procedural-world, --pyramid): the view complete (every tile it wants loaded,
+ * within the budgets), from --camera-pos/--look-at or the source's start camera.
+ */
+void renderStreamed(const Options& o) {
+  if (o.world.grass.enabled || o.world.trees.enabled || !o.frames.empty() || !o.gif.empty()) {
+    fail("--procedural-world and --pyramid render a still of streamed terrain alone (no --grass, --trees, "
+         "--frames or --gif)");
+  }
+  if (o.view != "shaded" && o.view != "lod") {
+    fail("--view {}: streamed terrain shows shaded or lod (level colours)", o.view);
+  }
+  const CameraFlags& flags = o.world.camera;
+  if (flags.cameraPos.empty() != flags.lookAt.empty()) {
+    fail("--camera-pos and --look-at: give both for streamed terrain (or neither: the source's start view)");
+  }
+  checkOutputFile(o.out, "--out");
+  auto context = platform::createHeadlessContext(o.context.options());
+  shader::Library library(o.shaderDir);
+  const auto source = o.stream.source(o.world.terrain.source.seed);
+  terrain::StreamedTerrain terrain(library, source, o.stream.options());
+  render::Camera camera = streamStartCamera(*source, glm::radians(flags.fovDegrees));
+  if (!flags.cameraPos.empty()) {
+    const std::vector<float> p = parseNumbers("--camera-pos", flags.cameraPos, 3, "X,Y,Z");
+    const std::vector<float> t = parseNumbers("--look-at", flags.lookAt, 3, "X,Y,Z");
+    camera.position = glm::vec3(p[0], p[1], p[2]);
+    camera.target = glm::vec3(t[0], t[1], t[2]);
+  }
+  render::RenderTarget target(o.width, o.height);
+  const terrain::StreamedFrame frame = terrain.updateComplete(
+      glm::dvec3(camera.position), glm::dvec3(camera.target), camera.fovY, target.aspect(), camera.farPlane);
+  const render::Environment environment = terrain::StreamedTerrain::wideEnvironment();
+  target.begin(terrain::StreamedTerrain::clearColour(environment));
+  terrain.draw(terrain.relativeCamera(camera.fovY, camera.nearPlane, camera.farPlane), o.width, o.height,
+               o.time, o.view == "lod" ? terrain::StreamedView::LevelColours : terrain::StreamedView::Shaded,
+               environment);
+  const terrain::StreamerStats stats = terrain.streamer().stats();
+  log::info("{}: {} tiles drawn, {} loaded, RAM {:.1f} MB of {:.0f}, GPU {} of {} layers", source->describe(),
+            frame.tiles, stats.loaded, static_cast<double>(stats.peakBytes) / 1.0e6,
+            static_cast<double>(terrain.streamer().budget()) / 1.0e6, frame.layersUsed, terrain.layers());
+  saveImage(o.out, target.readColor());
+  std::printf("%s\n", o.out.c_str());
+}
+
 } // namespace
 
 void registerRender(CLI::App& app) {
@@ -92,6 +139,7 @@ void registerRender(CLI::App& app) {
       ->check(CLI::IsMember({"terrain", "demo"}))
       ->capture_default_str();
   o->world.add(*command);
+  o->stream.add(*command);
   command->add_option(
       "--frames", o->frames,
       "Scene file: frame numbers A-B (or A-B,C-D) of its fixed clock, written to --out DIR as "
@@ -145,6 +193,11 @@ void registerRender(CLI::App& app) {
     if (!o->sceneFile.job.mp4.empty() || !o->sceneFile.job.camera.empty() ||
         o->sceneFile.job.shard != "0/1") {
       fail("--mp4, --camera and --shard need a scene file (sylva render SCENE.json ...)");
+    }
+    o->stream.check();
+    if (o->stream.enabled()) {
+      renderStreamed(*o);
+      return;
     }
     int frameCount = 1;
     if (!o->frames.empty()) {

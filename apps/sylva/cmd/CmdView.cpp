@@ -4,6 +4,7 @@
 #include <sylva/core/Error.hpp>
 #include <sylva/scene/Quality.hpp>
 
+#include "flags/StreamFlags.hpp"
 #include "view/Viewer.hpp"
 #include "flags/WorldFlags.hpp"
 
@@ -28,6 +29,7 @@ struct ViewOptions {
   std::string file; ///< a scene file; empty: --scene
   std::string scene = "terrain";
   WorldFlags world;
+  StreamFlags stream;
   ViewerOptions window;
 };
 
@@ -49,6 +51,7 @@ void registerView(CLI::App& app) {
       ->check(CLI::IsMember({"terrain", "demo"}))
       ->capture_default_str();
   o->world.add(*command);
+  o->stream.add(*command);
   command->add_option("--width", o->window.width, "Window width")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
@@ -73,6 +76,15 @@ void registerView(CLI::App& app) {
       ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
   command->callback([o] {
+    o->stream.check();
+    if (o->stream.enabled()) {
+      if (!o->file.empty() || o->world.grass.enabled || o->world.trees.enabled) {
+        fail("--procedural-world and --pyramid draw streamed terrain alone (no scene file, --grass or "
+             "--trees)");
+      }
+      viewStreamed(o->stream.source(o->world.terrain.source.seed), o->stream.options(), o->window);
+      return;
+    }
     if (!o->file.empty()) {
       if (o->world.grass.enabled || o->world.trees.enabled || o->world.simulation.enabled()) {
         fail("--grass, --trees and --physics: a scene file says what it holds ({})", o->file);

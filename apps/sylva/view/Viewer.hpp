@@ -6,6 +6,12 @@
 
 #include "flags/WorldFlags.hpp"
 
+#include <sylva/render/Camera.hpp>
+#include <sylva/terrain/TileSource.hpp>
+#include <sylva/terrain/gpu/StreamedTerrain.hpp>
+
+#include <memory>
+
 #include <string>
 
 namespace sylva::app {
@@ -39,6 +45,19 @@ void viewSceneFile(const std::string& file, const ViewerOptions& options);
  * same first camera, orbiting it; the sections start open for what the options turned on.
  */
 void viewWorld(const WorldFlags& flags, const ViewerOptions& options);
+
+/**
+ * Opens a window on streamed terrain (docs/terrain-data.md, "Streaming"): flying (W/A/S/D/Q/E, drag to look,
+ * G walks), the panel shows tiles, budgets and loads; L toggles level colours.
+ */
+void viewStreamed(std::shared_ptr<const terrain::TileSource> source,
+                  const terrain::StreamedTerrainOptions& streamOptions, const ViewerOptions& options);
+
+/**
+ * The first camera on a streamed source: over the procedural world's middle, 250 m up looking ahead and down;
+ * a pyramid whole from the south-west.
+ */
+render::Camera streamStartCamera(const terrain::TileSource& source, float fovY);
 
 /** Opens a window on the small built-in pipeline test scene (render::DemoScene), orbiting it. */
 void viewDemo(const ViewerOptions& options);

@@ -281,6 +281,20 @@ StreamedFrame StreamedTerrain::updateComplete(const glm::dvec3& eye, const glm::
   return frame;
 }
 
+render::Environment StreamedTerrain::wideEnvironment() {
+  render::Environment e;
+  e.fogDensity = 6.0e-5f;
+  return e;
+}
+
+glm::vec4 StreamedTerrain::clearColour(const render::Environment& environment) {
+  const auto encode = [](float c) {
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; // as toSrgb in GLSL
+  };
+  const glm::vec3 c = environment.fogColor;
+  return glm::vec4(encode(c.r), encode(c.g), encode(c.b), 1.0f);
+}
+
 render::Camera StreamedTerrain::relativeCamera(float fovY, float nearPlane, float farPlane) const {
   render::Camera c;
   c.position = glm::vec3(mEye - mOrigin);
@@ -324,12 +338,28 @@ void StreamedTerrain::draw(const render::Camera& camera, int width, int height, 
 
 float StreamedTerrain::drawnHeightAt(double x, double z) const {
   const PyramidInfo& layout = mSource->layout();
+  const auto inTile = [&](const TileKey& key) {
+    const glm::dvec3 f = tileFootprint(layout, key);
+    return x >= f.x && x <= f.x + f.z && z >= f.y && z <= f.y + f.z * layout.spacingZ / layout.spacingX;
+  };
+  const auto heightIn = [&](const TileKey& key) {
+    const std::shared_ptr<const TileData> tile = mStreamer->get(key);
+    return tile ? heightInTile(layout, *tile, x, z) : std::numeric_limits<float>::quiet_NaN();
+  };
   for (const SelectedTile& t : mSelection.tiles) {
-    const glm::dvec3 f = tileFootprint(layout, t.key);
-    const double sizeZ = f.z * layout.spacingZ / layout.spacingX;
-    if (x >= f.x && x <= f.x + f.z && z >= f.y && z <= f.y + sizeZ) {
-      const std::shared_ptr<const TileData> tile = mStreamer->get(t.key);
-      return tile ? heightInTile(layout, *tile, x, z) : std::numeric_limits<float>::quiet_NaN();
+    if (inTile(t.key)) {
+      return heightIn(t.key);
+    }
+  }
+  // Not drawn (culled): the finest tile on the GPU there, as it would be drawn.
+  if (x >= 0.0 && z >= 0.0) {
+    for (int level = 0; level < layout.levels; ++level) {
+      const double span = std::ldexp(static_cast<double>(layout.tileSize), level);
+      const TileKey key{level, static_cast<int>(x / (span * layout.spacingX)),
+                        static_cast<int>(z / (span * layout.spacingZ))};
+      if (onGpu(key) && inTile(key)) {
+        return heightIn(key);
+      }
     }
   }
   return std::numeric_limits<float>::quiet_NaN();
