@@ -99,7 +99,7 @@ void benchTerrainStream(const BenchOptions& o, const platform::GlContext& contex
       gl::queryContextInfo().renderer.c_str());
 
   render::RenderTarget target(o.width, o.height);
-  const render::Environment environment = terrain::StreamedTerrain::wideEnvironment();
+  const render::Environment environment = terrain::StreamedTerrain::wideEnvironment(30000.0);
   const int pw = std::max(o.width / 4, 16);
   const int ph = std::max(o.height / 4, 16);
   gl::Texture positions = gl::Texture::create2D(GL_RGBA32F, pw, ph);

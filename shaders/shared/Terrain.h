@@ -92,7 +92,7 @@ SYLVA_ASSERT_SIZE(StreamTileGpu, 32);
 struct StreamUniforms {
   ivec4 shape;   // x: tile size T, y: patch level P (T / P patches per tile edge), z: patches per tile edge, w: view
   ivec4 origin;  // x, y: level-0 sample index of the render origin (x, z); z, w: unused
-  vec4 spacing;  // x, z spacing (metres per level-0 sample); z: height scale for colours (m); w: unused
+  vec4 spacing;  // x, z spacing (metres per level-0 sample); z, w: unused
 };
 SYLVA_ASSERT_SIZE(StreamUniforms, 48);
 

@@ -28,12 +28,14 @@ void main() {
   }
   vec3 n = normalize(teNormal);
   float slope = 1.0 - n.y;
-  float t = clamp(teWorldPos.y / max(stream.spacing.z, 1.0), 0.0, 1.0);
+  // Meadow drying with altitude, rock on steep slopes, snow above 2,400 m on gentle ones (absolute metres:
+  // no snow on hills, whatever their range).
+  float t = clamp(teWorldPos.y / 2000.0, 0.0, 1.0);
   vec3 meadow = mix(vec3(0.20, 0.30, 0.10), vec3(0.34, 0.36, 0.16), t);
   vec3 rock = vec3(0.32, 0.29, 0.26);
   vec3 snow = vec3(0.85, 0.87, 0.90);
   vec3 albedo = mix(meadow, rock, smoothstep(0.12, 0.30, slope));
-  albedo = mix(albedo, snow, smoothstep(0.72, 0.80, t) * (1.0 - smoothstep(0.35, 0.55, slope)));
+  albedo = mix(albedo, snow, smoothstep(2300.0, 2500.0, teWorldPos.y) * (1.0 - smoothstep(0.35, 0.55, slope)));
   if (view == 1) {
     albedo = mix(albedo, levelColour(teLevel), 0.7);
   }

@@ -107,7 +107,7 @@ void renderStreamed(const Options& o) {
   render::RenderTarget target(o.width, o.height);
   const terrain::StreamedFrame frame = terrain.updateComplete(
       glm::dvec3(camera.position), glm::dvec3(camera.target), camera.fovY, target.aspect(), camera.farPlane);
-  const render::Environment environment = terrain::StreamedTerrain::wideEnvironment();
+  const render::Environment environment = terrain::StreamedTerrain::wideEnvironment(streamViewDepth(*source));
   target.begin(terrain::StreamedTerrain::clearColour(environment));
   terrain.draw(terrain.relativeCamera(camera.fovY, camera.nearPlane, camera.farPlane), o.width, o.height,
                o.time, o.view == "lod" ? terrain::StreamedView::LevelColours : terrain::StreamedView::Shaded,

@@ -19,6 +19,13 @@
 
 namespace sylva::app {
 
+double streamViewDepth(const terrain::TileSource& source) {
+  const terrain::PyramidInfo& l = source.layout();
+  const double extent = std::max((l.width - 1) * static_cast<double>(l.spacingX),
+                                 (l.height - 1) * static_cast<double>(l.spacingZ));
+  return dynamic_cast<const terrain::ProceduralWorld*>(&source) != nullptr ? 30000.0 : 5.0 * extent;
+}
+
 render::Camera streamStartCamera(const terrain::TileSource& source, float fovY) {
   const terrain::PyramidInfo& l = source.layout();
   const double extentX = (l.width - 1) * static_cast<double>(l.spacingX);
@@ -38,6 +45,9 @@ render::Camera streamStartCamera(const terrain::TileSource& source, float fovY) 
     const float size = static_cast<float>(std::max(extentX, extentZ));
     c.position = centre + glm::vec3(-0.55f * size, 0.45f * size + (l.maxHeight - l.minHeight), 0.55f * size);
     c.target = centre;
+    c.nearPlane = std::max(0.5f, 1.0e-5f * size);
+    c.farPlane = 3.0f * size + 10.0f * (l.maxHeight - l.minHeight);
+    return c;
   }
   c.nearPlane = 0.5f;
   c.farPlane = 60000.0f;
@@ -103,7 +113,8 @@ void viewStreamed(std::shared_ptr<const terrain::TileSource> source,
     if (!target || target->width() != f.size.x || target->height() != f.size.y) {
       target.emplace(f.size.x, f.size.y);
     }
-    const render::Environment environment = terrain::StreamedTerrain::wideEnvironment();
+    const render::Environment environment =
+        terrain::StreamedTerrain::wideEnvironment(streamViewDepth(*source));
     target->begin(terrain::StreamedTerrain::clearColour(environment));
     terrain.draw(terrain.relativeCamera(camera.fovY, camera.nearPlane, camera.farPlane), f.size.x, f.size.y,
                  shell.clock().time(),

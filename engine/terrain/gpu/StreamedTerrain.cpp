@@ -71,8 +71,19 @@ StreamedTerrain::StreamedTerrain(const shader::Library& library, std::shared_ptr
          static_cast<double>(mOptions.ramBudget) / 1.0e6, mLayerCount,
          static_cast<double>((static_cast<std::size_t>(mLayerCount) + 128) * tileRam) / 1.0e6);
   }
-  mStreamer = std::make_unique<TileStreamer>(mSource, mOptions.ramBudget, mOptions.loaders);
+  // The always-resident coarsest levels take at most half the GPU layers.
+  mStreamer =
+      std::make_unique<TileStreamer>(mSource, mOptions.ramBudget, mOptions.loaders,
+                                     std::min<std::size_t>(85, static_cast<std::size_t>(mLayerCount) / 2));
+  while (glGetError() != GL_NO_ERROR) {
+  }
   mHeights = gl::Texture::create2DArray(GL_R32F, T + 1, T + 1, mLayerCount);
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    fail("GPU budget: the driver cannot allocate {} tiles ({:.1f} MB) for the tile cache (out of memory; "
+         "lower "
+         "--gpu-budget)",
+         mLayerCount, static_cast<double>(mLayerCount) * static_cast<double>(layerBytes()) / 1.0e6);
+  }
   mHeights.setSampler({GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE});
   gl::setLabel(GL_TEXTURE, mHeights.id(), "streamed terrain tiles");
   mLayers.resize(static_cast<std::size_t>(mLayerCount));
@@ -281,9 +292,9 @@ StreamedFrame StreamedTerrain::updateComplete(const glm::dvec3& eye, const glm::
   return frame;
 }
 
-render::Environment StreamedTerrain::wideEnvironment() {
+render::Environment StreamedTerrain::wideEnvironment(double viewDepth) {
   render::Environment e;
-  e.fogDensity = 6.0e-5f;
+  e.fogDensity = static_cast<float>(1.6 / std::max(viewDepth, 100.0));
   return e;
 }
 
@@ -315,8 +326,7 @@ void StreamedTerrain::draw(const render::Camera& camera, int width, int height, 
   gpu::StreamUniforms u{};
   u.shape = glm::ivec4(layout.tileSize, P, layout.tileSize / P, static_cast<int>(view));
   u.origin = glm::ivec4(mOriginIndex.x, mOriginIndex.y, 0, 0);
-  u.spacing = glm::vec4(layout.spacingX, layout.spacingZ,
-                        std::isnan(layout.maxHeight) ? 1.0f : layout.maxHeight, 0.0f);
+  u.spacing = glm::vec4(layout.spacingX, layout.spacingZ, 0.0f, 0.0f);
   mUniforms.setSubData(0, sizeof(u), &u);
   mUniforms.bindBase(GL_UNIFORM_BUFFER, SYLVA_STREAM_BINDING);
   mTiles.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_STREAM_TILE_BINDING);

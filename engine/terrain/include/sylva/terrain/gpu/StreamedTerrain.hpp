@@ -99,10 +99,11 @@ public:
             StreamedView view = StreamedView::Shaded, const render::Environment& environment = {},
             bool points = false);
   /**
-   * Sun and haze for views tens of kilometres deep: Environment's defaults with a fog density of 6·10⁻⁵ per
-   * metre (17 % of the colour left at 30 km, 3 % at 60 km).
+   * Sun and haze for a view `viewDepth` metres deep (the distance that matters: 30 km over the procedural
+   * world, a pyramid's extent): Environment's defaults with a fog density of 1.6 / viewDepth per metre (20 %
+   * of the colour left at viewDepth).
    */
-  static render::Environment wideEnvironment();
+  static render::Environment wideEnvironment(double viewDepth);
   /** The colour to clear to behind the terrain: the haze colour as the shader writes it (sRGB-encoded). */
   static glm::vec4 clearColour(const render::Environment& environment);
   /** The camera update() was given, relative to origin(). */
