@@ -30,8 +30,8 @@ packages=(
   xdotool imagemagick x11-utils
   # web preview parity: headless Chromium (WebGL 2 on SwiftShader)
   chromium fonts-dejavu-core
-  # the performance page's plots (scripts/plot-performance.sh)
-  gnuplot-nox
+  # the performance and terrain pages' plots (scripts/plot-performance.sh, scripts/plot-terrain.sh)
+  gnuplot-nox jq
   # the render farm's test (`sylva farm`): a real single-node Slurm cluster started by scripts/slurm-local.sh
   slurmctld slurmd slurm-client munge
   # Sylva as a library (docs/library.md): the Debian packages (CPack; dpkg-shlibdeps finds their dependencies)

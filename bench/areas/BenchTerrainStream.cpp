@@ -112,6 +112,7 @@ void benchTerrainStream(const BenchOptions& o, const platform::GlContext& contex
   std::vector<double> updateMs;
   std::vector<double> frameMs;
   std::vector<double> rss;
+  std::vector<double> sampleKm;
   std::vector<double> ram;
   int waited = 0;
   std::uint64_t vertices = 0;
@@ -147,6 +148,7 @@ void benchTerrainStream(const BenchOptions& o, const platform::GlContext& contex
       ++checks;
       const terrain::StreamerStats st = terrain.streamer().stats();
       rss.push_back(static_cast<double>(residentBytes()) / 1.0e6);
+      sampleKm.push_back(std::min(f * s.speed * dt, length) / 1000.0);
       ram.push_back(static_cast<double>(st.residentBytes) / 1.0e6);
     }
     if (f % std::max(1, frames / 20) == 0 || f == frames) {
@@ -209,6 +211,7 @@ void benchTerrainStream(const BenchOptions& o, const platform::GlContext& contex
   report["gpu_budget_mb"] = static_cast<double>(s.gpuBudget) / 1.0e6;
   report["gpu_tiles_mb"] = gpuMb;
   report["rss_mb_samples"] = rss;
+  report["sample_km"] = sampleKm;
   report["rss_warm_mb"] = rssWarm;
   report["rss_peak_mb"] = rssPeak;
   report["height_query_worst_m"] = worstQuery;

@@ -58,6 +58,7 @@ public:
   virtual void prepareSweep(int rows) const { (void)rows; }
 
 protected:
+  /** A raster of width × height samples at spacingX × spacingZ metres (for the implementations). */
   HeightRaster(int width, int height, float spacingX, float spacingZ)
       : mWidth(width), mHeight(height), mSpacingX(spacingX), mSpacingZ(spacingZ) {}
   /** Throws unless the window lies inside the raster and is not empty. */

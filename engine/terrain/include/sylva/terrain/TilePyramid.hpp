@@ -31,8 +31,9 @@ namespace sylva::terrain {
 
 /** Version written to `pyramid.json` and every tile; readers refuse others. */
 inline constexpr int kPyramidVersion = 1;
-/** Smallest and largest tile size T (samples per tile edge, minus the shared border). */
+/** Smallest tile size T (samples per tile edge, minus the shared border). */
 inline constexpr int kMinTileSize = 16;
+/** Largest tile size T. */
 inline constexpr int kMaxTileSize = 4096;
 
 /** One level of a pyramid: its samples and tiles. */
@@ -69,6 +70,7 @@ struct TileKey {
   int level = 0; ///< level of detail (0 = source samples)
   int x = 0;     ///< tile column, from the west
   int y = 0;     ///< tile row, from the north
+  /** Ordered by level, then x, then y (member order): keys of maps and sorted lists. */
   auto operator<=>(const TileKey&) const = default;
 };
 
@@ -79,7 +81,7 @@ struct TileSummary {
    * bounding box for culling and LOD needs); NaN when all are absent.
    */
   float minHeight = 0.0f;
-  float maxHeight = 0.0f;
+  float maxHeight = 0.0f; ///< see minHeight
   /**
    * Geometric error, metres: an upper bound on the vertical distance between the bilinear surface of this
    * tile's samples and every level-0 sample it covers (0 at level 0; hierarchical: the largest distance to

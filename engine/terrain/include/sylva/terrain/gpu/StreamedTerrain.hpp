@@ -120,8 +120,9 @@ public:
   const TileSelection& selection() const { return mSelection; }
   /** The streamer (RAM cache and loader counters). */
   const TileStreamer& streamer() const { return *mStreamer; }
-  /** Texture-array layers (the GPU budget in tiles) and bytes per layer. */
+  /** Texture-array layers: the GPU budget in tiles. */
   int layers() const { return mLayerCount; }
+  /** Bytes of one layer: (T + 1)² floats. */
   std::size_t layerBytes() const;
   /** The source's layout. */
   const PyramidInfo& layout() const { return mSource->layout(); }
