@@ -58,7 +58,7 @@ set key bottom right
 set xlabel "distance flown (km)"
 set ylabel "MB"
 set yrange [0:*]
-set title "Streaming the 2^20 x 2^20 procedural world at 300 m/s: memory over the flight"
+set title "Streaming the 2^{20} × 2^{20}-sample procedural world at 300 m/s: memory over a 100 km flight"
 set output "${out}/stream-memory.png"
 plot "${data}/terrain-stream.tsv" using 1:2 title "RAM tiles" lw 2 lc rgb "#4f81bd", \
      "" using 1:3 title "process RSS" lw 2 lc rgb "#c0504d", \
