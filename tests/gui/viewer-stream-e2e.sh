@@ -43,16 +43,6 @@ shot() {
   at $((560 + shots * 10)) 20
   screenshot "$work/$1.png"
 }
-differing() {
-  local crop="$1" a="$2" b="$3" x y
-  x="${crop#*+}"
-  y="${x#*+}"
-  x="${x%%+*}"
-  crop="${crop%%+*}+$((X + x))+$((Y + y))"
-  convert "$work/$a.png" -crop "$crop" +repage "$work/$a.crop.png"
-  convert "$work/$b.png" -crop "$crop" +repage "$work/$b.crop.png"
-  compare -metric AE -fuzz 6% "$work/$a.crop.png" "$work/$b.crop.png" null: 2>&1 | awk '{ printf "%d", $1 }' || true
-}
 failed=0
 expect_changed() {
   local n

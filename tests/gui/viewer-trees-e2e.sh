@@ -56,18 +56,6 @@ shot() {
   at 900 650
   screenshot "$work/$1.png"
 }
-# differing CROP A B: how many pixels of CROP differ by more than 6% between screenshots A and B.
-differing() {
-  local crop="$1" a="$2" b="$3" x y
-  # Window coordinates to screen coordinates.
-  x="${crop#*+}"
-  y="${x#*+}"
-  x="${x%%+*}"
-  crop="${crop%%+*}+$((X + x))+$((Y + y))"
-  convert "$work/$a.png" -crop "$crop" +repage "$work/$a.crop.png"
-  convert "$work/$b.png" -crop "$crop" +repage "$work/$b.crop.png"
-  compare -metric AE -fuzz 6% "$work/$a.crop.png" "$work/$b.crop.png" null: 2>&1 | awk '{ printf "%d", $1 }' || true
-}
 failed=0
 # expect_changed CROP A B MIN WHAT: fails unless at least MIN pixels of CROP differ between A and B.
 expect_changed() {

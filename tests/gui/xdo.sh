@@ -159,3 +159,16 @@ screenshot() {
   frames 2
   import -window root "$1"
 }
+# differing CROP A B: how many pixels of CROP (WxH+X+Y, window coordinates) differ by more than 6% between the
+# screenshots $work/A.png and $work/B.png.
+differing() {
+  local crop="$1" a="$2" b="$3" x y
+  # Window coordinates to screen coordinates.
+  x="${crop#*+}"
+  y="${x#*+}"
+  x="${x%%+*}"
+  crop="${crop%%+*}+$((X + x))+$((Y + y))"
+  convert "$work/$a.png" -crop "$crop" +repage "$work/$a.crop.png"
+  convert "$work/$b.png" -crop "$crop" +repage "$work/$b.crop.png"
+  compare -metric AE -fuzz 6% "$work/$a.crop.png" "$work/$b.crop.png" null: 2>&1 | awk '{ printf "%d", $1 }' || true
+}

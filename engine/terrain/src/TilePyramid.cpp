@@ -568,6 +568,10 @@ PyramidBuild buildPyramid(const HeightRaster& raster, const std::filesystem::pat
                                  options.tileSize);
   PyramidInfo& info = build.info;
   info.source = options.source;
+  if (info.tiles > kMaxPyramidTiles) {
+    fail("tile pyramid: {}x{} samples in tiles of {} make {} tiles, more than {}; use a larger --tile-size",
+         raster.width(), raster.height(), info.tileSize, info.tiles, kMaxPyramidTiles);
+  }
   const std::filesystem::path json = dir / "pyramid.json";
   std::error_code ec;
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {

@@ -27,6 +27,7 @@
 namespace sylva::terrain {
 namespace {
 
+using test::errorOf;
 using test::kNaN;
 using test::sameBits;
 
@@ -68,15 +69,6 @@ HeightField decimated(const HeightField& field, int level) {
   return current;
 }
 
-template <typename F> std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(TilePyramid, PlanCountsLevelsUntilOneTileHoldsAll) {
   const PyramidInfo a = PyramidInfo::plan(257, 257, 1.0f, 1.0f, 256);
   EXPECT_EQ(a.levels, 1);
@@ -90,6 +82,16 @@ TEST(TilePyramid, PlanCountsLevelsUntilOneTileHoldsAll) {
   EXPECT_EQ(world.level(0).tilesX, 4096);
   EXPECT_EQ(world.level(12).width, 257);
   EXPECT_NE(errorOf([] { (void)PyramidInfo::plan(100, 100, 1.0f, 1.0f, 8); }).find("tile size 8"),
+            std::string::npos);
+  // A raster that size in tiles of 16 would need gigabytes of tile summaries: refused before any read.
+  struct Huge final : HeightRaster {
+    Huge() : HeightRaster(kMaxRasterSide, kMaxRasterSide, 1.0f, 1.0f) {}
+    void read(int, int, int, int, float*) const override { ADD_FAILURE() << "read"; }
+  };
+  test::TempDir dir;
+  EXPECT_NE(errorOf([&] {
+              (void)buildPyramid(Huge(), dir / "huge", {.tileSize = 16});
+            }).find("use a larger --tile-size"),
             std::string::npos);
 }
 

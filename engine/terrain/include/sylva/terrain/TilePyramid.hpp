@@ -35,6 +35,9 @@ inline constexpr int kPyramidVersion = 1;
 inline constexpr int kMinTileSize = 16;
 /** Largest tile size T. */
 inline constexpr int kMaxTileSize = 4096;
+/** Most tiles buildPyramid writes, all levels (it holds 12 bytes a tile of a level in memory while building).
+ */
+inline constexpr std::uint64_t kMaxPyramidTiles = std::uint64_t{1} << 26;
 
 /** One level of a pyramid: its samples and tiles. */
 struct PyramidLevel {
