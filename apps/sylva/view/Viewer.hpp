@@ -58,8 +58,8 @@ void viewStreamed(std::shared_ptr<const terrain::TileSource> source,
  * a pyramid whole from the south-west.
  */
 render::Camera streamStartCamera(const terrain::TileSource& source, float fovY);
-/** How deep (metres) views of a streamed source are, for the haze: 30 km over the procedural world, five times a
- * pyramid's extent. */
+/** How deep (metres) views of a streamed source are, for the haze: 30 km over the procedural world, five
+ * times a pyramid's extent. */
 double streamViewDepth(const terrain::TileSource& source);
 
 /** Opens a window on the small built-in pipeline test scene (render::DemoScene), orbiting it. */
