@@ -408,7 +408,7 @@ void registerPyramid(CLI::App& terrainCommand) {
     options.shardIndex = shard.index;
     options.shardCount = shard.count;
     options.source = o->dem;
-    options.onTile = [&progress](std::size_t, std::size_t total) {
+    options.onTile = [&progress](std::size_t, std::size_t) {
       if (!progress) {
         return;
       }
@@ -416,7 +416,6 @@ void registerPyramid(CLI::App& terrainCommand) {
         fail("pyramid: cancelled (finished tiles are kept; run again to resume)");
       }
       progress->advance();
-      (void)total;
     };
     {
       const terrain::PyramidLevel base = plan.level(0);

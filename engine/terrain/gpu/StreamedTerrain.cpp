@@ -156,17 +156,14 @@ StreamedFrame StreamedTerrain::update(const glm::dvec3& eye, const glm::dvec3& t
   mOrigin = glm::dvec3(mOriginIndex.x * static_cast<double>(layout.spacingX), 0.0,
                        mOriginIndex.y * static_cast<double>(layout.spacingZ));
   const auto summary = [&](const TileKey& key) { return mSource->tileSummary(key); };
-  const auto frustumAt = [&](const glm::dvec3& from) {
-    render::Camera c;
-    c.position = glm::vec3(0.0f);
-    c.target = glm::vec3(target - eye);
-    c.fovY = fovY;
-    c.nearPlane = 0.5f;
-    c.farPlane = farPlane;
-    (void)from;
-    return c.frustum(aspect);
-  };
-  const Frustum frustum = frustumAt(eye);
+  // The view's frustum relative to the eye (selectTiles' convention); the prefetch view reuses it.
+  render::Camera relative;
+  relative.position = glm::vec3(0.0f);
+  relative.target = glm::vec3(target - eye);
+  relative.fovY = fovY;
+  relative.nearPlane = 0.5f;
+  relative.farPlane = farPlane;
+  const Frustum frustum = relative.frustum(aspect);
 
   // What the view wants (every tile on the way down to the wanted leaves), here and where the camera goes.
   mStreamer->beginFrame();

@@ -88,7 +88,6 @@ std::shared_ptr<const TileData> ProceduralWorld::loadTile(const TileKey& key) co
   tile->size = T;
   tile->heights.assign(static_cast<std::size_t>(T + 1) * static_cast<std::size_t>(T + 1), kNaNf);
   const double step = std::ldexp(1.0, key.level);
-  TileSummary s{kNaNf, kNaNf, 0.0f};
   for (int b = 0; b <= T; ++b) {
     const long long j = static_cast<long long>(key.y) * T + b;
     if (j >= l.height) {
@@ -106,14 +105,10 @@ std::shared_ptr<const TileData> ProceduralWorld::loadTile(const TileKey& key) co
       const double x = static_cast<double>(std::min(static_cast<long long>(i * step),
                                                     static_cast<long long>(mInfo.width - 1))) *
                        mInfo.spacingX;
-      const float h = mNoise.sample(x, z);
-      tile->heights[static_cast<std::size_t>(b) * (T + 1) + a] = h;
-      s.minHeight = std::isnan(s.minHeight) ? h : std::min(s.minHeight, h);
-      s.maxHeight = std::isnan(s.maxHeight) ? h : std::max(s.maxHeight, h);
+      tile->heights[static_cast<std::size_t>(b) * (T + 1) + a] = mNoise.sample(x, z);
     }
   }
-  s.error = std::numeric_limits<float>::infinity();
-  tile->summary = {0.0f, mNoise.spec().heightScale, s.error};
+  tile->summary = tileSummary(key); // the noise's bound, as the selection saw it before the tile loaded
   return tile;
 }
 
