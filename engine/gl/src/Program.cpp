@@ -104,7 +104,9 @@ std::string translateShaderLog(const std::string& log, const std::vector<std::st
   return out;
 }
 
-Program::Program(const std::vector<StageSource>& stages, const std::string& label) : mLabel(label) {
+Program::Program(const std::vector<StageSource>& stages, const std::string& label,
+                 const std::vector<std::string>& feedbackVaryings)
+    : mLabel(label) {
   if (stages.empty()) {
     fail("{}: program has no stages", label);
   }
@@ -130,6 +132,14 @@ Program::Program(const std::vector<StageSource>& stages, const std::string& labe
   static_cast<Object&>(*this) = Object(program);
   for (GLuint shader : shaders.ids) {
     glAttachShader(program, shader);
+  }
+  if (!feedbackVaryings.empty()) {
+    std::vector<const char*> names;
+    for (const std::string& name : feedbackVaryings) {
+      names.push_back(name.c_str());
+    }
+    glTransformFeedbackVaryings(program, static_cast<GLsizei>(names.size()), names.data(),
+                                GL_INTERLEAVED_ATTRIBS);
   }
   glLinkProgram(program);
   for (GLuint shader : shaders.ids) {

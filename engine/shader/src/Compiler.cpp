@@ -34,7 +34,7 @@ gl::Program compileProgram(const Library& library, const ProgramDesc& desc) {
     Preprocessed pre = preprocess(library, path, desc.defines);
     stages.push_back({stageForPath(path), std::move(pre.source), std::move(pre.files)});
   }
-  return gl::Program(stages, desc.label.empty() ? desc.stages.front() : desc.label);
+  return gl::Program(stages, desc.label.empty() ? desc.stages.front() : desc.label, desc.feedbackVaryings);
 }
 
 } // namespace sylva::shader

@@ -162,6 +162,7 @@ void TerrainRenderer::reloadShaders(const shader::Library& library) {
   mSurface = std::move(surface);
   mSurfacePoints = gl::Program(gl::NoCreate);
   mSurfaceDepth = gl::Program(gl::NoCreate);
+  mSurfaceCapture = gl::Program(gl::NoCreate);
   mLibrary = &library;
   mNormals = std::move(normals);
   mSplat = std::move(splat);
@@ -221,16 +222,9 @@ void TerrainRenderer::uploadLayerTextures() {
 void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Camera& camera, int width,
                            int height, double time, render::GpuTimers* timers,
                            const TerrainDrawOptions& options) {
-  const std::vector<gpu::TerrainNode> nodes =
-      packTerrainNodes(selection, mField.extentX, mField.extentZ, options.skirts);
   const render::GpuTimerScope timed(timers, "terrain");
-  if (!nodes.empty()) {
-    const std::size_t bytes = nodes.size() * sizeof(gpu::TerrainNode);
-    if (!mNodes || mNodes.size() < bytes) {
-      mNodes = gl::Buffer(std::bit_ceil(bytes));
-    }
-    mNodes.setSubData(0, bytes, nodes.data());
-    mNodes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TERRAIN_NODE_BINDING);
+  const std::size_t nodes = uploadNodes(selection, options.skirts);
+  if (nodes != 0) {
     // Depth only: without holes in the data or patches past its extent nothing is discarded, and a fragment
     // shader without discard lets the rasteriser reject hidden fragments before shading.
     bool depthOnly = options.view == TerrainView::Depth && !options.vertexPoints && !mHoles;
@@ -240,8 +234,9 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
           n.x >= 0.0f && n.z >= 0.0f && n.x + n.size <= mField.extentX && n.z + n.size <= mField.extentZ;
     }
     const auto surfaces = static_cast<GLsizei>(selection.nodes.size());
-    gl::Program& surface = drawSurface(selection.config, selection.camera, depthOnly, surfaces, nullptr,
-                                       camera, width, height, time, options);
+    gl::Program& surface = drawSurface(selection.config, selection.camera,
+                                       depthOnly ? SurfaceProgram::DepthOnly : SurfaceProgram::Shaded,
+                                       surfaces, nullptr, camera, width, height, time, options);
     if (options.skirts && !options.vertexPoints) {
       // Skirts lose depth ties against the surface they hang from (exactly shared edge points).
       if (!mCrackSamples) {
@@ -251,7 +246,7 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
       glPolygonOffset(1.0f, 4.0f);
       surface.setUniform("uNodeOffset", static_cast<int>(surfaces));
       mCrackSamples.begin();
-      glDrawArraysInstanced(GL_PATCHES, 0, 4, static_cast<GLsizei>(nodes.size()) - surfaces);
+      glDrawArraysInstanced(GL_PATCHES, 0, 4, static_cast<GLsizei>(nodes) - surfaces);
       mCrackSamples.end();
       glDisable(GL_POLYGON_OFFSET_FILL);
       mLastCrackSamples = static_cast<std::int64_t>(*mCrackSamples.result(true));
@@ -274,8 +269,66 @@ void TerrainRenderer::draw(const QuadtreeSelection& selection, const render::Cam
   }
 }
 
+std::size_t TerrainRenderer::uploadNodes(const QuadtreeSelection& selection, bool skirts) {
+  const std::vector<gpu::TerrainNode> nodes =
+      packTerrainNodes(selection, mField.extentX, mField.extentZ, skirts);
+  if (!nodes.empty()) {
+    const std::size_t bytes = nodes.size() * sizeof(gpu::TerrainNode);
+    if (!mNodes || mNodes.size() < bytes) {
+      mNodes = gl::Buffer(std::bit_ceil(bytes));
+    }
+    mNodes.setSubData(0, bytes, nodes.data());
+    mNodes.bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TERRAIN_NODE_BINDING);
+  }
+  return nodes.size();
+}
+
+std::vector<render::ClipTriangle> TerrainRenderer::captureTriangles(const QuadtreeSelection& selection,
+                                                                    const render::Camera& camera, int width,
+                                                                    int height,
+                                                                    const TerrainDrawOptions& options) {
+  const std::size_t nodes = uploadNodes(selection, options.skirts);
+  if (nodes == 0) {
+    return {};
+  }
+  TerrainDrawOptions capture = options;
+  capture.vertexPoints = false;
+  capture.countVertices = false;
+  const auto patches = static_cast<GLsizei>(nodes);
+  glEnable(GL_RASTERIZER_DISCARD);
+  // Count first (any surface program emits the same primitives), then capture into a buffer of that size.
+  const gl::Query generated(GL_PRIMITIVES_GENERATED);
+  generated.begin();
+  drawSurface(selection.config, selection.camera, SurfaceProgram::Shaded, patches, nullptr, camera, width,
+              height, 0.0, capture);
+  generated.end();
+  const std::uint64_t triangles = *generated.result(true);
+  struct Vertex {
+    glm::vec4 clip;
+    std::int32_t skirt;
+  };
+  static_assert(sizeof(Vertex) == 20, "transform feedback packs gl_Position and teSkirt tightly");
+  std::vector<render::ClipTriangle> out;
+  if (triangles != 0) {
+    const gl::Buffer feedback(triangles * 3 * sizeof(Vertex));
+    feedback.bindBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+    drawSurface(selection.config, selection.camera, SurfaceProgram::Capture, patches, nullptr, camera, width,
+                height, 0.0, capture);
+    std::vector<Vertex> vertices(triangles * 3);
+    feedback.getSubData(0, vertices.size() * sizeof(Vertex), vertices.data());
+    out.reserve(triangles);
+    for (std::size_t t = 0; t < triangles; ++t) {
+      out.push_back({{vertices[3 * t].clip, vertices[3 * t + 1].clip, vertices[3 * t + 2].clip},
+                     vertices[3 * t].skirt});
+    }
+  }
+  glDisable(GL_RASTERIZER_DISCARD);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  return out;
+}
+
 gl::Program& TerrainRenderer::drawSurface(const QuadtreeConfig& lod, const glm::vec3& selectionCamera,
-                                          bool depthOnly, GLsizei surfaces, const gl::Buffer* indirect,
+                                          SurfaceProgram program, GLsizei patches, const gl::Buffer* indirect,
                                           const render::Camera& camera, int width, int height, double time,
                                           const TerrainDrawOptions& options) {
   gpu::TerrainUniforms u{};
@@ -297,13 +350,25 @@ gl::Program& TerrainRenderer::drawSurface(const QuadtreeConfig& lod, const glm::
                     {"terrain/patch.vert", "terrain/patch.tesc", "terrain/patch.tese", "terrain/patch.frag"},
                     {{"SYLVA_TERRAIN_POINTS", "1"}}});
   }
+  const bool depthOnly = program == SurfaceProgram::DepthOnly;
+  const bool capture = program == SurfaceProgram::Capture;
+  if (capture && !mSurfaceCapture) {
+    mSurfaceCapture = shader::compileProgram(
+        *mLibrary, {"terrain surface capture",
+                    {"terrain/patch.vert", "terrain/patch.tesc", "terrain/patch.tese", "terrain/patch.frag"},
+                    {},
+                    {"gl_Position", "teSkirt"}});
+  }
   if (depthOnly && !mSurfaceDepth) {
     mSurfaceDepth = shader::compileProgram(
         *mLibrary, {"terrain surface depth",
                     {"terrain/patch.vert", "terrain/patch.tesc", "terrain/patch.tese", "terrain/patch.frag"},
                     {{"SYLVA_TERRAIN_DEPTH_ONLY", "1"}}});
   }
-  gl::Program& surface = options.vertexPoints ? mSurfacePoints : depthOnly ? mSurfaceDepth : mSurface;
+  gl::Program& surface = capture                ? mSurfaceCapture
+                         : options.vertexPoints ? mSurfacePoints
+                         : depthOnly            ? mSurfaceDepth
+                                                : mSurface;
   surface.use();
   mVao.bind();
   // Geomorphing follows the selection's camera and LOD distances (off: w = 0, the plain surface).
@@ -331,8 +396,12 @@ gl::Program& TerrainRenderer::drawSurface(const QuadtreeConfig& lod, const glm::
   if (indirect != nullptr) {
     indirect->bind(GL_DRAW_INDIRECT_BUFFER);
     glDrawArraysIndirect(GL_PATCHES, nullptr);
+  } else if (capture) {
+    glBeginTransformFeedback(GL_TRIANGLES);
+    glDrawArraysInstanced(GL_PATCHES, 0, 4, patches);
+    glEndTransformFeedback();
   } else {
-    glDrawArraysInstanced(GL_PATCHES, 0, 4, surfaces);
+    glDrawArraysInstanced(GL_PATCHES, 0, 4, patches);
   }
   if (count) {
     mInvocations.end();
@@ -346,8 +415,8 @@ void TerrainRenderer::draw(const GpuQuadtreeSelection& selection, const render::
                            const TerrainDrawOptions& options) {
   const render::GpuTimerScope timed(timers, "terrain");
   selection.nodes().bindBase(GL_SHADER_STORAGE_BUFFER, SYLVA_TERRAIN_NODE_BINDING);
-  drawSurface(selection.quadtree().config(), selection.camera(), false, 0, &selection.command(), camera,
-              width, height, time, options);
+  drawSurface(selection.quadtree().config(), selection.camera(), SurfaceProgram::Shaded, 0,
+              &selection.command(), camera, width, height, time, options);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 

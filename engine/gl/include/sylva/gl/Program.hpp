@@ -26,8 +26,13 @@ class Program : public Object<detail::deleteProgram> {
 public:
   /** An empty wrapper (no GL object; no context needed), to be assigned later. */
   explicit Program(NoCreateT) {}
-  /** Compiles and links `stages`; `label` names the program in errors and GL debug labels. */
-  Program(const std::vector<StageSource>& stages, const std::string& label);
+  /**
+   * Compiles and links `stages`; `label` names the program in errors and GL debug labels. `feedbackVaryings`
+   * (outputs of the last vertex-processing stage, e.g. "gl_Position") are captured by transform feedback,
+   * interleaved in the order given.
+   */
+  Program(const std::vector<StageSource>& stages, const std::string& label,
+          const std::vector<std::string>& feedbackVaryings = {});
 
   /** Makes this the current program (glUseProgram). */
   void use() const;

@@ -14,6 +14,8 @@ struct ProgramDesc {
   std::string label;               ///< name in errors and in GL debug labels
   std::vector<std::string> stages; ///< library paths of the stage files, e.g. "terrain/terrain.vert"
   Defines defines;                 ///< emitted after `#version` in every stage
+  /** Outputs captured by transform feedback, interleaved (see gl::Program); empty: none. */
+  std::vector<std::string> feedbackVaryings;
 };
 
 /** GL stage enum for a file name by extension; throws sylva::Error for unknown extensions. */

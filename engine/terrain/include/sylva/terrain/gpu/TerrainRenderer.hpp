@@ -6,6 +6,7 @@
 #include <sylva/gl/Texture.hpp>
 #include <sylva/gl/VertexArray.hpp>
 #include <sylva/render/Camera.hpp>
+#include <sylva/render/ExactCoverage.hpp>
 #include <sylva/render/gpu/FrameUniforms.hpp>
 #include <sylva/render/gpu/GpuTimers.hpp>
 #include <sylva/shader/Library.hpp>
@@ -140,6 +141,16 @@ public:
   void draw(const GpuQuadtreeSelection& selection, const render::Camera& camera, int width, int height,
             double time, render::GpuTimers* timers = nullptr, const TerrainDrawOptions& options = {});
 
+  /**
+   * The triangles draw() rasterises for `selection` with `options` (tag 0: surface, tag 1: skirt, drawn with
+   * options.skirts), as clip-space positions captured by transform feedback with the rasteriser off. The
+   * capture program is the surface program's text and gl_Position is invariant, so the positions equal the
+   * drawn ones bit for bit. For exact-coverage checks (render::exactCoverage) in tests; slow (a readback).
+   */
+  std::vector<render::ClipTriangle> captureTriangles(const QuadtreeSelection& selection,
+                                                     const render::Camera& camera, int width, int height,
+                                                     const TerrainDrawOptions& options = {});
+
   /** Skirt samples that passed the depth test in the last draw with skirts (crack pixels), else -1. */
   std::int64_t lastCrackSamples() const { return mLastCrackSamples; }
   /** Tessellation-evaluation invocations of the last draw with countVertices (-1 when not supported). */
@@ -157,9 +168,14 @@ public:
 private:
   /** Uniforms, textures, program and the surface draw (instanced, or indirect from `indirect`); the program.
    */
-  gl::Program& drawSurface(const QuadtreeConfig& lod, const glm::vec3& selectionCamera, bool depthOnly,
-                           GLsizei surfaces, const gl::Buffer* indirect, const render::Camera& camera,
-                           int width, int height, double time, const TerrainDrawOptions& options);
+  /** Which surface program drawSurface uses (vertexPoints overrides all but Capture). */
+  enum class SurfaceProgram { Shaded, DepthOnly, Capture };
+  gl::Program& drawSurface(const QuadtreeConfig& lod, const glm::vec3& selectionCamera,
+                           SurfaceProgram program, GLsizei patches, const gl::Buffer* indirect,
+                           const render::Camera& camera, int width, int height, double time,
+                           const TerrainDrawOptions& options);
+  /** Packs and uploads the nodes of `selection` (with skirts as asked); the node count. */
+  std::size_t uploadNodes(const QuadtreeSelection& selection, bool skirts);
   void uploadLayerTextures();
 
   /** The field's shape only: its heights live in the textures (no CPU copy is kept). */
@@ -177,9 +193,10 @@ private:
   float mMinHeight = 0.0f;
   float mMaxHeight = 0.0f;
   gl::Program mSurface{gl::NoCreate};
-  gl::Program mSurfacePoints{gl::NoCreate}; // point_mode variant, compiled on first use
-  gl::Program mSurfaceDepth{gl::NoCreate};  // TerrainView::Depth variant, compiled on first use
-  bool mHoles = false;                      // some sample is nodata
+  gl::Program mSurfacePoints{gl::NoCreate};  // point_mode variant, compiled on first use
+  gl::Program mSurfaceDepth{gl::NoCreate};   // TerrainView::Depth variant, compiled on first use
+  gl::Program mSurfaceCapture{gl::NoCreate}; // transform-feedback variant for captureTriangles
+  bool mHoles = false;                       // some sample is nodata
   const shader::Library* mLibrary = nullptr;
   gl::Program mNormals{gl::NoCreate};
   gl::Program mSplat{gl::NoCreate};
