@@ -1,6 +1,7 @@
 #version 450 core
 // Streamed terrain: height and slope colours (meadow, rock, snow), Lambert sun, sky ambient and haze; debug views:
-// LOD colours by tile level, world position (relative to the render origin) for tests.
+// LOD colours by tile level; world position (relative to the render origin) and the normal (alpha: level + 1)
+// for tests.
 #include "stream.glsl"
 #include "../common/lighting.glsl"
 
@@ -27,6 +28,10 @@ void main() {
     return;
   }
   vec3 n = normalize(teNormal);
+  if (view == 5) {
+    outColor = vec4(n, float(teLevel + 1));
+    return;
+  }
   float slope = 1.0 - n.y;
   // Meadow drying with altitude, rock on steep slopes, snow above 2,400 m on gentle ones (absolute metres:
   // no snow on hills, whatever their range).

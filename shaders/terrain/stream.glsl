@@ -21,3 +21,25 @@ float tileHeight(int layer, ivec2 s) {
   int t = stream.shape.x;
   return texelFetch(tileHeights, ivec3(clamp(s, ivec2(0), ivec2(t)), layer), 0).r;
 }
+
+// Sample s of drawn tile `tile`, or of its same-level neighbour when s lies one step beyond its border (the
+// tiles share their border samples, so -1 is the west tile's T - 1); NaN when that neighbour is not on the GPU.
+float tileHeightAcross(int tile, ivec2 s) {
+  int t = stream.shape.x;
+  ivec4 flags = tiles[tile].flags;
+  int layer = tiles[tile].key.w + 1;
+  if (s.x < 0) {
+    layer = flags.y & 0xFFFF;
+    s.x += t;
+  } else if (s.x > t) {
+    layer = flags.y >> 16;
+    s.x -= t;
+  } else if (s.y < 0) {
+    layer = flags.z & 0xFFFF;
+    s.y += t;
+  } else if (s.y > t) {
+    layer = flags.z >> 16;
+    s.y -= t;
+  }
+  return layer == 0 ? uintBitsToFloat(0x7FC00000u) : tileHeight(layer - 1, s);
+}

@@ -27,16 +27,18 @@ void main() {
   vec2 xz = vec2(index) * stream.spacing.xy;
   teAbsent = isnan(h) ? 1.0 : 0.0;
   h = isnan(h) ? 0.0 : h;
-  // Normal from central differences of the tile's samples (one-sided at its border or beside absent ones).
+  // Normal from central differences of the level's samples, across the tile's border into the same-level
+  // neighbour when it is on the GPU (both tiles then give a shared vertex the same normal: no shading seam);
+  // one-sided beside a missing neighbour or absent samples.
   float step = float(1 << key.z);
-  float hw = tileHeight(layer, local - ivec2(1, 0));
-  float he = tileHeight(layer, local + ivec2(1, 0));
-  float hn = tileHeight(layer, local - ivec2(0, 1));
-  float hs = tileHeight(layer, local + ivec2(0, 1));
-  bool west = local.x > 0 && !isnan(hw);
-  bool east = local.x < stream.shape.x && !isnan(he);
-  bool north = local.y > 0 && !isnan(hn);
-  bool south = local.y < stream.shape.x && !isnan(hs);
+  float hw = tileHeightAcross(tcTile, local - ivec2(1, 0));
+  float he = tileHeightAcross(tcTile, local + ivec2(1, 0));
+  float hn = tileHeightAcross(tcTile, local - ivec2(0, 1));
+  float hs = tileHeightAcross(tcTile, local + ivec2(0, 1));
+  bool west = !isnan(hw);
+  bool east = !isnan(he);
+  bool north = !isnan(hn);
+  bool south = !isnan(hs);
   float spanX = (float(west) + float(east)) * step * stream.spacing.x;
   float spanZ = (float(north) + float(south)) * step * stream.spacing.y;
   float dhdx = spanX > 0.0 ? ((east ? he : h) - (west ? hw : h)) / spanX : 0.0;

@@ -57,8 +57,9 @@ StreamedTerrain::StreamedTerrain(const shader::Library& library, std::shared_ptr
   mOptions.patchLevel = P;
   const int maxLayers = gl::queryContextInfo().maxArrayTextureLayers;
   const std::size_t wanted = mOptions.gpuBudget / layerBytes();
-  mLayerCount =
-      static_cast<int>(std::min<std::size_t>(wanted, static_cast<std::size_t>(std::max(maxLayers, 1))));
+  // Tile records name neighbour layers in 16 bits (StreamTileGpu::flags): at most 65,534 layers.
+  mLayerCount = static_cast<int>(
+      std::min<std::size_t>({wanted, static_cast<std::size_t>(std::max(maxLayers, 1)), std::size_t{65534}}));
   if (mLayerCount < 64) {
     fail("GPU budget {:.1f} MB holds {} tiles of {}x{} samples; at least 64 are needed (raise --gpu-budget)",
          static_cast<double>(mOptions.gpuBudget) / 1.0e6, mLayerCount, T + 1, T + 1);
@@ -258,7 +259,13 @@ StreamedFrame StreamedTerrain::update(const glm::dvec3& eye, const glm::dvec3& t
   for (const SelectedTile& t : mSelection.tiles) {
     gpu::StreamTileGpu r{};
     r.key = glm::ivec4(t.key.x, t.key.y, t.key.level, mLayerOf.at(t.key));
-    r.flags = glm::ivec4(static_cast<int>(t.coarserEdges), 0, 0, 0);
+    // Same-level neighbours on the GPU, for central differences across the tile's border.
+    const auto across = [&](int dx, int dy) {
+      const auto it = mLayerOf.find(TileKey{t.key.level, t.key.x + dx, t.key.y + dy});
+      return it != mLayerOf.end() ? it->second + 1 : 0;
+    };
+    r.flags = glm::ivec4(static_cast<int>(t.coarserEdges), across(-1, 0) | (across(1, 0) << 16),
+                         across(0, -1) | (across(0, 1) << 16), 0);
     records.push_back(r);
   }
   const std::size_t bytes = std::max<std::size_t>(records.size(), 1) * sizeof(gpu::StreamTileGpu);

@@ -59,6 +59,7 @@ enum class StreamedView : int {
   Shaded = 0,        ///< meadow, rock and snow by height and slope, sun and haze
   LevelColours = 1,  ///< tinted by tile level
   WorldPosition = 4, ///< position relative to origin() in RGB (float targets): tests
+  Normal = 5,        ///< unit normal in RGB, tile level + 1 in alpha (float targets): tests
 };
 
 /**
@@ -126,6 +127,8 @@ public:
   std::size_t layerBytes() const;
   /** The source's layout. */
   const PyramidInfo& layout() const { return mSource->layout(); }
+  /** Whether tile `key` is in the GPU cache (drawable, and readable by its neighbours' normals). */
+  bool onGpu(const TileKey& key) const { return mLayerOf.count(key) != 0; }
 
 private:
   struct Layer {
@@ -133,7 +136,6 @@ private:
     bool used = false;
     std::uint64_t lastFrame = 0;
   };
-  bool onGpu(const TileKey& key) const { return mLayerOf.count(key) != 0; }
   int freeLayer();
   void upload(const TileKey& key, const TileData& tile, int layer);
   void requestView(const glm::dvec3& eye, const Frustum* frustum, float priorityOffset);
