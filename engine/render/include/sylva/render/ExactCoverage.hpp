@@ -14,8 +14,8 @@ namespace sylva::render {
  * stage (e.g. captured by transform feedback), plus a tag chosen by the caller (e.g. surface or skirt).
  */
 struct ClipTriangle {
-  std::array<glm::vec4, 3> clip{};
-  int tag = 0;
+  std::array<glm::vec4, 3> clip{}; ///< clip-space positions (x, y, z, w) of the three vertices
+  int tag = 0;                     ///< the caller's label (e.g. 0 surface, 1 skirt)
 };
 
 /** One triangle whose exact coverage contains a sample (see exactCoverage). */
