@@ -87,10 +87,10 @@ ctest --preset tsan -j "$jobs"
 phase "done"
 echo "test.sh: phase times"
 printf '  %s\n' "${summary[@]}"
-# CTest keeps each test's last duration in CTestCostData.txt ("name runs seconds", then "---" and the failures;
-# names of parameterised tests hold spaces).
+# This run's durations, from CTest's log of the release phase (each test's block: "N/M Test: NAME", then "Test time
+# = S sec"); CTestCostData.txt keeps running averages, seeded above.
 echo "test.sh: slowest release tests (s)"
-awk '/^---/ { exit } NF >= 3 { c = $NF; n = $0; sub(/ [0-9]+ [0-9.eE+-]+$/, "", n); printf "  %8.1f  %s\n", c, n }' \
-  build/release/Testing/Temporary/CTestCostData.txt |
+awk '/^[0-9]+\/[0-9]+ Test: / { n = $0; sub(/^[0-9]+\/[0-9]+ Test: /, "", n) }
+     /^Test time = / && n != "" { printf "  %8.1f  %s\n", $4, n; n = "" }' build/release/Testing/Temporary/LastTest.log |
   sort -rn | awk 'NR <= 10'
 echo "test.sh: all suites passed in $(( $(date +%s) - start )) s"
