@@ -11,9 +11,10 @@
 // to 1/256 px), so at a silhouette a sliver of surface thinner than that can vanish and let a skirt sample
 // through although the mesh is closed. Every frame with crack samples is therefore judged in exact
 // arithmetic: the frame's triangles are captured (transform feedback, bit-identical clip positions) and each
-// crack pixel's centre is covered exactly (render::exactCoverage). It is a real crack when the exact picture
-// also shows the skirt; a snapping sample when a surface triangle hides it exactly and every such triangle
-// lies within the snapping distance of the pixel centre (so the rasteriser may drop it). Anything else fails.
+// crack pixel's centre is covered exactly (render::exactCoverage). It is a snapping sample only when surface
+// hides it exactly, each such triangle has the centre within the snapping distance of its border, a fold
+// edge (a silhouette) passes that close and no unshared edge (a T-junction) does (auditCracks); anything else
+// is a crack and fails.
 #include <sylva/core/Random.hpp>
 #include <sylva/render/gpu/RenderTarget.hpp>
 #include <sylva/terrain/HeightSources.hpp>
