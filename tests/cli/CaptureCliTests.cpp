@@ -160,16 +160,35 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   EXPECT_THAT(dense.out, testing::HasSubstr("as wide as the cluster's median blade"));
   EXPECT_THAT(dense.out, testing::HasSubstr("probably blades merged"));
   EXPECT_EQ(countOf(explained.out, "merged?"), 0u) << "the occluded fan is captured whole";
-  // A dense fan of 13 whose merged blades are split between their tips (9 blades without the split, 12 when
-  // wider than 1.6× the median blade, all 13 when wider than 1.4× the narrow blades): --explain says where.
+  // A dense fan of 13 whose tips part only near their ends: the notches between them are junctions (13
+  // blades). Without notches its merged blades are split between their tips (9 blades without the split, 12
+  // when wider than 1.6× the median blade, all 13 when wider than 1.4× the narrow blades): --explain says
+  // where.
   ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 3 --layout dense -o " + at(dir, "d3.png")).status,
             0);
-  const test::RunResult split = runSylva(dir, "capture " + at(dir, "d3.png") + " --explain");
+  const test::RunResult notched = runSylva(dir, "capture " + at(dir, "d3.png") + " --explain");
+  ASSERT_EQ(notched.status, 0) << notched.err;
+  EXPECT_THAT(notched.out, testing::HasSubstr("13 blades in 1 cluster"));
+  EXPECT_EQ(countOf(notched.out, "split: "), 0u) << notched.out;
+  const test::RunResult split =
+      runSylva(dir, "capture " + at(dir, "d3.png") + " --explain --notch-prominence 0");
   ASSERT_EQ(split.status, 0) << split.err;
   EXPECT_THAT(split.out, testing::HasSubstr("13 blades in 1 cluster"));
   EXPECT_THAT(split.out, testing::HasSubstr("the cluster's narrow blades) was cut at"));
   EXPECT_THAT(split.out, testing::HasSubstr("split: the blade"));
   EXPECT_THAT(split.out, testing::HasSubstr("between two of its tips"));
+  // Crossing fans whose blades merge in the outline up to tips that part in depth: --explain names each
+  // split; --no-depth-split keeps them merged.
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 20 -o " + at(dir, "s20.png")).status, 0);
+  const test::RunResult parted = runSylva(dir, "capture " + at(dir, "s20.png") + " --explain");
+  ASSERT_EQ(parted.status, 0) << parted.err;
+  EXPECT_THAT(parted.out, testing::HasSubstr("7 blades in 1 cluster"));
+  EXPECT_EQ(countOf(parted.out, "parts in depth towards its tip into 2 surfaces"), 2u) << parted.out;
+  const test::RunResult unparted =
+      runSylva(dir, "capture " + at(dir, "s20.png") + " --explain --no-depth-split");
+  ASSERT_EQ(unparted.status, 0) << unparted.err;
+  EXPECT_THAT(unparted.out, testing::HasSubstr("5 blades in 1 cluster"));
+  EXPECT_EQ(countOf(unparted.out, "parts in depth"), 0u);
   // --layout narrows the sweep to one class, and the hint redraws a cluster of that class.
   const test::RunResult crossing8 = runSylva(dir, "capture synth --sweep 8 --layout crossing");
   ASSERT_EQ(crossing8.status, 0) << crossing8.err;

@@ -62,6 +62,9 @@ struct CaptureOptions {
   std::string canny;
   std::string centre = "auto";
   double prominence = ExtractOptions{}.prominence;
+  double notchProminence = ExtractOptions{}.notchProminence;
+  double notchMin = ExtractOptions{}.notchMinPx;
+  bool noDepthSplit = false;
   double smooth = ExtractOptions{}.smoothSigmaPx;
   double minLength = ExtractOptions{}.minBladeLengthPx;
   double minElongation = ExtractOptions{}.minElongation;
@@ -139,6 +142,9 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
     e.centrePx = {v[0], v[1]};
   }
   e.prominence = o.prominence;
+  e.notchProminence = o.notchProminence;
+  e.notchMinPx = o.notchMin;
+  e.depthSplit = !o.noDepthSplit;
   e.smoothSigmaPx = o.smooth;
   e.minBladeLengthPx = o.minLength;
   e.minElongation = o.minElongation;
@@ -509,6 +515,18 @@ void registerCapture(CLI::App& app) {
   command->add_option("--prominence", o->prominence, "Junction prominence, fraction of the largest distance")
       ->check(finiteRange(1e-4, 0.99))
       ->capture_default_str();
+  command
+      ->add_option(
+          "--notch-prominence", o->notchProminence,
+          "Junctions also at notches between tips this prominent, fraction of the largest distance (0: "
+          "off)")
+      ->check(finiteRange(0.0, 0.99))
+      ->capture_default_str();
+  command->add_option("--notch-min", o->notchMin, "Least depth of a notch and height of its tip, pixels")
+      ->check(finiteRange(0.0, 1000.0))
+      ->capture_default_str();
+  command->add_flag("--no-depth-split", o->noDepthSplit,
+                    "Keep blades whose outer halves part in depth as one (blades merged in the outline)");
   command->add_option("--smooth", o->smooth, "Smoothing of the distance signal, sigma in pixels")
       ->check(finiteRange(0.0, 100.0))
       ->capture_default_str();

@@ -52,6 +52,12 @@ void validate(const ExtractOptions& o) {
   if (!finite(o.prominence) || o.prominence <= 0.0 || o.prominence >= 1.0) {
     fail("--prominence: {} outside (0, 1)", o.prominence);
   }
+  if (!finite(o.notchProminence) || o.notchProminence < 0.0 || o.notchProminence >= 1.0) {
+    fail("--notch-prominence: {} outside [0, 1)", o.notchProminence);
+  }
+  if (!finite(o.notchMinPx) || o.notchMinPx < 0.0 || o.notchMinPx > 1000.0) {
+    fail("--notch-min: {} px outside 0..1000", o.notchMinPx);
+  }
   if (!finite(o.minBladeLengthPx) || o.minBladeLengthPx < 0.0 || !finite(o.minElongation) ||
       o.minElongation < 0.0) {
     fail("--min-length / --min-elongation: must be finite and ≥ 0");
@@ -844,6 +850,112 @@ void toMetres(const Context& c, CapturedBlade& blade) {
   }
 }
 
+/**
+ * Widths across a blade's axis (`line`, kMatchSamples points, pixels) in `region`: the distance between the
+ * two places where a scan along the normal leaves the region (nearest-pixel classification puts them on the
+ * edges, unbiased). The tip's width is 0.
+ */
+void widthsAcross(const cv::Mat& region, const std::vector<glm::vec2>& line, std::vector<float>& widths) {
+  const int count = static_cast<int>(line.size());
+  widths.resize(line.size());
+  for (int k = 0; k < count; ++k) {
+    const glm::vec2 t = line[std::min(k + 2, count - 1)] - line[std::max(k - 2, 0)];
+    if (glm::length(t) <= 0.0f) {
+      continue;
+    }
+    const glm::vec2 normal = glm::normalize(glm::vec2(-t.y, t.x));
+    float across = 0.0f;
+    for (const float sign : {-1.0f, 1.0f}) {
+      float d = 0.0f;
+      while (d < 200.0f && insideMask(region, line[k] + normal * (sign * (d + 0.25f)))) {
+        d += 0.25f;
+      }
+      across += d + 0.125f;
+    }
+    widths[k] = across;
+  }
+  widths.back() = 0.0f;
+}
+
+/**
+ * The common end of building a blade from its axis `line` (root end first, pixels) and `widths`: the
+ * elongation test, smoothing, the extension to the cluster's centre, the knots, the border test and metres.
+ * `blade` carries its outline and tip. Appends the blade to `out`, or returns false with `reason`.
+ */
+bool finishBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, std::vector<glm::vec2> line,
+                 std::vector<float> widths, float maxWidth, CapturedBlade blade,
+                 std::vector<CapturedBlade>& out, std::string& reason) {
+  const ExtractOptions& o = c.options;
+  // A blade reaches from the centre to its tip: a leaf mostly hidden behind its neighbours shows only a
+  // short, wide end beyond its junctions, yet is as long as the others.
+  const float lengthPx =
+      polylineLength(line) + (o.extendToCentre ? glm::length(line.front() - cluster.centre) : 0.0f);
+  if (lengthPx < o.minElongation * std::max(maxWidth, 1.0f)) {
+    reason = fmt::format("not elongated ({:.0f} px long, {:.0f} px wide)", lengthPx, maxWidth);
+    return false;
+  }
+  // Smooth, extend to the centre, resample to the knot count.
+  const double sigma = o.skeletonSmoothKnots * kMatchSamples / 128.0;
+  line = smoothOpen(line, sigma, true);
+  widths = smoothOpen(widths, sigma, false);
+  widths.back() = 0.0f;
+  float extension = 0.0f;
+  if (o.extendToCentre) {
+    const glm::vec2 base = line.front();
+    const float d = glm::length(base - cluster.centre);
+    if (d > 2.0f && insideMask(clusterMask, 0.5f * (base + cluster.centre))) {
+      const int steps = std::max(2, static_cast<int>(d / 2.0f));
+      // Where blades overlap the width cannot be measured; continue the trend of the blade's first captured
+      // fifth (leaves that widen from a stalk narrow towards the root), within a quarter to all of its base
+      // width.
+      const std::size_t probe = std::max<std::size_t>(2, line.size() / 5);
+      const float run =
+          std::max(polylineLength(std::vector<glm::vec2>(line.begin(), line.begin() + probe)), 1.0f);
+      const float slope = (widths[probe - 1] - widths.front()) / run;
+      const float w0 = widths.front();
+      std::vector<glm::vec2> ext;
+      std::vector<float> extW;
+      for (int s = 0; s < steps; ++s) {
+        const float t = static_cast<float>(s) / static_cast<float>(steps);
+        ext.push_back(cluster.centre + t * (base - cluster.centre));
+        // ...and never wider than the cluster is there (a straight extension cuts the corner of a bent
+        // blade).
+        const glm::vec2 q = ext.back();
+        const int qx = std::clamp(static_cast<int>(std::lround(q.x)), 0, c.clusterDist.cols - 1);
+        const int qy = std::clamp(static_cast<int>(std::lround(q.y)), 0, c.clusterDist.rows - 1);
+        const float room = std::max(2.0f * c.clusterDist.at<float>(qy, qx) - 1.0f, 1.0f);
+        extW.push_back(std::min(std::clamp(w0 - slope * (1.0f - t) * d, 0.25f * w0, w0), room));
+      }
+      line.insert(line.begin(), ext.begin(), ext.end());
+      widths.insert(widths.begin(), extW.begin(), extW.end());
+      extension = d;
+    }
+  }
+  blade.skeletonPx = resample(line, o.knots, &widths, &blade.widthsPx);
+  blade.lengthPx = polylineLength(blade.skeletonPx);
+  blade.extensionPx = extension;
+  std::size_t onBorder = 0;
+  for (const glm::vec2& p : blade.outline) {
+    bool border = p.x <= 0.0f || p.y <= 0.0f || p.x >= c.frame.width - 1 || p.y >= c.frame.height - 1;
+    if (c.options.roi != std::array<int, 4>{0, 0, 0, 0}) {
+      border = border || p.x <= c.options.roi[0] + 1 || p.y <= c.options.roi[1] + 1 ||
+               p.x >= c.options.roi[2] - 2 || p.y >= c.options.roi[3] - 2;
+    }
+    onBorder += border ? 1 : 0;
+  }
+  blade.touchesBorder = onBorder > 0;
+  // A blade cut by the border crosses it once, over its width; a segment that runs along it is the cut
+  // itself.
+  if (onBorder * 10 > blade.outline.size() * 3) {
+    reason = fmt::format("{:.0f} % of its outline is the border of the frame or region",
+                         100.0 * onBorder / blade.outline.size());
+    return false;
+  }
+  toMetres(c, blade);
+  out.push_back(std::move(blade));
+  return true;
+}
+
 /** Builds one blade from the contour segment [a, b] (indices, circular, a before b) around its tip. */
 bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, int a, int b,
                 int clusterIndex, std::vector<CapturedBlade>& out, std::string& reason,
@@ -967,97 +1079,13 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
     if (medialAxis(region, basePoint, cluster.contour[(a + tipOffset) % n], axis, axisWidths) &&
         axis.size() >= 3) {
       line = smoothOpen(resample(axis, kMatchSamples, &axisWidths, &widths), 2.0, true);
-      // Widths across the smoothed axis: the distance between the two places where a scan along the normal
-      // leaves the region (nearest-pixel classification puts them on the edges, unbiased).
-      for (int k = 0; k < kMatchSamples; ++k) {
-        const glm::vec2 t = line[std::min(k + 2, kMatchSamples - 1)] - line[std::max(k - 2, 0)];
-        if (glm::length(t) <= 0.0f) {
-          continue;
-        }
-        const glm::vec2 normal = glm::normalize(glm::vec2(-t.y, t.x));
-        float across = 0.0f;
-        for (const float sign : {-1.0f, 1.0f}) {
-          float d = 0.0f;
-          while (d < 200.0f && insideMask(region, line[k] + normal * (sign * (d + 0.25f)))) {
-            d += 0.25f;
-          }
-          across += d + 0.125f;
-        }
-        widths[k] = across;
-      }
-      widths.back() = 0.0f;
+      widthsAcross(region, line, widths);
       blade.medialAxis = true;
       maxWidth = *std::max_element(widths.begin(), widths.end());
     }
   }
-  // A blade reaches from the centre to its tip: a leaf mostly hidden behind its neighbours shows only a
-  // short, wide end beyond its junctions, yet is as long as the others.
-  const float lengthPx =
-      polylineLength(line) + (o.extendToCentre ? glm::length(line.front() - cluster.centre) : 0.0f);
-  if (lengthPx < o.minElongation * std::max(maxWidth, 1.0f)) {
-    reason = fmt::format("not elongated ({:.0f} px long, {:.0f} px wide)", lengthPx, maxWidth);
-    return false;
-  }
-  // Smooth, extend to the centre, resample to the knot count.
-  const double sigma = o.skeletonSmoothKnots * kMatchSamples / 128.0;
-  line = smoothOpen(line, sigma, true);
-  widths = smoothOpen(widths, sigma, false);
-  widths.back() = 0.0f;
-  float extension = 0.0f;
-  if (o.extendToCentre) {
-    const glm::vec2 base = line.front();
-    const float d = glm::length(base - cluster.centre);
-    if (d > 2.0f && insideMask(clusterMask, 0.5f * (base + cluster.centre))) {
-      const int steps = std::max(2, static_cast<int>(d / 2.0f));
-      // Where blades overlap the width cannot be measured; continue the trend of the blade's first captured
-      // fifth (leaves that widen from a stalk narrow towards the root), within a quarter to all of its base
-      // width.
-      const std::size_t probe = std::max<std::size_t>(2, line.size() / 5);
-      const float run =
-          std::max(polylineLength(std::vector<glm::vec2>(line.begin(), line.begin() + probe)), 1.0f);
-      const float slope = (widths[probe - 1] - widths.front()) / run;
-      const float w0 = widths.front();
-      std::vector<glm::vec2> ext;
-      std::vector<float> extW;
-      for (int s = 0; s < steps; ++s) {
-        const float t = static_cast<float>(s) / static_cast<float>(steps);
-        ext.push_back(cluster.centre + t * (base - cluster.centre));
-        // ...and never wider than the cluster is there (a straight extension cuts the corner of a bent
-        // blade).
-        const glm::vec2 q = ext.back();
-        const int qx = std::clamp(static_cast<int>(std::lround(q.x)), 0, c.clusterDist.cols - 1);
-        const int qy = std::clamp(static_cast<int>(std::lround(q.y)), 0, c.clusterDist.rows - 1);
-        const float room = std::max(2.0f * c.clusterDist.at<float>(qy, qx) - 1.0f, 1.0f);
-        extW.push_back(std::min(std::clamp(w0 - slope * (1.0f - t) * d, 0.25f * w0, w0), room));
-      }
-      line.insert(line.begin(), ext.begin(), ext.end());
-      widths.insert(widths.begin(), extW.begin(), extW.end());
-      extension = d;
-    }
-  }
-  blade.skeletonPx = resample(line, o.knots, &widths, &blade.widthsPx);
-  blade.lengthPx = polylineLength(blade.skeletonPx);
-  blade.extensionPx = extension;
-  std::size_t onBorder = 0;
-  for (const glm::vec2& p : blade.outline) {
-    bool border = p.x <= 0.0f || p.y <= 0.0f || p.x >= c.frame.width - 1 || p.y >= c.frame.height - 1;
-    if (c.options.roi != std::array<int, 4>{0, 0, 0, 0}) {
-      border = border || p.x <= c.options.roi[0] + 1 || p.y <= c.options.roi[1] + 1 ||
-               p.x >= c.options.roi[2] - 2 || p.y >= c.options.roi[3] - 2;
-    }
-    onBorder += border ? 1 : 0;
-  }
-  blade.touchesBorder = onBorder > 0;
-  // A blade cut by the border crosses it once, over its width; a segment that runs along it is the cut
-  // itself.
-  if (onBorder * 10 > blade.outline.size() * 3) {
-    reason = fmt::format("{:.0f} % of its outline is the border of the frame or region",
-                         100.0 * onBorder / blade.outline.size());
-    return false;
-  }
-  toMetres(c, blade);
-  out.push_back(std::move(blade));
-  return true;
+  return finishBlade(c, cluster, clusterMask, std::move(line), std::move(widths), maxWidth, std::move(blade),
+                     out, reason);
 }
 
 /** A cluster partitioned around one centre: the cluster's signal and junctions, its blades, its warnings. */
@@ -1178,6 +1206,61 @@ void splitMerged(Context& c, Cluster& cluster, const cv::Mat& clusterMask, int c
   blades = std::move(result);
 }
 
+/** Contour points on each side of a notch whose chord must pass outside the blob. */
+constexpr int kNotchArm = 6;
+/** A tip between notches that does not reach the centre must be this many times longer than wide. */
+constexpr float kBumpElongation = 1.5f;
+/** A blade from a notch narrower than this fraction of its cluster's median blade is a sliver. */
+constexpr float kSliverWidthRatio = 0.25f;
+
+/**
+ * Junctions at notches (ExtractOptions::notchProminence): minima of the smoothed distance signal too shallow
+ * for the prominence test, at least notchMinPx and notchProminence of the largest distance `maxR` deep, where
+ * the outline turns inwards between two tips (the chord from kNotchArm points before to kNotchArm after
+ * passes outside the blob) and no junction lies within kNotchArm points. In a dense fan or where two fans
+ * cross, the tips of neighbouring blades part only over their last few centimetres: the valley between them
+ * is shallow beside the cluster's longest blade, but it is a notch, not noise along one blade's edge (which
+ * bulges as often as it dents). Adds them to `minima` and `prominence` in contour order; returns them.
+ */
+std::vector<int> notchMinima(const ExtractOptions& o, const Cluster& cluster, const cv::Mat& clusterMask,
+                             float maxR, std::vector<int>& minima, std::vector<float>& prominence) {
+  std::vector<int> notches;
+  if (o.notchProminence <= 0.0) {
+    return notches;
+  }
+  const int n = static_cast<int>(cluster.contour.size());
+  std::vector<float> lowProminence;
+  const std::vector<int> low = prominentMinima(
+      cluster.smoothed,
+      std::max(static_cast<float>(o.notchMinPx), static_cast<float>(o.notchProminence) * maxR),
+      lowProminence);
+  std::vector<std::pair<int, float>> all;
+  for (std::size_t j = 0; j < minima.size(); ++j) {
+    all.emplace_back(minima[j], prominence[j]);
+  }
+  for (std::size_t j = 0; j < low.size(); ++j) {
+    const int v = low[j];
+    bool near = false;
+    for (const int m : minima) {
+      near = near || std::min((m - v + n) % n, (v - m + n) % n) < kNotchArm;
+    }
+    const glm::vec2 before = cluster.contour[static_cast<std::size_t>((v - kNotchArm + n) % n)];
+    const glm::vec2 after = cluster.contour[static_cast<std::size_t>((v + kNotchArm) % n)];
+    if (!near && !insideMask(clusterMask, 0.5f * (before + after))) {
+      notches.push_back(v);
+      all.emplace_back(v, lowProminence[j]);
+    }
+  }
+  std::sort(all.begin(), all.end());
+  minima.clear();
+  prominence.clear();
+  for (const auto& [index, p] : all) {
+    minima.push_back(index);
+    prominence.push_back(p);
+  }
+  return notches;
+}
+
 Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const cv::Mat& clusterMask,
                     const CentreCandidate& centre, int clusterIndex) {
   Partition out;
@@ -1200,6 +1283,8 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
   std::vector<float> prominence;
   std::vector<int> minima =
       prominentMinima(cluster.smoothed, static_cast<float>(c.options.prominence) * maxR, prominence);
+  // Shallower minima where the outline turns in between two tips (notches): junctions too.
+  const std::vector<int> notches = notchMinima(c.options, cluster, clusterMask, maxR, minima, prominence);
   for (std::size_t j = 0; j < minima.size(); ++j) {
     Junction junction;
     junction.index = minima[j];
@@ -1224,7 +1309,24 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
   std::vector<std::pair<int, int>> segments; // each blade's contour segment
   const auto take = [&](const auto& self, int a, int b, int depth) -> void {
     std::string reason;
-    if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason)) {
+    // A tip between notches stands only a little above them: it needs to reach notchMinPx, not a blade's
+    // minimum length (the blade runs on, merged with its neighbours, down to the centre).
+    const bool atNotch = std::find(notches.begin(), notches.end(), a) != notches.end() ||
+                         std::find(notches.begin(), notches.end(), b) != notches.end();
+    if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason,
+                   atNotch ? static_cast<float>(c.options.notchMinPx) : -1.0f)) {
+      const CapturedBlade& built = out.blades.back();
+      if (atNotch && built.extensionPx <= 0.0f && built.lengthPx < kBumpElongation * maxWidthPx(built)) {
+        // A bump between notches that cannot be followed to the centre and is hardly longer than wide is a
+        // ripple of the outline, not a tip (a tip that cannot be followed is still a blade as long as it
+        // shows).
+        cluster.rejected.push_back(
+            fmt::format("contour {}–{}: a bump between notches ({:.0f} px long, {:.0f} px "
+                        "wide) that does not reach the centre",
+                        a, b, built.lengthPx, maxWidthPx(built)));
+        out.blades.pop_back();
+        return;
+      }
       cluster.blades.push_back(static_cast<int>(out.blades.size() - 1));
       segments.emplace_back(a, b);
       return;
@@ -1250,6 +1352,33 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
     // One junction: the whole contour from it round to just before it is one blade.
     const int b = jn == 1 ? (a + n - 1) % n : cluster.junctions[(j + 1) % jn].index;
     take(take, a, b, 0);
+  }
+  {
+    // A blade between a notch and another junction much narrower than the cluster's other blades is a sliver
+    // of a wide leaf's edge, not a tip.
+    std::vector<float> widths;
+    std::vector<bool> notched(segments.size());
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      notched[i] = std::find(notches.begin(), notches.end(), segments[i].first) != notches.end() ||
+                   std::find(notches.begin(), notches.end(), segments[i].second) != notches.end();
+      if (!notched[i]) {
+        widths.push_back(maxWidthPx(out.blades[i]));
+      }
+    }
+    if (!widths.empty()) {
+      std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2),
+                       widths.end());
+      const float median = widths[widths.size() / 2];
+      for (std::size_t i = segments.size(); i-- > 0;) {
+        if (notched[i] && maxWidthPx(out.blades[i]) < kSliverWidthRatio * median) {
+          cluster.rejected.push_back(
+              fmt::format("contour {}–{}: a sliver {:.0f} px wide beside blades {:.0f} px wide",
+                          segments[i].first, segments[i].second, maxWidthPx(out.blades[i]), median));
+          out.blades.erase(out.blades.begin() + static_cast<std::ptrdiff_t>(i));
+          segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(i));
+        }
+      }
+    }
   }
   splitMerged(c, cluster, clusterMask, clusterIndex, segments, out.blades, splits, maxR);
   cluster.blades.resize(out.blades.size());
@@ -1509,6 +1638,235 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
   return layers;
 }
 
+/**
+ * The blades inside one captured blade that part in depth towards its outer end: within the blade's outline,
+ * the pixels of its own depth beyond the middle of its visible length (from its junctions to its tip) are
+ * linked as depthLayers links them; each linked surface of at least a sixth of those pixels that reaches
+ * the outer end becomes a blade along the medial axis of the blade's lower part and that surface (its median
+ * depth, metres, to `surfaceDepths`). Returns nothing when fewer than two surfaces reach it (one blade,
+ * however its depth runs).
+ */
+std::vector<CapturedBlade> depthParts(Context& c, const Cluster& cluster, const cv::Mat& clusterMask,
+                                      int clusterIndex, const CapturedBlade& blade,
+                                      std::vector<float>& surfaceDepths) {
+  const glm::vec2 centre = cluster.centre;
+  const glm::vec2 tip = blade.outline[static_cast<std::size_t>(blade.tip)];
+  const float rTip = glm::length(tip - centre);
+  const float rBase =
+      std::max(glm::length(blade.outline.front() - centre), glm::length(blade.outline.back() - centre));
+  if (rTip - rBase < static_cast<float>(c.options.minBladeLengthPx)) {
+    return {};
+  }
+  const float rCut = 0.5f * (rBase + rTip);
+  std::vector<cv::Point> poly;
+  for (const glm::vec2& q : blade.outline) {
+    poly.emplace_back(static_cast<int>(std::lround(q.x)), static_cast<int>(std::lround(q.y)));
+  }
+  // The regions live in the outline's bounding box (grown by a pixel for the medial axis's border)...
+  const cv::Rect rbox =
+      (cv::boundingRect(poly) + cv::Size(1, 1)) & cv::Rect(0, 0, clusterMask.cols, clusterMask.rows);
+  if (rbox.empty()) {
+    return {};
+  }
+  cv::Mat region = cv::Mat::zeros(clusterMask.size(), CV_8U);
+  cv::fillPoly(region(rbox), std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(255), cv::LINE_8, 0,
+               -rbox.tl());
+  cv::Mat inBox = region(rbox);
+  cv::bitwise_and(inBox, clusterMask(rbox), inBox);
+  // ...the surfaces in the box of its outer part.
+  std::vector<cv::Point> outerPoly;
+  for (const cv::Point& q : poly) {
+    if (glm::length(glm::vec2(q.x, q.y) - centre) >= rCut - 2.0f) {
+      outerPoly.push_back(q);
+    }
+  }
+  // (Grown: the circle at rCut dips below its ends across a wide blade.)
+  const cv::Rect outerBox = cv::boundingRect(outerPoly);
+  const cv::Rect box =
+      cv::Rect(outerBox.x - 4, outerBox.y - 4, outerBox.width + 8, outerBox.height + 8) & rbox;
+  if (box.empty()) {
+    return {};
+  }
+  const int w = box.width;
+  const int h = box.height;
+  const auto at = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
+  const auto radius = [&](int x, int y) { return glm::length(glm::vec2(x + box.x, y + box.y) - centre); };
+  std::vector<int> parent(static_cast<std::size_t>(w) * h, -1);
+  const cv::Mat depth = c.depth(box);
+  int outer = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (region.at<std::uint8_t>(box.y + y, box.x + x) != 0 &&
+          c.ownMask.at<std::uint8_t>(box.y + y, box.x + x) != 0 && inBladeRange(c, depth.at<float>(y, x)) &&
+          radius(x, y) >= rCut) {
+        parent[at(x, y)] = static_cast<int>(at(x, y));
+        ++outer;
+      }
+    }
+  }
+  const auto hasDepth = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && parent[at(x, y)] >= 0;
+  };
+  const auto find = [&](std::size_t i) {
+    while (parent[i] != static_cast<int>(i)) {
+      parent[i] = parent[static_cast<std::size_t>(parent[i])];
+      i = static_cast<std::size_t>(parent[i]);
+    }
+    return i;
+  };
+  const float quantum = depthQuantum(depth, hasDepth);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!hasDepth(x, y)) {
+        continue;
+      }
+      const float z = depth.at<float>(y, x);
+      const float step = layerStepMetres(z, quantum);
+      for (const auto& [dx, dy] : kLayerLinks) {
+        if (hasDepth(x + dx, y + dy) && std::abs(depth.at<float>(y + dy, x + dx) - z) <= step) {
+          const std::size_t a = find(at(x, y));
+          const std::size_t b = find(at(x + dx, y + dy));
+          if (a != b) {
+            parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
+          }
+        }
+      }
+    }
+  }
+  struct Surface {
+    int size = 0;
+    float reach = 0.0f;
+    cv::Point end;
+  };
+  std::vector<Surface> surfaces(parent.size());
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (hasDepth(x, y)) {
+        Surface& s = surfaces[find(at(x, y))];
+        ++s.size;
+        const float r = radius(x, y);
+        if (r > s.reach) {
+          s.reach = r;
+          s.end = cv::Point(x, y);
+        }
+      }
+    }
+  }
+  // A surface counts when it holds a sixth of the outer pixels and runs at least half way out from the cut.
+  std::vector<std::size_t> reaching;
+  for (std::size_t i = 0; i < surfaces.size(); ++i) {
+    if (surfaces[i].size >= std::max(outer / 6, 12) && surfaces[i].reach - rCut >= 0.5f * (rTip - rCut)) {
+      reaching.push_back(i);
+    }
+  }
+  if (reaching.size() < 2) {
+    return {};
+  }
+  const glm::vec2 basePoint = 0.5f * (blade.outline.front() + blade.outline.back());
+  std::vector<CapturedBlade> parts;
+  // Each surface's median depth: a surface runs on behind the nearer ones, never in front of farther ones.
+  std::vector<std::vector<float>> zs(reaching.size());
+  std::vector<int> which(parent.size(), -1);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (hasDepth(x, y)) {
+        const auto it = std::find(reaching.begin(), reaching.end(), find(at(x, y)));
+        if (it != reaching.end()) {
+          which[at(x, y)] = static_cast<int>(it - reaching.begin());
+          zs[static_cast<std::size_t>(it - reaching.begin())].push_back(depth.at<float>(y, x));
+        }
+      }
+    }
+  }
+  std::vector<float> median(reaching.size());
+  for (std::size_t k = 0; k < reaching.size(); ++k) {
+    std::nth_element(zs[k].begin(), zs[k].begin() + static_cast<std::ptrdiff_t>(zs[k].size() / 2),
+                     zs[k].end());
+    median[k] = zs[k][zs[k].size() / 2];
+  }
+  for (std::size_t k = 0; k < reaching.size(); ++k) {
+    const std::size_t root = reaching[k];
+    // The blade's lower part and this surface, and the nearer surfaces that hide it.
+    cv::Mat sub = cv::Mat::zeros(region.size(), CV_8U);
+    region(rbox).copyTo(sub(rbox));
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const int o = which[at(x, y)];
+        if (o >= 0 && o != static_cast<int>(k) && median[static_cast<std::size_t>(o)] > median[k]) {
+          sub.at<std::uint8_t>(box.y + y, box.x + x) = 0;
+        }
+      }
+    }
+    cv::Mat closed;
+    cv::morphologyEx(sub(rbox), closed, cv::MORPH_CLOSE,
+                     cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(3, 3)));
+    cv::bitwise_and(closed, region(rbox), closed);
+    closed.copyTo(sub(rbox));
+    const glm::vec2 end(static_cast<float>(surfaces[root].end.x + box.x),
+                        static_cast<float>(surfaces[root].end.y + box.y));
+    std::vector<glm::vec2> axis;
+    std::vector<float> axisWidths;
+    if (!medialAxis(sub, basePoint, end, axis, axisWidths) || axis.size() < 3) {
+      continue;
+    }
+    std::vector<float> widths;
+    std::vector<glm::vec2> line = smoothOpen(resample(axis, kMatchSamples, &axisWidths, &widths), 2.0, true);
+    widthsAcross(sub, line, widths);
+    CapturedBlade part;
+    part.cluster = clusterIndex;
+    part.outline = blade.outline;
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < part.outline.size(); ++i) {
+      nearest = glm::length(part.outline[i] - end) < glm::length(part.outline[nearest] - end) ? i : nearest;
+    }
+    part.tip = static_cast<int>(nearest);
+    part.medialAxis = true;
+    part.sideRatio = blade.sideRatio;
+    std::string reason;
+    const float maxWidth = *std::max_element(widths.begin(), widths.end());
+    if (finishBlade(c, cluster, clusterMask, std::move(line), std::move(widths), maxWidth, std::move(part),
+                    parts, reason)) {
+      surfaceDepths.push_back(median[k]);
+    }
+  }
+  if (parts.size() < 2) {
+    return {};
+  }
+  return parts;
+}
+
+/**
+ * Third pass over a cluster's blades: each blade that holds several surfaces parting in depth towards its
+ * outer end (depthParts) is replaced by them; `--explain` lists each such split.
+ */
+void splitByDepth(Context& c, Partition& p, const cv::Mat& clusterMask, int clusterIndex) {
+  std::vector<CapturedBlade> result;
+  for (CapturedBlade& blade : p.blades) {
+    std::vector<float> surfaceDepths;
+    std::vector<CapturedBlade> parts =
+        depthParts(c, p.cluster, clusterMask, clusterIndex, blade, surfaceDepths);
+    if (parts.empty()) {
+      result.push_back(std::move(blade));
+      continue;
+    }
+    const glm::vec2 tip = blade.outline[static_cast<std::size_t>(blade.tip)];
+    std::string depths;
+    for (const float z : surfaceDepths) {
+      depths += fmt::format("{}{:.3f}", depths.empty() ? "" : ", ", z);
+    }
+    p.cluster.split.push_back(
+        fmt::format("the blade with its tip at ({:.0f}, {:.0f}) parts in depth towards its tip into {} "
+                    "surfaces that each reach out to it, at {} m: one blade each",
+                    tip.x, tip.y, parts.size(), depths));
+    for (CapturedBlade& part : parts) {
+      result.push_back(std::move(part));
+    }
+  }
+  p.blades = std::move(result);
+  p.cluster.blades.resize(p.blades.size());
+  std::iota(p.cluster.blades.begin(), p.cluster.blades.end(), 0);
+}
+
 /** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
 constexpr double kCoverageMargin = 0.02;
 
@@ -1592,6 +1950,9 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
     return;
   }
   Partition& p = *best;
+  if (c.options.depthSplit) {
+    splitByDepth(c, p, clusterMask, clusterIndex);
+  }
   flagMerges(p);
   p.cluster.layer = c.layer;
   p.cluster.layerCount = c.layerCount;

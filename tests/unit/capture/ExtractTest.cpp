@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <string>
 
@@ -305,6 +306,12 @@ TEST(Extract, InvalidOptionsNameTheOption) {
   o = {};
   o.smoothSigmaPx = std::nan("");
   EXPECT_NE(message(o).find("--smooth"), std::string::npos);
+  o = {};
+  o.notchProminence = -0.1;
+  EXPECT_NE(message(o).find("--notch-prominence"), std::string::npos);
+  o = {};
+  o.notchMinPx = std::numeric_limits<double>::infinity();
+  EXPECT_NE(message(o).find("--notch-min"), std::string::npos);
 }
 
 TEST(Extract, MetresFollowTheIntrinsics) {

@@ -2,9 +2,9 @@
 // neighbour's outline, crossing fans, dense fans of 11+ blades over 60°) under camera roll and pitch and edge
 // dropouts, captured from depth alone and measured against their truth. The issue's targets are an exact
 // count on ≥ 95 % of clusters and a width error ≤ 10 % on ≥ 95 % of blades. Depth layers separate blades in
-// front of their neighbours; crossing and dense fans are not met yet: this test holds what the extractor
-// reaches today (docs/capture.md, "Overlapping, crossing and dense blades") so that it can only go up, and
-// plain fans must stay exact.
+// front of their neighbours, notches and depth splits some of the crossing and dense fans; those are not met
+// yet: this test holds what the extractor reaches today (docs/capture.md, "Overlapping, crossing and dense
+// blades") so that it can only go up, and plain fans must stay exact.
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Synthetic.hpp>
 #include <sylva/core/Error.hpp>
@@ -15,8 +15,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define SYLVA_SWEEP_SANITIZED 1
@@ -55,26 +57,30 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   EXPECT_GE(fans.exactShare(), 0.97) << "a plain fan, rolled and pitched, is counted exactly";
   EXPECT_GE(fans.widthShare(), 0.97);
 #ifndef SYLVA_SWEEP_SANITIZED
-  // Measured with depth layers (a 5 mm / 0.7 % step) and the split of blades much wider than their cluster's
-  // narrow blades (1.4x the lower quartile of its widths): 200 clusters 80.0 % exact (occluded 95.6 %,
-  // crossing 71.9 %, dense 52.2 %), widths within 10 % on 84.3 % of 1,460 blades; 1,000 clusters
-  // (SYLVA_FULL=1) 79.0 % (dense 53.5 %) and 85.6 % of 7,224. With an 8 mm / 1.2 % step: 79.0 % and 84.3 %;
-  // 1,000: 78.3 % and 85.7 %. With 1.6x the median as the split's reference: 78.5 % (dense 50.0 %) and 83.1
-  // %; 1,000: 77.3 % and 84.4 %. Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth
-  // layers: 49.5 % (occluded 0 %) and 78.3 %.
+  // Measured with depth layers (a 5 mm / 0.7 % step), the split of blades much wider than their cluster's
+  // narrow blades (1.4x the lower quartile of its widths), junctions at notches between tips and the split of
+  // blades whose outer halves part in depth: 200 clusters 83.0 % exact (occluded 93.3 %, crossing 77.2 %,
+  // dense 60.9 %), widths within 10 % on 87.2 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 81.8 %
+  // (crossing 71.1 %, dense 61.6 %) and 88.8 % of 7,224. Without notches and the depth split: 80.0 % and
+  // 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 % and 83.1 %.
+  // Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 % (occluded 0 %)
+  // and 78.3 %.
   const SweepTally& occluded = report.byLayout[1];
   EXPECT_GE(occluded.exactShare(), 0.90) << "a blade in front of its neighbour is its own depth layer";
   EXPECT_GE(occluded.widthShare(), 0.88);
+  const SweepTally& crossing = report.byLayout[2];
+  EXPECT_GE(crossing.exactShare(), 0.69)
+      << "blades of two fans merged up to tips that part in depth are split";
   const SweepTally& dense = report.byLayout[3];
-  EXPECT_GE(dense.exactShare(), 0.50) << "a blade much wider than the narrow ones is split between its tips";
-  EXPECT_GE(dense.widthShare(), 0.72);
-  EXPECT_GE(report.all.exactShare(), 0.78);
-  EXPECT_GE(report.all.widthShare(), 0.83);
+  EXPECT_GE(dense.exactShare(), 0.58) << "neighbouring tips part at notches, or in depth";
+  EXPECT_GE(dense.widthShare(), 0.80);
+  EXPECT_GE(report.all.exactShare(), 0.81);
+  EXPECT_GE(report.all.widthShare(), 0.85);
   // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
   // picture, or by a depth step of 5 mm); 200 clusters 94.5 %, 1,000 96.1 %. On those the count is exact on
-  // 84.1 % (1,000: 81.6 %): what is missing is the extractor's, not the frame's.
+  // 86.2 % (1,000: 84.2 %): what is missing is the extractor's, not the frame's.
   EXPECT_GE(report.all.tipsFreeShare(), 0.92);
-  EXPECT_GE(report.all.tipsFreeExactShare(), 0.80);
+  EXPECT_GE(report.all.tipsFreeExactShare(), 0.83);
 #endif
 }
 
@@ -252,6 +258,68 @@ TEST(CaptureLayers, ABladeCrossedByANearerOneIsFollowedBehindIt) {
     EXPECT_LT(accuracy.lengthRatio, 1.1);
     ASSERT_EQ(result.clusters.size(), 2u);
     EXPECT_EQ(result.clusters[0].layerCount, 2);
+  }
+}
+
+/** A sweep cluster captured from depth alone with `options`, and how many blades its truth has. */
+std::pair<ExtractResult, int> captureSweepCluster(std::uint64_t seed, const ExtractOptions& options) {
+  SyntheticScene scene = makeSweepCluster(seed);
+  scene.colour = false;
+  const SyntheticFrame frame = renderScene(scene);
+  return {extractBlades(frame.frame, options), static_cast<int>(frame.truth.centrelinePx.size())};
+}
+
+TEST(CaptureDepthSplit, BladesMergedInTheOutlineWhoseTipsPartInDepthAreSplit) {
+  // Sweep clusters (a crossing one and dense fans) where blades of different depths merge in the outline up
+  // to their tips: the merged blade's outer half holds a surface for each, and each becomes a blade. Without
+  // the split each cluster comes out short.
+  ExtractOptions without;
+  without.depthSplit = false;
+  for (const std::uint64_t seed : {20u, 84u, 121u, 180u}) {
+    SCOPED_TRACE("sweep cluster " + std::to_string(seed));
+    const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
+    EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
+    std::size_t splits = 0;
+    for (const Cluster& c : result.clusters) {
+      splits +=
+          static_cast<std::size_t>(std::count_if(c.split.begin(), c.split.end(), [](const std::string& s) {
+            return s.find("parts in depth towards its tip") != std::string::npos;
+          }));
+    }
+    EXPECT_GE(splits, 1u);
+    EXPECT_LT(static_cast<int>(captureSweepCluster(seed, without).first.blades.size()), expected);
+  }
+  // A plain fan, its blades tilted towards and away from the camera, holds one surface per blade: no split.
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SyntheticScene fan = makeCluster(BladeShape::SlenderLeaf, 5, 0.3f, 0.0f, seed);
+    fan.colour = false;
+    fan.pitchRadians = 0.3f;
+    const ExtractResult result = extractBlades(renderScene(fan).frame);
+    EXPECT_EQ(result.blades.size(), 5u);
+    for (const Cluster& c : result.clusters) {
+      EXPECT_TRUE(c.split.empty()) << c.split.front();
+    }
+  }
+}
+
+TEST(CaptureNotches, TipsThatPartOnlyNearTheirEndsAreJunctions) {
+  // Dense fans whose neighbouring tips part only over their last few centimetres: the valleys between them
+  // are too shallow for the prominence test beside the longest blade, but they are notches. Without notches
+  // each cluster comes out short.
+  ExtractOptions without;
+  without.notchProminence = 0.0;
+  for (const std::uint64_t seed : {68u, 291u, 373u}) {
+    SCOPED_TRACE("sweep cluster " + std::to_string(seed));
+    const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
+    EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
+    std::size_t shallow = 0;
+    for (const Cluster& c : result.clusters) {
+      for (const Junction& j : c.junctions) {
+        shallow += j.prominence < ExtractOptions{}.prominence ? 1 : 0;
+      }
+    }
+    EXPECT_GE(shallow, 1u) << "a notch below the prominence test is a junction";
+    EXPECT_LT(static_cast<int>(captureSweepCluster(seed, without).first.blades.size()), expected);
   }
 }
 

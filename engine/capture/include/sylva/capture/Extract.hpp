@@ -73,6 +73,15 @@ struct ExtractOptions {
    * makes shallow minima; blades make deep ones.
    */
   double prominence = 0.08;
+  /**
+   * A shallower minimum is a junction too when it is a notch between two tips: at least this prominent (a
+   * fraction of the cluster's largest distance) and notchMinPx deep, with the outline turning inwards around
+   * it (its chord passes outside the blob). The tips of neighbouring blades in a dense fan part only over
+   * their last few centimetres. 0 turns notches off.
+   */
+  double notchProminence = 0.01;
+  /** Least depth of a notch, and least height of the tip between two notches, pixels. */
+  double notchMinPx = 3.0;
   /** A contour segment is a blade only if its tip is this far (pixels) above its higher junction... */
   double minBladeLengthPx = 15.0;
   /** ...and it is at least this many times longer than wide (rejects pots, ground, the cluster's base). */
@@ -96,6 +105,11 @@ struct ExtractOptions {
   bool extendToCentre = true;
   /** Use a colour frame, when present, to move depth edges onto colour edges (joint bilateral). */
   bool colourRefine = true;
+  /**
+   * Split a blade whose outer half holds two or more surfaces that part in depth and each reach out towards
+   * its tip (blades of crossing fans, or neighbours in a dense fan, merged in the outline).
+   */
+  bool depthSplit = true;
 };
 
 /** A junction between two blades: a prominent local minimum of the distance signal. */
@@ -133,7 +147,10 @@ struct Cluster {
    * with no depth step between them to split them by.
    */
   std::vector<std::string> merged;
-  /** Blades split in two between their tips because they were much wider than the median (`--explain`). */
+  /**
+   * Blades split between their tips because they were much wider than the cluster's narrow blades, and blades
+   * split into the surfaces that part in depth towards their tips (`--explain`).
+   */
   std::vector<std::string> split;
   /** Pixels of the cluster. */
   int areaPx = 0;
