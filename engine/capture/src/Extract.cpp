@@ -1459,6 +1459,32 @@ template <typename HasDepth> float depthQuantum(const cv::Mat& depth, const HasD
 }
 
 /**
+ * Links each pixel with depth to those within two pixels (kLayerLinks) whose depth differs by at most
+ * layerStepMetres, i.e. the same surface: `depth` is CV_32F metres, `hasDepth(x, y)` says which pixels take
+ * part, `unite(a, b)` joins the sets of two pixels given as indices `y * depth.cols + x`. Neighbours up to
+ * two pixels away: a narrow blade's pixels reach each other across the dropouts and the lateral jitter that
+ * scatter a sensor's depth along its edges.
+ */
+template <typename HasDepth, typename Unite>
+void linkSurfaces(const cv::Mat& depth, float quantum, const HasDepth& hasDepth, const Unite& unite) {
+  const auto at = [&depth](int x, int y) { return static_cast<std::size_t>(y) * depth.cols + x; };
+  for (int y = 0; y < depth.rows; ++y) {
+    for (int x = 0; x < depth.cols; ++x) {
+      if (!hasDepth(x, y)) {
+        continue;
+      }
+      const float z = depth.at<float>(y, x);
+      const float step = layerStepMetres(z, quantum);
+      for (const auto& [dx, dy] : kLayerLinks) {
+        if (hasDepth(x + dx, y + dy) && std::abs(depth.at<float>(y + dy, x + dx) - z) <= step) {
+          unite(at(x, y), at(x + dx, y + dy));
+        }
+      }
+    }
+  }
+}
+
+/**
  * Splits one cluster into depth layers. Pixels join when their depths differ by less than layerStepMetres
  * over a short distance (the same surface), and across a nearer occluder when the depth on its far side
  * continues the near side's (a blade seen on both sides of one that crosses in front of it). A blade in front
@@ -1522,6 +1548,7 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
   constexpr std::array<std::pair<int, int>, 8> kDirections{
       {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}}};
   const int maxRun = std::clamp(std::max(w, h) / 4, 8, kMaxOccluderRunPx);
+  linkSurfaces(depth, quantum, hasDepth, unite);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       if (!hasDepth(x, y)) {
@@ -1529,13 +1556,6 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
       }
       const float z = depth.at<float>(y, x);
       const float step = layerStepMetres(z, quantum);
-      // Neighbours up to two pixels away: a narrow blade's pixels reach each other across the dropouts and
-      // the lateral jitter that scatter a sensor's depth along its edges.
-      for (const auto& [dx, dy] : kLayerLinks) {
-        if (hasDepth(x + dx, y + dy) && std::abs(depth.at<float>(y + dy, x + dx) - z) <= step) {
-          unite(at(x, y), at(x + dx, y + dy));
-        }
-      }
       for (const auto& [dx, dy] : kDirections) {
         if (!hasDepth(x + dx, y + dy) || depth.at<float>(y + dy, x + dx) > z - step) {
           continue;
@@ -1714,25 +1734,13 @@ std::vector<CapturedBlade> depthParts(Context& c, const Cluster& cluster, const 
     }
     return i;
   };
-  const float quantum = depthQuantum(depth, hasDepth);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (!hasDepth(x, y)) {
-        continue;
-      }
-      const float z = depth.at<float>(y, x);
-      const float step = layerStepMetres(z, quantum);
-      for (const auto& [dx, dy] : kLayerLinks) {
-        if (hasDepth(x + dx, y + dy) && std::abs(depth.at<float>(y + dy, x + dx) - z) <= step) {
-          const std::size_t a = find(at(x, y));
-          const std::size_t b = find(at(x + dx, y + dy));
-          if (a != b) {
-            parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
-          }
-        }
-      }
+  linkSurfaces(depth, depthQuantum(depth, hasDepth), hasDepth, [&](std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) {
+      parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
     }
-  }
+  });
   struct Surface {
     int size = 0;
     float reach = 0.0f;
