@@ -1307,12 +1307,16 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
   // both peaks rise a blade's minimum length above it.
   std::vector<Junction> splits;
   std::vector<std::pair<int, int>> segments; // each blade's contour segment
+  // Whether the segment [a, b] ends at a notch.
+  const auto atNotches = [&notches](int a, int b) {
+    return std::find(notches.begin(), notches.end(), a) != notches.end() ||
+           std::find(notches.begin(), notches.end(), b) != notches.end();
+  };
   const auto take = [&](const auto& self, int a, int b, int depth) -> void {
     std::string reason;
     // A tip between notches stands only a little above them: it needs to reach notchMinPx, not a blade's
     // minimum length (the blade runs on, merged with its neighbours, down to the centre).
-    const bool atNotch = std::find(notches.begin(), notches.end(), a) != notches.end() ||
-                         std::find(notches.begin(), notches.end(), b) != notches.end();
+    const bool atNotch = atNotches(a, b);
     if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason,
                    atNotch ? static_cast<float>(c.options.notchMinPx) : -1.0f)) {
       const CapturedBlade& built = out.blades.back();
@@ -1359,8 +1363,7 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
     std::vector<float> widths;
     std::vector<bool> notched(segments.size());
     for (std::size_t i = 0; i < segments.size(); ++i) {
-      notched[i] = std::find(notches.begin(), notches.end(), segments[i].first) != notches.end() ||
-                   std::find(notches.begin(), notches.end(), segments[i].second) != notches.end();
+      notched[i] = atNotches(segments[i].first, segments[i].second);
       if (!notched[i]) {
         widths.push_back(maxWidthPx(out.blades[i]));
       }
