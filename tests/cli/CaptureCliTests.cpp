@@ -195,6 +195,27 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   EXPECT_THAT(crossing8.out, testing::HasSubstr("crossing      8 clusters"));
   EXPECT_EQ(countOf(crossing8.out, " clusters  count exact"), 2u) << crossing8.out; // crossing and all
   EXPECT_THAT(crossing8.out, testing::HasSubstr("--sweep-cluster SEED --layout crossing"));
+  // A cluster redrawn from its seed and captured from the PNG is counted as --evaluate (and the sweep)
+  // counted it: both capture the depth the file holds, whole millimetres.
+  const test::RunResult evaluated =
+      runSylva(dir, "capture synth --sweep-cluster 10 --layout crossing --evaluate -o " + at(dir, "c10.png"));
+  ASSERT_EQ(evaluated.status, 0) << evaluated.err;
+  const std::size_t slash = evaluated.out.find("/", evaluated.out.find("frame 0: blades "));
+  ASSERT_NE(slash, std::string::npos) << evaluated.out;
+  const std::size_t count = evaluated.out.rfind(' ', slash);
+  const std::string found = evaluated.out.substr(count + 1, slash - count - 1);
+  const test::RunResult recaptured = runSylva(dir, "capture " + at(dir, "c10.png") + " --no-colour");
+  ASSERT_EQ(recaptured.status, 0) << recaptured.err;
+  EXPECT_THAT(recaptured.out, testing::HasSubstr(": " + found + " blades in")) << evaluated.out;
+  // A dense fan with a short pointed tip beyond its overlapping neighbours: a blade, unless --pointed-tip 1.
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 488 -o " + at(dir, "p.png")).status, 0);
+  const test::RunResult pointed = runSylva(dir, "capture " + at(dir, "p.png") + " --no-colour");
+  ASSERT_EQ(pointed.status, 0) << pointed.err;
+  EXPECT_THAT(pointed.out, testing::HasSubstr("13 blades in"));
+  const test::RunResult blunt = runSylva(dir, "capture " + at(dir, "p.png") + " --no-colour --pointed-tip 1");
+  ASSERT_EQ(blunt.status, 0) << blunt.err;
+  EXPECT_THAT(blunt.out, testing::HasSubstr("12 blades in"));
+  EXPECT_NE(runSylva(dir, "capture " + at(dir, "p.png") + " --pointed-tip 0").status, 0);
   const test::RunResult both = runSylva(dir, "capture synth --sweep 4 --sweep-cluster 8");
   EXPECT_NE(both.status, 0);
   const test::RunResult one =

@@ -64,6 +64,8 @@ struct CaptureOptions {
   double prominence = ExtractOptions{}.prominence;
   double notchProminence = ExtractOptions{}.notchProminence;
   double notchMin = ExtractOptions{}.notchMinPx;
+  double notchSigma = ExtractOptions{}.notchSigmaPx;
+  double pointedTip = ExtractOptions{}.pointedTipFraction;
   bool noDepthSplit = false;
   double smooth = ExtractOptions{}.smoothSigmaPx;
   double minLength = ExtractOptions{}.minBladeLengthPx;
@@ -144,6 +146,8 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
   e.prominence = o.prominence;
   e.notchProminence = o.notchProminence;
   e.notchMinPx = o.notchMin;
+  e.notchSigmaPx = o.notchSigma;
+  e.pointedTipFraction = o.pointedTip;
   e.depthSplit = !o.noDepthSplit;
   e.smoothSigmaPx = o.smooth;
   e.minBladeLengthPx = o.minLength;
@@ -353,6 +357,10 @@ void runSynth(const SynthOptions& o) {
       progress.advance(static_cast<std::size_t>(o.frames));
     }
   }
+  if (!recording) {
+    // Evaluated as the PNG holds it (whole millimetres), so that capturing the file gives the same blades.
+    roundToDepthPng(frames.front().frame);
+  }
   if (o.evaluate) {
     for (const SyntheticFrame& f : frames) {
       const AccuracyReport r = evaluateCapture(f.truth, extractBlades(f.frame));
@@ -524,6 +532,17 @@ void registerCapture(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--notch-min", o->notchMin, "Least depth of a notch and height of its tip, pixels")
       ->check(finiteRange(0.0, 1000.0))
+      ->capture_default_str();
+  command
+      ->add_option("--notch-sigma", o->notchSigma,
+                   "Smoothing of the distance signal notches are found in, sigma in pixels")
+      ->check(finiteRange(0.0, 100.0))
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--pointed-tip", o->pointedTip,
+          "A pointed tip is a blade from this fraction of --min-length beyond its junctions (1: off)")
+      ->check(finiteRange(0.01, 1.0))
       ->capture_default_str();
   command->add_flag("--no-depth-split", o->noDepthSplit,
                     "Keep blades whose outer halves part in depth as one (blades merged in the outline)");

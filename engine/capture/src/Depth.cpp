@@ -137,6 +137,22 @@ DepthFrame loadDepthPng(const std::filesystem::path& path, const DepthPngOptions
   return frame;
 }
 
+namespace {
+
+/** Metres per unit of the depth PNGs this module writes. */
+constexpr double kDepthPngUnitMetres = 0.001;
+
+/** A depth (metres) as a depth PNG stores it: whole millimetres, 0 for no data, clamped to 65535. */
+std::uint16_t depthPngValue(float z) {
+  if (!std::isfinite(z) || z <= 0.0f) {
+    return 0;
+  }
+  return static_cast<std::uint16_t>(
+      std::min(std::lround(static_cast<double>(z) / kDepthPngUnitMetres), 65535L));
+}
+
+} // namespace
+
 void saveDepthPng(const std::filesystem::path& path, const DepthFrame& frame) {
   if (lowerExtension(path) != ".png") {
     fail("{}: a depth PNG needs the .png extension", path.string());
@@ -149,12 +165,15 @@ void saveDepthPng(const std::filesystem::path& path, const DepthFrame& frame) {
   Image image(frame.width, frame.height, 1, PixelType::U16);
   const std::span<std::uint16_t> values = image.values<std::uint16_t>();
   for (std::size_t i = 0; i < values.size(); ++i) {
-    const float z = frame.depth[i];
-    if (std::isfinite(z) && z > 0.0f) {
-      values[i] = static_cast<std::uint16_t>(std::min(std::lround(static_cast<double>(z) * 1000.0), 65535L));
-    }
+    values[i] = depthPngValue(frame.depth[i]);
   }
   saveImage(path, image);
+}
+
+void roundToDepthPng(DepthFrame& frame) {
+  for (float& z : frame.depth) {
+    z = static_cast<float>(depthPngValue(z) * kDepthPngUnitMetres);
+  }
 }
 
 DepthFrame loadMiddlebury(const std::filesystem::path& path, const MiddleburyOptions& options) {

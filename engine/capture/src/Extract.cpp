@@ -58,6 +58,12 @@ void validate(const ExtractOptions& o) {
   if (!finite(o.notchMinPx) || o.notchMinPx < 0.0 || o.notchMinPx > 1000.0) {
     fail("--notch-min: {} px outside 0..1000", o.notchMinPx);
   }
+  if (!finite(o.notchSigmaPx) || o.notchSigmaPx < 0.0 || o.notchSigmaPx > 100.0) {
+    fail("--notch-sigma: sigma {} outside 0..100 pixels", o.notchSigmaPx);
+  }
+  if (!finite(o.pointedTipFraction) || o.pointedTipFraction <= 0.0 || o.pointedTipFraction > 1.0) {
+    fail("--pointed-tip: {} outside (0, 1]", o.pointedTipFraction);
+  }
   if (!finite(o.minBladeLengthPx) || o.minBladeLengthPx < 0.0 || !finite(o.minElongation) ||
       o.minElongation < 0.0) {
     fail("--min-length / --min-elongation: must be finite and ≥ 0");
@@ -956,11 +962,41 @@ bool finishBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask,
   return true;
 }
 
+/** A pointed tip is at most this many times as wide as high, 80 % of the way down from it. */
+constexpr float kPointedTipTaper = 0.7f;
+
+/**
+ * Whether the tip at `tipOffset` of the contour segment of `len` points from `a`, standing `height` pixels
+ * above its higher junction in `signal`, is pointed: where the signal has fallen 80 % of the way from the tip
+ * to that junction the outline is at most kPointedTipTaper times as wide as the tip is high (and at least two
+ * pixels, not a spike of single pixels). In a dense fan a blade's neighbours overlap it up to near its end,
+ * so only a short, pointed tip shows beyond them; a ripple of a wide leaf's edge is blunt.
+ */
+bool pointedTip(const Cluster& cluster, const std::vector<float>& signal, int a, int len, int tipOffset,
+                float height) {
+  const int n = static_cast<int>(cluster.contour.size());
+  const float level = signal[static_cast<std::size_t>((a + tipOffset) % n)] - 0.8f * height;
+  int left = tipOffset;
+  int right = tipOffset;
+  while (left > 0 && signal[static_cast<std::size_t>((a + left) % n)] > level) {
+    --left;
+  }
+  while (right < len && signal[static_cast<std::size_t>((a + right) % n)] > level) {
+    ++right;
+  }
+  const float across = glm::length(cluster.contour[static_cast<std::size_t>((a + left) % n)] -
+                                   cluster.contour[static_cast<std::size_t>((a + right) % n)]);
+  return across >= 2.0f && across <= kPointedTipTaper * height;
+}
+
 /** Builds one blade from the contour segment [a, b] (indices, circular, a before b) around its tip. */
 bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, int a, int b,
                 int clusterIndex, std::vector<CapturedBlade>& out, std::string& reason,
-                float minHeightPx = -1.0f) {
+                float minHeightPx = -1.0f, const std::vector<float>* heights = nullptr) {
   const ExtractOptions& o = c.options;
+  // The signal the tip and its height are read from: the junctions' smoothed one, or (between notches) the
+  // notches' own.
+  const std::vector<float>& signal = heights != nullptr ? *heights : cluster.smoothed;
   const int n = static_cast<int>(cluster.contour.size());
   const int len = ((b - a) % n + n) % n;
   if (len < 4) {
@@ -971,17 +1007,19 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
   int tipOffset = 0;
   float tipValue = -1.0f;
   for (int k = 0; k <= len; ++k) {
-    const float v = cluster.smoothed[(a + k) % n];
+    const float v = signal[(a + k) % n];
     if (v > tipValue) {
       tipValue = v;
       tipOffset = k;
     }
   }
-  const float ra = cluster.smoothed[a];
-  const float rb = cluster.smoothed[b % n];
+  const float ra = signal[a];
+  const float rb = signal[b % n];
   const float level = std::max(ra, rb);
   const float height = tipValue - level;
-  if (height < (minHeightPx >= 0.0f ? minHeightPx : static_cast<float>(o.minBladeLengthPx))) {
+  const float minHeight = minHeightPx >= 0.0f ? minHeightPx : static_cast<float>(o.minBladeLengthPx);
+  if (height < minHeight && !(height >= static_cast<float>(o.pointedTipFraction) * minHeight &&
+                              pointedTip(cluster, signal, a, len, tipOffset, height))) {
     reason = fmt::format("too short ({:.0f} px beyond its junctions)", height);
     return false;
   }
@@ -997,7 +1035,7 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
   bool started = false;
   for (int k = 0; k <= tipOffset; ++k) {
     const int i = (a + k) % n;
-    if (!started && cluster.smoothed[i] < level && k < tipOffset) {
+    if (!started && signal[i] < level && k < tipOffset) {
       continue;
     }
     started = true;
@@ -1006,7 +1044,7 @@ bool buildBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask, 
   started = false;
   for (int k = len; k >= tipOffset; --k) {
     const int i = (a + k) % n;
-    if (!started && cluster.smoothed[i] < level && k > tipOffset) {
+    if (!started && signal[i] < level && k > tipOffset) {
       continue;
     }
     started = true;
@@ -1214,16 +1252,18 @@ constexpr float kBumpElongation = 1.5f;
 constexpr float kSliverWidthRatio = 0.25f;
 
 /**
- * Junctions at notches (ExtractOptions::notchProminence): minima of the smoothed distance signal too shallow
- * for the prominence test, at least notchMinPx and notchProminence of the largest distance `maxR` deep, where
- * the outline turns inwards between two tips (the chord from kNotchArm points before to kNotchArm after
- * passes outside the blob) and no junction lies within kNotchArm points. In a dense fan or where two fans
- * cross, the tips of neighbouring blades part only over their last few centimetres: the valley between them
- * is shallow beside the cluster's longest blade, but it is a notch, not noise along one blade's edge (which
- * bulges as often as it dents). Adds them to `minima` and `prominence` in contour order; returns them.
+ * Junctions at notches (ExtractOptions::notchProminence): minima of `fine` (the distance signal smoothed only
+ * by ExtractOptions::notchSigmaPx) too shallow for the prominence test, at least notchMinPx and
+ * notchProminence of the largest distance `maxR` deep, where the outline turns inwards between two tips (the
+ * chord from kNotchArm points before to kNotchArm after passes outside the blob) and no junction lies within
+ * kNotchArm points. In a dense fan or where two fans cross, the tips of neighbouring blades part only over
+ * their last few centimetres: the valley between them is shallow beside the cluster's longest blade, but it
+ * is a notch, not noise along one blade's edge (which bulges as often as it dents). Adds them to `minima` and
+ * `prominence` in contour order; returns them.
  */
 std::vector<int> notchMinima(const ExtractOptions& o, const Cluster& cluster, const cv::Mat& clusterMask,
-                             float maxR, std::vector<int>& minima, std::vector<float>& prominence) {
+                             float maxR, const std::vector<float>& fine, std::vector<int>& minima,
+                             std::vector<float>& prominence) {
   std::vector<int> notches;
   if (o.notchProminence <= 0.0) {
     return notches;
@@ -1231,8 +1271,7 @@ std::vector<int> notchMinima(const ExtractOptions& o, const Cluster& cluster, co
   const int n = static_cast<int>(cluster.contour.size());
   std::vector<float> lowProminence;
   const std::vector<int> low = prominentMinima(
-      cluster.smoothed,
-      std::max(static_cast<float>(o.notchMinPx), static_cast<float>(o.notchProminence) * maxR),
+      fine, std::max(static_cast<float>(o.notchMinPx), static_cast<float>(o.notchProminence) * maxR),
       lowProminence);
   std::vector<std::pair<int, float>> all;
   for (std::size_t j = 0; j < minima.size(); ++j) {
@@ -1284,7 +1323,11 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
   std::vector<int> minima =
       prominentMinima(cluster.smoothed, static_cast<float>(c.options.prominence) * maxR, prominence);
   // Shallower minima where the outline turns in between two tips (notches): junctions too.
-  const std::vector<int> notches = notchMinima(c.options, cluster, clusterMask, maxR, minima, prominence);
+  const std::vector<float> fine = c.options.notchSigmaPx == c.options.smoothSigmaPx
+                                      ? cluster.smoothed
+                                      : smoothCircular(cluster.signal, c.options.notchSigmaPx);
+  const std::vector<int> notches =
+      notchMinima(c.options, cluster, clusterMask, maxR, fine, minima, prominence);
   for (std::size_t j = 0; j < minima.size(); ++j) {
     Junction junction;
     junction.index = minima[j];
@@ -1318,7 +1361,7 @@ Partition partition(Context& c, const std::vector<cv::Point>& contourPts, const 
     // minimum length (the blade runs on, merged with its neighbours, down to the centre).
     const bool atNotch = atNotches(a, b);
     if (buildBlade(c, cluster, clusterMask, a, b, clusterIndex, out.blades, reason,
-                   atNotch ? static_cast<float>(c.options.notchMinPx) : -1.0f)) {
+                   atNotch ? static_cast<float>(c.options.notchMinPx) : -1.0f, atNotch ? &fine : nullptr)) {
       const CapturedBlade& built = out.blades.back();
       if (atNotch && built.extensionPx <= 0.0f && built.lengthPx < kBumpElongation * maxWidthPx(built)) {
         // A bump between notches that cannot be followed to the centre and is hardly longer than wide is a

@@ -704,7 +704,10 @@ SweepReport captureSweep(int clusters, std::uint64_t firstSeed, Progress* progre
     ClusterLayout layout = ClusterLayout::Fan;
     SyntheticScene scene = makeSweepCluster(firstSeed + static_cast<std::uint64_t>(i), &layout, only);
     scene.colour = false;
-    const SyntheticFrame frame = renderScene(scene);
+    SyntheticFrame frame = renderScene(scene);
+    // Captured as the depth PNG that --sweep-cluster writes holds it, so that a cluster redrawn from its seed
+    // and captured from the file is counted as the sweep counted it.
+    roundToDepthPng(frame.frame);
     const AccuracyReport accuracy = evaluateCapture(frame.truth, extractBlades(frame.frame));
     const std::size_t slot =
         static_cast<std::size_t>(std::find(std::begin(kClusterLayouts), std::end(kClusterLayouts), layout) -

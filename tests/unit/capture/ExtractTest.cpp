@@ -312,6 +312,12 @@ TEST(Extract, InvalidOptionsNameTheOption) {
   o = {};
   o.notchMinPx = std::numeric_limits<double>::infinity();
   EXPECT_NE(message(o).find("--notch-min"), std::string::npos);
+  o = {};
+  o.notchSigmaPx = 101.0;
+  EXPECT_NE(message(o).find("--notch-sigma"), std::string::npos);
+  o = {};
+  o.pointedTipFraction = 0.0;
+  EXPECT_NE(message(o).find("--pointed-tip"), std::string::npos);
 }
 
 TEST(Extract, MetresFollowTheIntrinsics) {

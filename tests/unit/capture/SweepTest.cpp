@@ -59,10 +59,11 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
 #ifndef SYLVA_SWEEP_SANITIZED
   // Measured with depth layers (a 5 mm / 0.7 % step), the split of blades much wider than their cluster's
   // narrow blades (1.4x the lower quartile of its widths), junctions at notches between tips and the split of
-  // blades whose outer halves part in depth: 200 clusters 83.0 % exact (occluded 93.3 %, crossing 77.2 %,
-  // dense 60.9 %), widths within 10 % on 87.2 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 81.8 %
-  // (crossing 71.1 %, dense 61.6 %) and 88.8 % of 7,224. Without notches and the depth split: 80.0 % and
-  // 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 % and 83.1 %.
+  // blades whose outer halves part in depth, and short pointed tips as blades (captured as the PNG holds the
+  // depth): 200 clusters 83.0 % exact (occluded 93.3 %, crossing 77.2 %, dense 60.9 %), widths within 10 % on
+  // 88.0 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 82.3 % (crossing 71.1 %, dense 62.9 %) and 89.4 %
+  // of 7,224. Without pointed tips (1,000): 81.8 % and 88.8 %. Without notches and the depth split: 80.0 %
+  // and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 % and 83.1 %.
   // Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 % (occluded 0 %)
   // and 78.3 %.
   const SweepTally& occluded = report.byLayout[1];
@@ -72,15 +73,15 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   EXPECT_GE(crossing.exactShare(), 0.69)
       << "blades of two fans merged up to tips that part in depth are split";
   const SweepTally& dense = report.byLayout[3];
-  EXPECT_GE(dense.exactShare(), 0.58) << "neighbouring tips part at notches, or in depth";
-  EXPECT_GE(dense.widthShare(), 0.80);
-  EXPECT_GE(report.all.exactShare(), 0.81);
-  EXPECT_GE(report.all.widthShare(), 0.85);
+  EXPECT_GE(dense.exactShare(), 0.60) << "neighbouring tips part at notches, or in depth";
+  EXPECT_GE(dense.widthShare(), 0.84);
+  EXPECT_GE(report.all.exactShare(), 0.82);
+  EXPECT_GE(report.all.widthShare(), 0.87);
   // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
   // picture, or by a depth step of 5 mm); 200 clusters 94.5 %, 1,000 96.1 %. On those the count is exact on
-  // 86.2 % (1,000: 84.2 %): what is missing is the extractor's, not the frame's.
+  // 86.2 % (1,000: 84.7 %): what is missing is the extractor's, not the frame's.
   EXPECT_GE(report.all.tipsFreeShare(), 0.92);
-  EXPECT_GE(report.all.tipsFreeExactShare(), 0.83);
+  EXPECT_GE(report.all.tipsFreeExactShare(), 0.84);
 #endif
 }
 
@@ -265,7 +266,8 @@ TEST(CaptureLayers, ABladeCrossedByANearerOneIsFollowedBehindIt) {
 std::pair<ExtractResult, int> captureSweepCluster(std::uint64_t seed, const ExtractOptions& options) {
   SyntheticScene scene = makeSweepCluster(seed);
   scene.colour = false;
-  const SyntheticFrame frame = renderScene(scene);
+  SyntheticFrame frame = renderScene(scene);
+  roundToDepthPng(frame.frame); // as the sweep captures it
   return {extractBlades(frame.frame, options), static_cast<int>(frame.truth.centrelinePx.size())};
 }
 
@@ -275,7 +277,7 @@ TEST(CaptureDepthSplit, BladesMergedInTheOutlineWhoseTipsPartInDepthAreSplit) {
   // the split each cluster comes out short.
   ExtractOptions without;
   without.depthSplit = false;
-  for (const std::uint64_t seed : {20u, 84u, 121u, 180u}) {
+  for (const std::uint64_t seed : {240u, 84u, 121u, 180u}) {
     SCOPED_TRACE("sweep cluster " + std::to_string(seed));
     const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
     EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
@@ -299,6 +301,28 @@ TEST(CaptureDepthSplit, BladesMergedInTheOutlineWhoseTipsPartInDepthAreSplit) {
     for (const Cluster& c : result.clusters) {
       EXPECT_TRUE(c.split.empty()) << c.split.front();
     }
+  }
+}
+
+TEST(CapturePointedTips, ShortPointedTipsBeyondOverlappingNeighboursAreBlades) {
+  // Dense fans (and an occluded one) where a blade's neighbours overlap it up to near its end: its tip stands
+  // only 9–15 px above its junctions, short of a blade's minimum length, but it is pointed, and it is a
+  // blade. Without the exception (fraction 1) each cluster comes out one short.
+  ExtractOptions without;
+  without.pointedTipFraction = 1.0;
+  for (const std::uint64_t seed : {488u, 772u, 821u, 849u}) {
+    SCOPED_TRACE("sweep cluster " + std::to_string(seed));
+    const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
+    EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
+    const auto [short_, same] = captureSweepCluster(seed, without);
+    EXPECT_EQ(static_cast<int>(short_.blades.size()), expected - 1);
+    std::size_t tooShort = 0;
+    for (const Cluster& c : short_.clusters) {
+      tooShort += static_cast<std::size_t>(
+          std::count_if(c.rejected.begin(), c.rejected.end(),
+                        [](const std::string& r) { return r.find("too short") != std::string::npos; }));
+    }
+    EXPECT_GE(tooShort, 1u) << "without the exception the tip is rejected as too short";
   }
 }
 

@@ -99,6 +99,13 @@ DepthFrame loadDepthPng(const std::filesystem::path& path, const DepthPngOptions
 void saveDepthPng(const std::filesystem::path& path, const DepthFrame& frame);
 
 /**
+ * The depth a depth PNG holds (saveDepthPng then loadDepthPng): each value rounded to the nearest millimetre,
+ * clamped to 65.535 m; no data (0, negative or not finite) as 0. Lets a frame captured in memory be captured
+ * exactly as the file written from it will be.
+ */
+void roundToDepthPng(DepthFrame& frame);
+
+/**
  * Middlebury calibration: depth z = focal·baseline / (disparityScale·d + doffs) for a stored value d > 0. The
  * defaults are the 2006 datasets' full-size values (focal 3740 px, baseline 160 mm, doffs 0), so depths are
  * nominal unless the dataset's doffs is known; the frame is marked relativeDepth unless `calibrated`.

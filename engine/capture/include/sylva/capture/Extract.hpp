@@ -82,8 +82,20 @@ struct ExtractOptions {
   double notchProminence = 0.01;
   /** Least depth of a notch, and least height of the tip between two notches, pixels. */
   double notchMinPx = 3.0;
+  /**
+   * Notches are looked for in the distance signal smoothed by this sigma (pixels of arc length; the same as
+   * smoothSigmaPx by default). Less smoothing keeps the notches of 3–4 px between tips 5–8 px apart, which
+   * smoothSigmaPx flattens to under a pixel, but finds notches in the ripples of a wide leaf's edge too.
+   */
+  double notchSigmaPx = 3.0;
   /** A contour segment is a blade only if its tip is this far (pixels) above its higher junction... */
   double minBladeLengthPx = 15.0;
+  /**
+   * ...or, for a pointed tip, this fraction of it (1 turns the exception off). In a dense fan a blade's
+   * neighbours overlap it up to near its end, so only a short tip shows beyond them; it is pointed when,
+   * 80 % of the way down from the tip, the outline is at most 0.7 times as wide as the tip is high.
+   */
+  double pointedTipFraction = 0.6;
   /** ...and it is at least this many times longer than wide (rejects pots, ground, the cluster's base). */
   double minElongation = 2.5;
   /** Knots of the captured skeleton before refining. */
