@@ -216,6 +216,29 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   ASSERT_EQ(blunt.status, 0) << blunt.err;
   EXPECT_THAT(blunt.out, testing::HasSubstr("12 blades in"));
   EXPECT_NE(runSylva(dir, "capture " + at(dir, "p.png") + " --pointed-tip 0").status, 0);
+  // Crossing fans where the front blade crosses a back one at a shallow angle and breaks it in two depth
+  // layers: --explain says it was joined; --no-join keeps the broken-off part as a blade.
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 331 -o " + at(dir, "j.png")).status, 0);
+  const test::RunResult joined = runSylva(dir, "capture " + at(dir, "j.png") + " --no-colour --explain");
+  ASSERT_EQ(joined.status, 0) << joined.err;
+  EXPECT_THAT(joined.out, testing::HasSubstr("4 blades in"));
+  EXPECT_EQ(countOf(joined.out, "joined: the blade with its tip at"), 1u) << joined.out;
+  EXPECT_THAT(joined.out, testing::HasSubstr("broke off where a nearer blade crosses it"));
+  const test::RunResult apart =
+      runSylva(dir, "capture " + at(dir, "j.png") + " --no-colour --explain --no-join");
+  ASSERT_EQ(apart.status, 0) << apart.err;
+  EXPECT_THAT(apart.out, testing::HasSubstr("5 blades in"));
+  EXPECT_EQ(countOf(apart.out, "joined: "), 0u);
+  // An occluded fan: the blade behind the narrow one is measured as wide as where both its edges show,
+  // unless --no-occluded-widths.
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 12 -o " + at(dir, "o.png")).status, 0);
+  ASSERT_EQ(runSylva(dir, "capture " + at(dir, "o.png") + " --no-colour -o " + at(dir, "wide.json")).status,
+            0);
+  ASSERT_EQ(runSylva(dir, "capture " + at(dir, "o.png") + " --no-colour --no-occluded-widths -o " +
+                              at(dir, "shown.json"))
+                .status,
+            0);
+  EXPECT_NE(test::readAll(dir / "wide.json"), test::readAll(dir / "shown.json"));
   const test::RunResult both = runSylva(dir, "capture synth --sweep 4 --sweep-cluster 8");
   EXPECT_NE(both.status, 0);
   const test::RunResult one =

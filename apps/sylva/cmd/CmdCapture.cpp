@@ -67,6 +67,8 @@ struct CaptureOptions {
   double notchSigma = ExtractOptions{}.notchSigmaPx;
   double pointedTip = ExtractOptions{}.pointedTipFraction;
   bool noDepthSplit = false;
+  bool noOccludedWidths = false;
+  bool noJoin = false;
   double smooth = ExtractOptions{}.smoothSigmaPx;
   double minLength = ExtractOptions{}.minBladeLengthPx;
   double minElongation = ExtractOptions{}.minElongation;
@@ -149,6 +151,8 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
   e.notchSigmaPx = o.notchSigma;
   e.pointedTipFraction = o.pointedTip;
   e.depthSplit = !o.noDepthSplit;
+  e.occludedWidths = !o.noOccludedWidths;
+  e.joinBroken = !o.noJoin;
   e.smoothSigmaPx = o.smooth;
   e.minBladeLengthPx = o.minLength;
   e.minElongation = o.minElongation;
@@ -546,6 +550,10 @@ void registerCapture(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--no-depth-split", o->noDepthSplit,
                     "Keep blades whose outer halves part in depth as one (blades merged in the outline)");
+  command->add_flag("--no-occluded-widths", o->noOccludedWidths,
+                    "Measure a blade only as wide as it shows where a nearer blade hides one of its edges");
+  command->add_flag("--no-join", o->noJoin,
+                    "Keep the outer part of a blade that a nearer blade crosses as a blade of its own");
   command->add_option("--smooth", o->smooth, "Smoothing of the distance signal, sigma in pixels")
       ->check(finiteRange(0.0, 100.0))
       ->capture_default_str();

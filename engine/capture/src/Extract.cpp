@@ -1921,6 +1921,84 @@ void splitByDepth(Context& c, Partition& p, const cv::Mat& clusterMask, int clus
   std::iota(p.cluster.blades.begin(), p.cluster.blades.end(), 0);
 }
 
+/** The first knot of a blade beyond its extension to the centre (where it was seen). */
+std::size_t firstSeenKnot(const CapturedBlade& blade) {
+  float along = 0.0f;
+  std::size_t k = 0;
+  while (k + 1 < blade.skeletonPx.size() && along < blade.extensionPx) {
+    along += glm::length(blade.skeletonPx[k + 1] - blade.skeletonPx[k]);
+    ++k;
+  }
+  return k;
+}
+
+/**
+ * Widens the samples of a blade's axis where one of its edges is the edge of a nearer surface (a blade in
+ * front hides that side, so the visible width falls short): over each run of such samples the width is at
+ * least what the samples on both sides of the run measure (interpolated; only the root's side of a run that
+ * reaches the tip, as a blade narrows to its tip). `line` and `widths` are pixels, root end first.
+ */
+void widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vector<glm::vec2>& line,
+                   std::vector<float>& widths) {
+  const int count = static_cast<int>(line.size());
+  std::vector<char> occluded(line.size(), 0);
+  bool any = false;
+  for (int k = 0; k < count; ++k) {
+    const glm::vec2 t = line[std::min(k + 2, count - 1)] - line[std::max(k - 2, 0)];
+    const float z = depthAround(c, line[k], 1);
+    if (glm::length(t) <= 0.0f || z <= 0.0f) {
+      continue;
+    }
+    const glm::vec2 normal = glm::normalize(glm::vec2(-t.y, t.x));
+    const float step = layerStepMetres(z, 0.0f);
+    for (const float sign : {-1.0f, 1.0f}) {
+      float d = 0.0f;
+      while (d < 200.0f && insideMask(clusterMask, line[k] + normal * (sign * d))) {
+        d += 0.5f;
+      }
+      // The first pixels beyond the edge: a nearer surface there hides this side.
+      for (float e = 0.5f; e <= 2.0f; e += 0.5f) {
+        const glm::vec2 q = line[k] + normal * (sign * (d + e));
+        const int x = static_cast<int>(std::lround(q.x));
+        const int y = static_cast<int>(std::lround(q.y));
+        if (x < 0 || y < 0 || x >= c.depth.cols || y >= c.depth.rows) {
+          break;
+        }
+        const float zq = c.depth.at<float>(y, x);
+        if (inBladeRange(c, zq) && zq < z - step) {
+          occluded[static_cast<std::size_t>(k)] = 1;
+          any = true;
+          break;
+        }
+      }
+    }
+  }
+  if (!any) {
+    return;
+  }
+  for (int k = 0; k < count;) {
+    if (!occluded[static_cast<std::size_t>(k)]) {
+      ++k;
+      continue;
+    }
+    int end = k;
+    while (end < count && occluded[static_cast<std::size_t>(end)]) {
+      ++end;
+    }
+    if (end < count) {
+      // Between the free samples on either side, or from the root up to the first free one.
+      const float wb = widths[static_cast<std::size_t>(k > 0 ? k - 1 : end)];
+      const float wa = widths[static_cast<std::size_t>(end)];
+      for (int i = k; i < end; ++i) {
+        const float u = static_cast<float>(i - k + 1) / static_cast<float>(end - k + 1);
+        widths[static_cast<std::size_t>(i)] =
+            std::max(widths[static_cast<std::size_t>(i)], wb + u * (wa - wb));
+      }
+    }
+    k = end;
+  }
+}
+
 /** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
 constexpr double kCoverageMargin = 0.02;
 
@@ -2008,6 +2086,19 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
     splitByDepth(c, p, clusterMask, clusterIndex);
   }
   flagMerges(p);
+  if (c.options.occludedWidths) {
+    for (CapturedBlade& blade : p.blades) {
+      // The captured part only: the extension to the centre is drawn, not seen.
+      const std::size_t first = firstSeenKnot(blade);
+      const std::vector<glm::vec2> line(blade.skeletonPx.begin() + static_cast<std::ptrdiff_t>(first),
+                                        blade.skeletonPx.end());
+      std::vector<float> widths(blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first),
+                                blade.widthsPx.end());
+      widenOccluded(c, clusterMask, line, widths);
+      std::copy(widths.begin(), widths.end(), blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first));
+      toMetres(c, blade);
+    }
+  }
   p.cluster.layer = c.layer;
   p.cluster.layerCount = c.layerCount;
   p.cluster.layerDepthMetres = c.layerDepthMetres;
@@ -2067,6 +2158,159 @@ void processParts(Context& c, const cv::Mat& mask, const cv::Mat& own, int minAr
   }
 }
 
+/** Direction of a polyline from its point `from` towards its point `to` (indices), unit. */
+glm::vec2 directionAlong(const std::vector<glm::vec2>& line, std::size_t from, std::size_t to) {
+  const glm::vec2 d = line[to] - line[from];
+  return glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec2(0.0f);
+}
+
+/** A broken-off piece joins a blade whose tip is within this many of their widths of the piece's base. */
+constexpr float kJoinGapWidths = 4.0f;
+/** ...and lies at most this many widths to the side of the line the blade's tip points along. */
+constexpr float kJoinSideWidths = 2.0f;
+/** ...and runs on within this angle of the blade's direction (cosine). */
+constexpr float kJoinCos = 0.9f;
+
+/**
+ * Joins `piece` (seen from its knot `from` on) onto the end of `blade`: the blade's knots without the last
+ * tenth (where the occluder cuts it, its width falls to nothing), then the piece's, resampled to the same
+ * count by arc length in the picture. The joined blade keeps the blade's cluster and extension and takes the
+ * piece's outline and tip.
+ */
+void joinPiece(CapturedBlade& blade, const CapturedBlade& piece, std::size_t from) {
+  const std::size_t count = blade.skeletonPx.size();
+  const std::size_t keep = std::max<std::size_t>(2, count - count / 10);
+  std::vector<glm::vec2> px(blade.skeletonPx.begin(), blade.skeletonPx.begin() + keep);
+  std::vector<float> wPx(blade.widthsPx.begin(), blade.widthsPx.begin() + keep);
+  std::vector<glm::vec3> knots(blade.knots.begin(), blade.knots.begin() + keep);
+  std::vector<float> w(blade.widths.begin(), blade.widths.begin() + keep);
+  std::vector<glm::vec3> sides(blade.sides.begin(), blade.sides.begin() + keep);
+  for (std::size_t k = from; k < piece.skeletonPx.size(); ++k) {
+    px.push_back(piece.skeletonPx[k]);
+    wPx.push_back(piece.widthsPx[k]);
+    knots.push_back(piece.knots[k]);
+    w.push_back(piece.widths[k]);
+    sides.push_back(piece.sides[k]);
+  }
+  std::vector<float> arc(px.size(), 0.0f);
+  for (std::size_t k = 1; k < px.size(); ++k) {
+    arc[k] = arc[k - 1] + glm::length(px[k] - px[k - 1]);
+  }
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const float target = arc.back() * static_cast<float>(i) / static_cast<float>(count - 1);
+    while (j + 2 < px.size() && arc[j + 1] < target) {
+      ++j;
+    }
+    const float seg = arc[j + 1] - arc[j];
+    const float t = seg > 0.0f ? std::clamp((target - arc[j]) / seg, 0.0f, 1.0f) : 0.0f;
+    blade.skeletonPx[i] = glm::mix(px[j], px[j + 1], t);
+    blade.widthsPx[i] = glm::mix(wPx[j], wPx[j + 1], t);
+    blade.knots[i] = glm::mix(knots[j], knots[j + 1], t);
+    blade.widths[i] = glm::mix(w[j], w[j + 1], t);
+    const glm::vec3 side = glm::mix(sides[j], sides[j + 1], t);
+    blade.sides[i] = glm::length(side) > 0.0f ? glm::normalize(side) : sides[j];
+  }
+  blade.widthsPx.back() = 0.0f;
+  blade.widths.back() = 0.0f;
+  blade.lengthPx = polylineLength(blade.skeletonPx);
+  blade.lengthMetres = 0.0f;
+  for (std::size_t i = 1; i < count; ++i) {
+    blade.lengthMetres += glm::length(blade.knots[i] - blade.knots[i - 1]);
+  }
+  blade.outline = piece.outline;
+  blade.tip = piece.tip;
+  blade.medialAxis = blade.medialAxis || piece.medialAxis;
+  blade.touchesBorder = blade.touchesBorder || piece.touchesBorder;
+}
+
+/**
+ * Joins the blades of one blob's depth layers (its clusters from `firstCluster` on) that a nearer blade
+ * broke in two. Where a nearer blade crosses a farther one at a shallow angle, the straight runs across it
+ * (at most kMaxOccluderRunPx) do not reach the far side, and the farther blade's outer part becomes a depth
+ * layer of its own with one blade. Such a piece joins the blade whose tip points at its base: directions
+ * within kJoinCos, the base ahead of the tip, at most kJoinGapWidths of their widths from it and
+ * kJoinSideWidths to the side, and the depths of tip and base within a layer step. `--explain` lists each.
+ */
+void joinBrokenBlades(Context& c, std::size_t firstCluster) {
+  ExtractResult& r = c.result;
+  std::vector<bool> removed(r.blades.size(), false);
+  for (std::size_t ci = firstCluster; ci < r.clusters.size(); ++ci) {
+    Cluster& cluster = r.clusters[ci];
+    if (cluster.blades.size() != 1 || cluster.layerCount < 2) {
+      continue;
+    }
+    const std::size_t pi = static_cast<std::size_t>(cluster.blades.front());
+    const CapturedBlade& piece = r.blades[pi];
+    const std::size_t n = piece.skeletonPx.size();
+    const std::size_t from = firstSeenKnot(piece);
+    if (removed[pi] || n < 16 || from + 8 >= n || piece.knots.size() != n) {
+      continue;
+    }
+    const glm::vec2 base = piece.skeletonPx[from];
+    const glm::vec2 dir = directionAlong(piece.skeletonPx, from, from + 8);
+    const float z = piece.knots[from].z;
+    int best = -1;
+    float bestGap = 0.0f;
+    for (std::size_t bi = 0; bi < r.blades.size(); ++bi) {
+      const CapturedBlade& blade = r.blades[bi];
+      const std::size_t m = blade.skeletonPx.size();
+      if (bi == pi || removed[bi] || blade.cluster < static_cast<int>(firstCluster) ||
+          blade.cluster == static_cast<int>(ci) || m < 16 || blade.knots.size() != m) {
+        continue;
+      }
+      const glm::vec2 tip = blade.skeletonPx.back();
+      const glm::vec2 tipDir = directionAlong(blade.skeletonPx, m - 9, m - 1);
+      const glm::vec2 gap = base - tip;
+      const float width = std::max(maxWidthPx(blade), maxWidthPx(piece));
+      const float ahead = glm::dot(gap, tipDir);
+      const float aside = std::abs(tipDir.x * gap.y - tipDir.y * gap.x);
+      if (glm::dot(dir, tipDir) < kJoinCos || ahead <= 0.0f || glm::length(gap) > kJoinGapWidths * width ||
+          aside > kJoinSideWidths * width || std::abs(blade.knots.back().z - z) > layerStepMetres(z, 0.0f)) {
+        continue;
+      }
+      if (best < 0 || glm::length(gap) < bestGap) {
+        best = static_cast<int>(bi);
+        bestGap = glm::length(gap);
+      }
+    }
+    if (best < 0) {
+      continue;
+    }
+    CapturedBlade& blade = r.blades[static_cast<std::size_t>(best)];
+    const glm::vec2 tip = blade.skeletonPx.back();
+    cluster.joined.push_back(fmt::format(
+        "the blade with its tip at ({:.0f}, {:.0f}) broke off where a nearer blade crosses it: joined to the "
+        "blade that ends {:.0f} px before its base, at ({:.0f}, {:.0f})",
+        piece.outline[static_cast<std::size_t>(piece.tip)].x,
+        piece.outline[static_cast<std::size_t>(piece.tip)].y, bestGap, tip.x, tip.y));
+    joinPiece(blade, piece, from);
+    removed[pi] = true;
+  }
+  if (std::find(removed.begin(), removed.end(), true) == removed.end()) {
+    return;
+  }
+  // Drop the joined pieces and renumber the clusters' blades.
+  std::vector<int> index(r.blades.size(), -1);
+  std::vector<CapturedBlade> kept;
+  for (std::size_t b = 0; b < r.blades.size(); ++b) {
+    if (!removed[b]) {
+      index[b] = static_cast<int>(kept.size());
+      kept.push_back(std::move(r.blades[b]));
+    }
+  }
+  r.blades = std::move(kept);
+  for (Cluster& cluster : r.clusters) {
+    std::vector<int> blades;
+    for (const int b : cluster.blades) {
+      if (index[static_cast<std::size_t>(b)] >= 0) {
+        blades.push_back(index[static_cast<std::size_t>(b)]);
+      }
+    }
+    cluster.blades = std::move(blades);
+  }
+}
+
 } // namespace
 
 ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& options) {
@@ -2103,10 +2347,14 @@ ExtractResult extractBlades(const DepthFrame& frame, const ExtractOptions& optio
     }
     // Each depth layer is partitioned on its own.
     c.layerCount = static_cast<int>(layers.size());
+    const std::size_t firstCluster = result.clusters.size();
     for (std::size_t l = 0; l < layers.size(); ++l) {
       c.layer = static_cast<int>(l);
       c.layerDepthMetres = layers[l].depthMetres;
       processParts(c, layers[l].completed, layers[l].own, layerArea);
+    }
+    if (options.joinBroken) {
+      joinBrokenBlades(c, firstCluster);
     }
     c.layer = -1;
     c.layerCount = 1;

@@ -66,6 +66,9 @@ std::string explainClusters(const ExtractResult& first) {
     for (const std::string& m : cluster.split) {
       text += fmt::format("    split: {}\n", m);
     }
+    for (const std::string& m : cluster.joined) {
+      text += fmt::format("    joined: {}\n", m);
+    }
     for (const std::string& m : cluster.merged) {
       text += fmt::format("    merged? {}\n", m);
     }

@@ -5,6 +5,7 @@
 // front of their neighbours, notches and depth splits some of the crossing and dense fans; those are not met
 // yet: this test holds what the extractor reaches today (docs/capture.md, "Overlapping, crossing and dense
 // blades") so that it can only go up, and plain fans must stay exact.
+#include <sylva/capture/Depth.hpp>
 #include <sylva/capture/Extract.hpp>
 #include <sylva/capture/Synthetic.hpp>
 #include <sylva/core/Error.hpp>
@@ -59,29 +60,31 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
 #ifndef SYLVA_SWEEP_SANITIZED
   // Measured with depth layers (a 5 mm / 0.7 % step), the split of blades much wider than their cluster's
   // narrow blades (1.4x the lower quartile of its widths), junctions at notches between tips and the split of
-  // blades whose outer halves part in depth, and short pointed tips as blades (captured as the PNG holds the
-  // depth): 200 clusters 83.0 % exact (occluded 93.3 %, crossing 77.2 %, dense 60.9 %), widths within 10 % on
-  // 88.0 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 82.3 % (crossing 71.1 %, dense 62.9 %) and 89.4 %
-  // of 7,224. Without pointed tips (1,000): 81.8 % and 88.8 %. Without notches and the depth split: 80.0 %
+  // blades whose outer halves part in depth, short pointed tips as blades, blades broken in two by a nearer
+  // one joined, and widths where a nearer blade hides an edge taken from where both show (captured as the PNG
+  // holds the depth): 200 clusters 83.5 % exact (occluded 93.3 %, crossing 78.9 %, dense 60.9 %), widths
+  // within 10 % on 88.6 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 83.3 % (crossing 75.1 %, dense
+  // 62.9 %) and 90.1 % of 7,224 (occluded 95.1 %). Without the join and the occluded widths (1,000): 82.3 %
+  // and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the depth split: 80.0 %
   // and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 % and 83.1 %.
   // Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 % (occluded 0 %)
   // and 78.3 %.
   const SweepTally& occluded = report.byLayout[1];
   EXPECT_GE(occluded.exactShare(), 0.90) << "a blade in front of its neighbour is its own depth layer";
-  EXPECT_GE(occluded.widthShare(), 0.88);
+  EXPECT_GE(occluded.widthShare(), 0.91);
   const SweepTally& crossing = report.byLayout[2];
-  EXPECT_GE(crossing.exactShare(), 0.69)
-      << "blades of two fans merged up to tips that part in depth are split";
+  EXPECT_GE(crossing.exactShare(), 0.73)
+      << "blades of two fans merged up to tips that part in depth are split, broken ones joined";
   const SweepTally& dense = report.byLayout[3];
   EXPECT_GE(dense.exactShare(), 0.60) << "neighbouring tips part at notches, or in depth";
   EXPECT_GE(dense.widthShare(), 0.84);
-  EXPECT_GE(report.all.exactShare(), 0.82);
-  EXPECT_GE(report.all.widthShare(), 0.87);
+  EXPECT_GE(report.all.exactShare(), 0.83);
+  EXPECT_GE(report.all.widthShare(), 0.88);
   // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
   // picture, or by a depth step of 5 mm); 200 clusters 94.5 %, 1,000 96.1 %. On those the count is exact on
-  // 86.2 % (1,000: 84.7 %): what is missing is the extractor's, not the frame's.
+  // 86.8 % (1,000: 85.7 %): what is missing is the extractor's, not the frame's.
   EXPECT_GE(report.all.tipsFreeShare(), 0.92);
-  EXPECT_GE(report.all.tipsFreeExactShare(), 0.84);
+  EXPECT_GE(report.all.tipsFreeExactShare(), 0.85);
 #endif
 }
 
@@ -344,6 +347,69 @@ TEST(CaptureNotches, TipsThatPartOnlyNearTheirEndsAreJunctions) {
     }
     EXPECT_GE(shallow, 1u) << "a notch below the prominence test is a junction";
     EXPECT_LT(static_cast<int>(captureSweepCluster(seed, without).first.blades.size()), expected);
+  }
+}
+
+/** How many of a sweep cluster's blades, captured from depth alone with `options`, are within 10 % in width.
+ */
+int widthsWithin10(std::uint64_t seed, const ExtractOptions& options) {
+  SyntheticScene scene = makeSweepCluster(seed);
+  scene.colour = false;
+  SyntheticFrame frame = renderScene(scene);
+  roundToDepthPng(frame.frame);
+  const AccuracyReport report = evaluateCapture(frame.truth, extractBlades(frame.frame, options));
+  return static_cast<int>(std::count_if(report.bladeWidthErrors.begin(), report.bladeWidthErrors.end(),
+                                        [](double e) { return e <= 0.10; }));
+}
+
+TEST(CaptureOccludedWidths, ABladeWhoseEdgeANearerBladeHidesIsAsWideAsWhereBothEdgesShow) {
+  // Occluded sweep clusters: the narrow blade in front hides one edge of its neighbour along most of its
+  // length, so the part of the neighbour that shows is narrower than the neighbour. Taking the width there
+  // from where both its edges show brings the neighbour within 10 %; measured on what shows, it is not.
+  ExtractOptions without;
+  without.occludedWidths = false;
+  for (const std::uint64_t seed : {12u, 93u, 223u, 231u}) {
+    SCOPED_TRACE("sweep cluster " + std::to_string(seed));
+    const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
+    EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
+    EXPECT_EQ(widthsWithin10(seed, ExtractOptions{}), expected) << "every blade within 10 %";
+    EXPECT_EQ(widthsWithin10(seed, without), expected - 1);
+  }
+  // Where nothing nearer borders a blade the widths are what shows, to the bit.
+  SyntheticScene fan = makeCluster(BladeShape::SlenderLeaf, 5, 0.3f, 0.0f, 7);
+  fan.colour = false;
+  const SyntheticFrame frame = renderScene(fan);
+  const ExtractResult a = extractBlades(frame.frame);
+  const ExtractResult b = extractBlades(frame.frame, without);
+  ASSERT_EQ(a.blades.size(), b.blades.size());
+  for (std::size_t i = 0; i < a.blades.size(); ++i) {
+    EXPECT_EQ(a.blades[i].widthsPx, b.blades[i].widthsPx) << "blade " << i;
+  }
+}
+
+TEST(CaptureJoin, ABladeBrokenInTwoByANearerOneCrossingItIsOneBlade) {
+  // Crossing fans where a blade of the front fan crosses one of the back fan at a shallow angle: the straight
+  // runs across it do not reach the far side, so the back blade's outer part becomes a depth layer of its
+  // own. Joined to the blade whose tip points at it, the count is exact; kept apart, one too many.
+  ExtractOptions without;
+  without.joinBroken = false;
+  for (const std::uint64_t seed : {74u, 201u, 331u, 909u}) {
+    SCOPED_TRACE("sweep cluster " + std::to_string(seed));
+    const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
+    EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
+    std::size_t joined = 0;
+    for (const Cluster& c : result.clusters) {
+      joined +=
+          static_cast<std::size_t>(std::count_if(c.joined.begin(), c.joined.end(), [](const std::string& m) {
+            return m.find("broke off where a nearer blade crosses it") != std::string::npos;
+          }));
+      for (const int b : c.blades) {
+        ASSERT_GE(b, 0);
+        ASSERT_LT(static_cast<std::size_t>(b), result.blades.size()) << "the clusters name kept blades only";
+      }
+    }
+    EXPECT_EQ(joined, 1u);
+    EXPECT_EQ(static_cast<int>(captureSweepCluster(seed, without).first.blades.size()), expected + 1);
   }
 }
 

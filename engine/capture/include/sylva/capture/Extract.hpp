@@ -122,6 +122,16 @@ struct ExtractOptions {
    * its tip (blades of crossing fans, or neighbours in a dense fan, merged in the outline).
    */
   bool depthSplit = true;
+  /**
+   * Where a nearer surface hides one edge of a blade (a blade in front of it), take the blade's width there
+   * from the samples on either side where both its edges show, instead of the narrower part that shows.
+   */
+  bool occludedWidths = true;
+  /**
+   * Join a blade's outer part that broke off into a depth layer of its own (where a nearer blade crosses it
+   * at a shallow angle) to the blade whose tip points at it.
+   */
+  bool joinBroken = true;
 };
 
 /** A junction between two blades: a prominent local minimum of the distance signal. */
@@ -164,6 +174,11 @@ struct Cluster {
    * split into the surfaces that part in depth towards their tips (`--explain`).
    */
   std::vector<std::string> split;
+  /**
+   * Blades whose outer part broke off into this cluster (a depth layer of its own, where a nearer blade
+   * crosses them) and was joined to them (`--explain`).
+   */
+  std::vector<std::string> joined;
   /** Pixels of the cluster. */
   int areaPx = 0;
   /**
