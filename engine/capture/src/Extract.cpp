@@ -1936,9 +1936,10 @@ std::size_t firstSeenKnot(const CapturedBlade& blade) {
  * Widens the samples of a blade's axis where one of its edges is the edge of a nearer surface (a blade in
  * front hides that side, so the visible width falls short): over each run of such samples the width is at
  * least what the samples on both sides of the run measure (interpolated; only the root's side of a run that
- * reaches the tip, as a blade narrows to its tip). `line` and `widths` are pixels, root end first.
+ * reaches the tip, as a blade narrows to its tip). `line` and `widths` are pixels, root end first. Returns
+ * whether a width changed.
  */
-void widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vector<glm::vec2>& line,
+bool widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vector<glm::vec2>& line,
                    std::vector<float>& widths) {
   const int count = static_cast<int>(line.size());
   std::vector<char> occluded(line.size(), 0);
@@ -1974,8 +1975,9 @@ void widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vect
     }
   }
   if (!any) {
-    return;
+    return false;
   }
+  bool changed = false;
   for (int k = 0; k < count;) {
     if (!occluded[static_cast<std::size_t>(k)]) {
       ++k;
@@ -1991,12 +1993,15 @@ void widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vect
       const float wa = widths[static_cast<std::size_t>(end)];
       for (int i = k; i < end; ++i) {
         const float u = static_cast<float>(i - k + 1) / static_cast<float>(end - k + 1);
+        const float before = widths[static_cast<std::size_t>(i)];
         widths[static_cast<std::size_t>(i)] =
             std::max(widths[static_cast<std::size_t>(i)], wb + u * (wa - wb));
+        changed = changed || widths[static_cast<std::size_t>(i)] != before;
       }
     }
     k = end;
   }
+  return changed;
 }
 
 /** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
@@ -2094,9 +2099,10 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
                                         blade.skeletonPx.end());
       std::vector<float> widths(blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first),
                                 blade.widthsPx.end());
-      widenOccluded(c, clusterMask, line, widths);
-      std::copy(widths.begin(), widths.end(), blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first));
-      toMetres(c, blade);
+      if (widenOccluded(c, clusterMask, line, widths)) {
+        std::copy(widths.begin(), widths.end(), blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first));
+        toMetres(c, blade);
+      }
     }
   }
   p.cluster.layer = c.layer;
