@@ -274,6 +274,21 @@ std::pair<ExtractResult, int> captureSweepCluster(std::uint64_t seed, const Extr
   return {extractBlades(frame.frame, options), static_cast<int>(frame.truth.centrelinePx.size())};
 }
 
+/** How many of the messages in `list` (Cluster::split, rejected, joined) of `result`'s clusters hold
+ * `phrase`. */
+std::size_t countMessages(const ExtractResult& result, std::vector<std::string> Cluster::*list,
+                          const std::string& phrase) {
+  std::size_t count = 0;
+  for (const Cluster& c : result.clusters) {
+    const std::vector<std::string>& messages = c.*list;
+    count +=
+        static_cast<std::size_t>(std::count_if(messages.begin(), messages.end(), [&](const std::string& m) {
+          return m.find(phrase) != std::string::npos;
+        }));
+  }
+  return count;
+}
+
 TEST(CaptureDepthSplit, BladesMergedInTheOutlineWhoseTipsPartInDepthAreSplit) {
   // Sweep clusters (a crossing one and dense fans) where blades of different depths merge in the outline up
   // to their tips: the merged blade's outer half holds a surface for each, and each becomes a blade. Without
@@ -284,14 +299,7 @@ TEST(CaptureDepthSplit, BladesMergedInTheOutlineWhoseTipsPartInDepthAreSplit) {
     SCOPED_TRACE("sweep cluster " + std::to_string(seed));
     const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
     EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
-    std::size_t splits = 0;
-    for (const Cluster& c : result.clusters) {
-      splits +=
-          static_cast<std::size_t>(std::count_if(c.split.begin(), c.split.end(), [](const std::string& s) {
-            return s.find("parts in depth towards its tip") != std::string::npos;
-          }));
-    }
-    EXPECT_GE(splits, 1u);
+    EXPECT_GE(countMessages(result, &Cluster::split, "parts in depth towards its tip"), 1u);
     EXPECT_LT(static_cast<int>(captureSweepCluster(seed, without).first.blades.size()), expected);
   }
   // A plain fan, its blades tilted towards and away from the camera, holds one surface per blade: no split.
@@ -319,13 +327,8 @@ TEST(CapturePointedTips, ShortPointedTipsBeyondOverlappingNeighboursAreBlades) {
     EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
     const auto [short_, same] = captureSweepCluster(seed, without);
     EXPECT_EQ(static_cast<int>(short_.blades.size()), expected - 1);
-    std::size_t tooShort = 0;
-    for (const Cluster& c : short_.clusters) {
-      tooShort += static_cast<std::size_t>(
-          std::count_if(c.rejected.begin(), c.rejected.end(),
-                        [](const std::string& r) { return r.find("too short") != std::string::npos; }));
-    }
-    EXPECT_GE(tooShort, 1u) << "without the exception the tip is rejected as too short";
+    EXPECT_GE(countMessages(short_, &Cluster::rejected, "too short"), 1u)
+        << "without the exception the tip is rejected as too short";
   }
 }
 
@@ -397,18 +400,13 @@ TEST(CaptureJoin, ABladeBrokenInTwoByANearerOneCrossingItIsOneBlade) {
     SCOPED_TRACE("sweep cluster " + std::to_string(seed));
     const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
     EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
-    std::size_t joined = 0;
+    EXPECT_EQ(countMessages(result, &Cluster::joined, "broke off where a nearer blade crosses it"), 1u);
     for (const Cluster& c : result.clusters) {
-      joined +=
-          static_cast<std::size_t>(std::count_if(c.joined.begin(), c.joined.end(), [](const std::string& m) {
-            return m.find("broke off where a nearer blade crosses it") != std::string::npos;
-          }));
       for (const int b : c.blades) {
         ASSERT_GE(b, 0);
         ASSERT_LT(static_cast<std::size_t>(b), result.blades.size()) << "the clusters name kept blades only";
       }
     }
-    EXPECT_EQ(joined, 1u);
     EXPECT_EQ(static_cast<int>(captureSweepCluster(seed, without).first.blades.size()), expected + 1);
   }
 }
