@@ -2005,7 +2005,7 @@ bool widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vect
 }
 
 /** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
-constexpr double kCoverageMargin = 0.02;
+constexpr double kCoverageMargin = 0.04;
 
 /** A blade this many times as wide as its cluster's median blade is probably several merged. */
 /** Notes the blades of a partition that are probably merged (Cluster::merged). */

@@ -61,14 +61,15 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   // Measured with depth layers (a 5 mm / 0.7 % step), the split of blades much wider than their cluster's
   // narrow blades (1.4x the lower quartile of its widths), junctions at notches between tips and the split of
   // blades whose outer halves part in depth, short pointed tips as blades, blades broken in two by a nearer
-  // one joined, and widths where a nearer blade hides an edge taken from where both show (captured as the PNG
-  // holds the depth): 200 clusters 83.5 % exact (occluded 93.3 %, crossing 78.9 %, dense 60.9 %), widths
-  // within 10 % on 88.6 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 83.3 % (crossing 75.1 %, dense
-  // 62.9 %) and 90.1 % of 7,224 (occluded 95.1 %). Without the join and the occluded widths (1,000): 82.3 %
-  // and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the depth split: 80.0 %
-  // and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 % and 83.1 %.
-  // Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 % (occluded 0 %)
-  // and 78.3 %.
+  // one joined, widths where a nearer blade hides an edge taken from where both show, and a 4 % coverage
+  // margin for partitions with fewer blades (captured as the PNG holds the depth): 200 clusters 83.5 % exact
+  // (occluded 93.3 %, crossing 78.9 %, dense 60.9 %), widths within 10 % on 88.6 % of 1,460 blades; 1,000
+  // clusters (SYLVA_FULL=1) 83.8 % (occluded 96.9 %, crossing 75.9 %, dense 62.9 %) and 90.1 % of 7,224
+  // (occluded 95.1 %). With the 2 % margin: 83.3 %. Without the join and the occluded widths as well (1,000):
+  // 82.3 % and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the depth
+  // split: 80.0 % and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 %
+  // and 83.1 %. Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 %
+  // (occluded 0 %) and 78.3 %.
   const SweepTally& occluded = report.byLayout[1];
   EXPECT_GE(occluded.exactShare(), 0.90) << "a blade in front of its neighbour is its own depth layer";
   EXPECT_GE(occluded.widthShare(), 0.91);
@@ -82,7 +83,7 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   EXPECT_GE(report.all.widthShare(), 0.88);
   // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
   // picture, or by a depth step of 5 mm); 200 clusters 94.5 %, 1,000 96.1 %. On those the count is exact on
-  // 86.8 % (1,000: 85.7 %): what is missing is the extractor's, not the frame's.
+  // 86.8 % (1,000: 86.3 %): what is missing is the extractor's, not the frame's.
   EXPECT_GE(report.all.tipsFreeShare(), 0.92);
   EXPECT_GE(report.all.tipsFreeExactShare(), 0.85);
 #endif
