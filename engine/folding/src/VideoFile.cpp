@@ -15,12 +15,21 @@ extern "C" {
 #include <cmath>
 #include <cstdarg>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string_view>
 
 namespace sylva::folding::internal {
 
 namespace {
+
+/** The number an enum field holds, read as an integer: a decoder may store values the enum does not name. */
+template <typename Enum> int enumValue(const Enum& field) {
+  static_assert(sizeof(Enum) == sizeof(int));
+  int value = 0;
+  std::memcpy(&value, &field, sizeof value);
+  return value;
+}
 
 /**
  * FFmpeg's own messages ("moov atom not found", "corrupt decoded frame") go to the debug log instead of
@@ -131,8 +140,13 @@ struct VideoFile::State {
     int saturation = 0;
     if (sws_getColorspaceDetails(sws, &inverse, &srcRange, &table, &dstRange, &brightness, &contrast,
                                  &saturation) >= 0) {
-      const int space = frame->colorspace == AVCOL_SPC_UNSPECIFIED ? SWS_CS_DEFAULT : frame->colorspace;
-      srcRange = srcRange != 0 || frame->color_range == AVCOL_RANGE_JPEG ? 1 : 0;
+      // A file may carry any number in these fields, and FFmpeg stores it in the enums as it is: read them as
+      // integers (loading an enum outside its values is undefined) and keep only the known ones.
+      const int spaceRaw = enumValue(frame->colorspace);
+      const int rangeRaw = enumValue(frame->color_range);
+      const bool known = spaceRaw >= 0 && spaceRaw < AVCOL_SPC_NB && spaceRaw != AVCOL_SPC_UNSPECIFIED;
+      const int space = known ? spaceRaw : SWS_CS_DEFAULT;
+      srcRange = srcRange != 0 || rangeRaw == AVCOL_RANGE_JPEG ? 1 : 0;
       sws_setColorspaceDetails(sws, sws_getCoefficients(space), srcRange, table, 1, brightness, contrast,
                                saturation);
     }
