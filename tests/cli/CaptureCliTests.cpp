@@ -216,6 +216,19 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   ASSERT_EQ(blunt.status, 0) << blunt.err;
   EXPECT_THAT(blunt.out, testing::HasSubstr("12 blades in"));
   EXPECT_NE(runSylva(dir, "capture " + at(dir, "p.png") + " --pointed-tip 0").status, 0);
+  // A dense fan whose neighbours hide all but the last pixels of two blades merged in the outline: they part
+  // in depth over their outer third, which --explain names; --depth-split-outer 0 keeps them merged.
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 89 -o " + at(dir, "o.png")).status, 0);
+  const test::RunResult outer = runSylva(dir, "capture " + at(dir, "o.png") + " --no-colour --explain");
+  ASSERT_EQ(outer.status, 0) << outer.err;
+  EXPECT_THAT(outer.out, testing::HasSubstr("12 blades in"));
+  EXPECT_EQ(countOf(outer.out, "(over the outer 35 % of its length"), 1u) << outer.out;
+  const test::RunResult inner =
+      runSylva(dir, "capture " + at(dir, "o.png") + " --no-colour --explain --depth-split-outer 0");
+  ASSERT_EQ(inner.status, 0) << inner.err;
+  EXPECT_THAT(inner.out, testing::HasSubstr("11 blades in"));
+  EXPECT_EQ(countOf(inner.out, "over the outer"), 0u);
+  EXPECT_NE(runSylva(dir, "capture " + at(dir, "o.png") + " --depth-split-outer 1").status, 0);
   // Crossing fans where the front blade crosses a back one at a shallow angle and breaks it in two depth
   // layers: --explain says it was joined; --no-join keeps the broken-off part as a blade.
   ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 331 -o " + at(dir, "j.png")).status, 0);

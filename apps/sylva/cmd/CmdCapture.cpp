@@ -67,6 +67,7 @@ struct CaptureOptions {
   double notchSigma = ExtractOptions{}.notchSigmaPx;
   double pointedTip = ExtractOptions{}.pointedTipFraction;
   bool noDepthSplit = false;
+  double depthSplitOuter = ExtractOptions{}.depthSplitOuterShare;
   bool noOccludedWidths = false;
   bool noJoin = false;
   double smooth = ExtractOptions{}.smoothSigmaPx;
@@ -151,6 +152,7 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
   e.notchSigmaPx = o.notchSigma;
   e.pointedTipFraction = o.pointedTip;
   e.depthSplit = !o.noDepthSplit;
+  e.depthSplitOuterShare = o.depthSplitOuter;
   e.occludedWidths = !o.noOccludedWidths;
   e.joinBroken = !o.noJoin;
   e.smoothSigmaPx = o.smooth;
@@ -550,6 +552,12 @@ void registerCapture(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--no-depth-split", o->noDepthSplit,
                     "Keep blades whose outer halves part in depth as one (blades merged in the outline)");
+  command
+      ->add_option("--depth-split-outer", o->depthSplitOuter,
+                   "Where a blade's visible end holds one surface, look for surfaces parting in depth over "
+                   "this share of its length from the tip (0: off)")
+      ->check(finiteRange(0.0, 0.99))
+      ->capture_default_str();
   command->add_flag("--no-occluded-widths", o->noOccludedWidths,
                     "Measure a blade only as wide as it shows where a nearer blade hides one of its edges");
   command->add_flag("--no-join", o->noJoin,

@@ -64,6 +64,9 @@ void validate(const ExtractOptions& o) {
   if (!finite(o.pointedTipFraction) || o.pointedTipFraction <= 0.0 || o.pointedTipFraction > 1.0) {
     fail("--pointed-tip: {} outside (0, 1]", o.pointedTipFraction);
   }
+  if (!finite(o.depthSplitOuterShare) || o.depthSplitOuterShare < 0.0 || o.depthSplitOuterShare >= 1.0) {
+    fail("--depth-split-outer: {} outside [0, 1)", o.depthSplitOuterShare);
+  }
   if (!finite(o.minBladeLengthPx) || o.minBladeLengthPx < 0.0 || !finite(o.minElongation) ||
       o.minElongation < 0.0) {
     fail("--min-length / --min-elongation: must be finite and ≥ 0");
@@ -1706,15 +1709,16 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
 
 /**
  * The blades inside one captured blade that part in depth towards its outer end: within the blade's outline,
- * the pixels of its own depth beyond the middle of its visible length (from its junctions to its tip) are
- * linked as depthLayers links them; each linked surface of at least a sixth of those pixels that reaches
- * the outer end becomes a blade along the medial axis of the blade's lower part and that surface (its median
- * depth, metres, to `surfaceDepths`). Returns nothing when fewer than two surfaces reach it (one blade,
- * however its depth runs).
+ * the pixels of its own depth beyond the middle of its visible length (from its junctions to its tip; with
+ * `outerShare` > 0, beyond that share of its distance from the centre to its tip, measured from the tip,
+ * when that reaches lower) are linked as depthLayers links them; each linked surface of at least a sixth of
+ * those pixels that reaches the outer end becomes a blade along the medial axis of the blade's lower part and
+ * that surface (its median depth, metres, to `surfaceDepths`). Returns nothing when fewer than two surfaces
+ * reach it (one blade, however its depth runs), or when `outerShare` reaches no lower than the middle.
  */
 std::vector<CapturedBlade> depthParts(Context& c, const Cluster& cluster, const cv::Mat& clusterMask,
                                       int clusterIndex, const CapturedBlade& blade,
-                                      std::vector<float>& surfaceDepths) {
+                                      std::vector<float>& surfaceDepths, float outerShare = 0.0f) {
   const glm::vec2 centre = cluster.centre;
   const glm::vec2 tip = blade.outline[static_cast<std::size_t>(blade.tip)];
   const float rTip = glm::length(tip - centre);
@@ -1723,7 +1727,11 @@ std::vector<CapturedBlade> depthParts(Context& c, const Cluster& cluster, const 
   if (rTip - rBase < static_cast<float>(c.options.minBladeLengthPx)) {
     return {};
   }
-  const float rCut = 0.5f * (rBase + rTip);
+  const float rMiddle = 0.5f * (rBase + rTip);
+  const float rCut = outerShare > 0.0f ? (1.0f - outerShare) * rTip : rMiddle;
+  if (outerShare > 0.0f && rCut >= rMiddle) {
+    return {};
+  }
   std::vector<cv::Point> poly;
   for (const glm::vec2& q : blade.outline) {
     poly.emplace_back(static_cast<int>(std::lround(q.x)), static_cast<int>(std::lround(q.y)));
@@ -1899,6 +1907,12 @@ void splitByDepth(Context& c, Partition& p, const cv::Mat& clusterMask, int clus
     std::vector<float> surfaceDepths;
     std::vector<CapturedBlade> parts =
         depthParts(c, p.cluster, clusterMask, clusterIndex, blade, surfaceDepths);
+    // Its neighbours may hide all but its last few pixels: look again over its outer part.
+    const auto outerShare = static_cast<float>(c.options.depthSplitOuterShare);
+    const bool outer = parts.empty() && outerShare > 0.0f;
+    if (outer) {
+      parts = depthParts(c, p.cluster, clusterMask, clusterIndex, blade, surfaceDepths, outerShare);
+    }
     if (parts.empty()) {
       result.push_back(std::move(blade));
       continue;
@@ -1908,10 +1922,13 @@ void splitByDepth(Context& c, Partition& p, const cv::Mat& clusterMask, int clus
     for (const float z : surfaceDepths) {
       depths += fmt::format("{}{:.3f}", depths.empty() ? "" : ", ", z);
     }
-    p.cluster.split.push_back(
-        fmt::format("the blade with its tip at ({:.0f}, {:.0f}) parts in depth towards its tip into {} "
-                    "surfaces that each reach out to it, at {} m: one blade each",
-                    tip.x, tip.y, parts.size(), depths));
+    p.cluster.split.push_back(fmt::format(
+        "the blade with its tip at ({:.0f}, {:.0f}) parts in depth towards its tip into {} "
+        "surfaces that each reach out to it, at {} m: one blade each{}",
+        tip.x, tip.y, parts.size(), depths,
+        outer ? fmt::format(" (over the outer {:.0f} % of its length: its neighbours hide all but its end)",
+                            100.0f * outerShare)
+              : ""));
     for (CapturedBlade& part : parts) {
       result.push_back(std::move(part));
     }

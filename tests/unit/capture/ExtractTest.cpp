@@ -318,6 +318,9 @@ TEST(Extract, InvalidOptionsNameTheOption) {
   o = {};
   o.pointedTipFraction = 0.0;
   EXPECT_NE(message(o).find("--pointed-tip"), std::string::npos);
+  o = {};
+  o.depthSplitOuterShare = 1.0;
+  EXPECT_NE(message(o).find("--depth-split-outer"), std::string::npos);
 }
 
 TEST(Extract, MetresFollowTheIntrinsics) {

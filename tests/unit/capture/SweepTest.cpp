@@ -61,11 +61,13 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   // Measured with depth layers (a 5 mm / 0.7 % step), the split of blades much wider than their cluster's
   // narrow blades (1.4x the lower quartile of its widths), junctions at notches between tips and the split of
   // blades whose outer halves part in depth, short pointed tips as blades, blades broken in two by a nearer
-  // one joined, widths where a nearer blade hides an edge taken from where both show, and a 4 % coverage
-  // margin for partitions with fewer blades (captured as the PNG holds the depth): 200 clusters 83.5 % exact
-  // (occluded 93.3 %, crossing 78.9 %, dense 60.9 %), widths within 10 % on 88.6 % of 1,460 blades; 1,000
-  // clusters (SYLVA_FULL=1) 83.8 % (occluded 96.9 %, crossing 75.9 %, dense 62.9 %) and 90.1 % of 7,224
-  // (occluded 95.1 %). With the 2 % margin: 83.3 %. Without the join and the occluded widths as well (1,000):
+  // one joined, widths where a nearer blade hides an edge taken from where both show, a 4 % coverage margin
+  // for partitions with fewer blades, and the depth split's second look over a blade's outer 35 % (captured
+  // as the PNG holds the depth): 200 clusters 85.5 % exact (occluded 93.3 %, crossing 82.5 %, dense 65.2 %),
+  // widths within 10 % on 89.0 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 85.3 % (occluded 97.3 %,
+  // crossing 77.1 %, dense 66.9 %) and 90.4 % of 7,224 (occluded 95.1 %). Without the second look: 200
+  // clusters 83.5 % and 88.6 %, 1,000 83.8 % and 90.1 %. With the 2 % margin as well: 83.3 %. Without the
+  // join and the occluded widths as well (1,000):
   // 82.3 % and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the depth
   // split: 80.0 % and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 %
   // and 83.1 %. Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 %
@@ -74,18 +76,18 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   EXPECT_GE(occluded.exactShare(), 0.90) << "a blade in front of its neighbour is its own depth layer";
   EXPECT_GE(occluded.widthShare(), 0.91);
   const SweepTally& crossing = report.byLayout[2];
-  EXPECT_GE(crossing.exactShare(), 0.73)
+  EXPECT_GE(crossing.exactShare(), 0.75)
       << "blades of two fans merged up to tips that part in depth are split, broken ones joined";
   const SweepTally& dense = report.byLayout[3];
-  EXPECT_GE(dense.exactShare(), 0.60) << "neighbouring tips part at notches, or in depth";
+  EXPECT_GE(dense.exactShare(), 0.63) << "neighbouring tips part at notches, or in depth";
   EXPECT_GE(dense.widthShare(), 0.84);
-  EXPECT_GE(report.all.exactShare(), 0.83);
+  EXPECT_GE(report.all.exactShare(), 0.84);
   EXPECT_GE(report.all.widthShare(), 0.88);
   // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
   // picture, or by a depth step of 5 mm); 200 clusters 94.5 %, 1,000 96.1 %. On those the count is exact on
-  // 86.8 % (1,000: 86.3 %): what is missing is the extractor's, not the frame's.
+  // 88.9 % (1,000: 87.8 %): what is missing is the extractor's, not the frame's.
   EXPECT_GE(report.all.tipsFreeShare(), 0.92);
-  EXPECT_GE(report.all.tipsFreeExactShare(), 0.85);
+  EXPECT_GE(report.all.tipsFreeExactShare(), 0.87);
 #endif
 }
 
@@ -313,6 +315,24 @@ TEST(CaptureDepthSplit, BladesMergedInTheOutlineWhoseTipsPartInDepthAreSplit) {
     for (const Cluster& c : result.clusters) {
       EXPECT_TRUE(c.split.empty()) << c.split.front();
     }
+  }
+}
+
+TEST(CaptureDepthSplit, BladesWhoseNeighboursHideAllButTheirEndsPartInDepthOverTheirOuterThird) {
+  // Dense fans (and crossing ones) whose neighbouring blades overlap up to near their tips: beyond its
+  // junctions a merged blade shows only its last 10–20 px, too few pixels for two surfaces, but the blades
+  // part in depth over the outer third of their length. The second look finds them; without it (share 0)
+  // each cluster comes out short.
+  ExtractOptions without;
+  without.depthSplitOuterShare = 0.0;
+  for (const std::uint64_t seed : {89u, 191u, 461u, 102u}) {
+    SCOPED_TRACE("sweep cluster " + std::to_string(seed));
+    const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
+    EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
+    EXPECT_GE(countMessages(result, &Cluster::split, "over the outer 35 % of its length"), 1u);
+    const ExtractResult short_ = captureSweepCluster(seed, without).first;
+    EXPECT_LT(static_cast<int>(short_.blades.size()), expected);
+    EXPECT_EQ(countMessages(short_, &Cluster::split, "over the outer"), 0u);
   }
 }
 

@@ -123,6 +123,14 @@ struct ExtractOptions {
    */
   bool depthSplit = true;
   /**
+   * Where the middle of a blade's visible length shows one surface, the depth split looks again beyond this
+   * share of its distance from the centre to its tip, measured from the tip (0 turns the second look off;
+   * below 1). In a dense fan neighbours overlap up to near their tips, so only a blade's last 10–20 px show
+   * beyond its junctions, too few pixels for two surfaces, while the blades part in depth over the outer
+   * third of their length.
+   */
+  double depthSplitOuterShare = 0.35;
+  /**
    * Where a nearer surface hides one edge of a blade (a blade in front of it), take the blade's width there
    * from the samples on either side where both its edges show, instead of the narrower part that shows.
    */
