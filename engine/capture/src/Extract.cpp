@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <array>
 #include <deque>
@@ -2167,11 +2168,17 @@ void processParts(Context& c, const cv::Mat& mask, const cv::Mat& own, int minAr
   const std::vector<std::size_t> order = largestFirst(parts, minArea, &small);
   for (const std::size_t k : small) {
     const cv::Rect r = cv::boundingRect(parts[k]);
+    // The pixels it holds (a part one or two pixels thin encloses no area within its outline).
+    cv::Mat filled = cv::Mat::zeros(r.size(), CV_8U);
+    cv::drawContours(filled, parts, static_cast<int>(k), cv::Scalar(255), cv::FILLED, cv::LINE_8,
+                     cv::noArray(), INT_MAX, -r.tl());
+    filled &= mask(r);
+    const int pixels = cv::countNonZero(filled);
     c.result.droppedParts.push_back(fmt::format(
-        "depth layer {} of {} ({:.3f} m): a part of {:.0f} px at ({}, {}), below the {} px a part "
-        "needs",
-        c.layer, c.layerCount, c.layerDepthMetres, cv::contourArea(parts[k]), r.x + r.width / 2,
-        r.y + r.height / 2, minArea));
+        "depth layer {} of {} ({:.3f} m): a part of {} pixel{} at ({}, {}), its outline enclosing {:.0f} "
+        "px², below the {} px² a part needs",
+        c.layer, c.layerCount, c.layerDepthMetres, pixels, pixels == 1 ? "" : "s", r.x + r.width / 2,
+        r.y + r.height / 2, cv::contourArea(parts[k]), minArea));
   }
   for (const std::size_t k : order) {
     cv::Mat partMask = cv::Mat::zeros(mask.size(), CV_8U);

@@ -12,6 +12,7 @@
 
 #include "TempDir.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -333,6 +334,18 @@ TEST(CaptureDepthSplit, BladesWhoseNeighboursHideAllButTheirEndsPartInDepthOverT
     const ExtractResult short_ = captureSweepCluster(seed, without).first;
     EXPECT_LT(static_cast<int>(short_.blades.size()), expected);
     EXPECT_EQ(countMessages(short_, &Cluster::split, "over the outer"), 0u);
+  }
+}
+
+TEST(CaptureDepthLayers, DroppedPartsNameThePixelsTheyHold) {
+  // Crossing fans whose nearer layer leaves single pixels beside the farther one: each dropped part is named
+  // with the pixels it holds (a part one pixel thin encloses no area within its outline, and was once
+  // reported as "a part of 0 px").
+  const ExtractResult result = captureSweepCluster(629, ExtractOptions{}).first;
+  ASSERT_FALSE(result.droppedParts.empty());
+  for (const std::string& dropped : result.droppedParts) {
+    EXPECT_THAT(dropped, testing::ContainsRegex("a part of [1-9][0-9]* pixels? at")) << dropped;
+    EXPECT_THAT(dropped, testing::HasSubstr("px² a part needs")) << dropped;
   }
 }
 
