@@ -900,8 +900,16 @@ bool finishBlade(Context& c, const Cluster& cluster, const cv::Mat& clusterMask,
   // short, wide end beyond its junctions, yet is as long as the others.
   const float lengthPx =
       polylineLength(line) + (o.extendToCentre ? glm::length(line.front() - cluster.centre) : 0.0f);
-  if (lengthPx < o.minElongation * std::max(maxWidth, 1.0f)) {
-    reason = fmt::format("not elongated ({:.0f} px long, {:.0f} px wide)", lengthPx, maxWidth);
+  // Elongation is judged beyond the blade's lowest tenth: where it meets its neighbours at its junctions (or,
+  // split in depth, where the merged lower part is closed across its base) a blade's base is wider than the
+  // blade.
+  float bladeWidth = maxWidth;
+  if (widths.size() >= 10) {
+    bladeWidth =
+        *std::max_element(widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 10), widths.end());
+  }
+  if (lengthPx < o.minElongation * std::max(bladeWidth, 1.0f)) {
+    reason = fmt::format("not elongated ({:.0f} px long, {:.0f} px wide)", lengthPx, bladeWidth);
     return false;
   }
   // Smooth, extend to the centre, resample to the knot count.
@@ -1708,6 +1716,10 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
   return layers;
 }
 
+/** The largest spread of a depth split's surfaces (their median depths) as a share of the nearer one's depth.
+ */
+constexpr float kSplitDepthSpread = 0.15f;
+
 /**
  * The blades inside one captured blade that part in depth towards its outer end: within the blade's outline,
  * the pixels of its own depth beyond the middle of its visible length (from its junctions to its tip; with
@@ -1715,7 +1727,8 @@ std::vector<DepthLayer> depthLayers(const Context& c, const cv::Mat& clusterMask
  * when that reaches lower) are linked as depthLayers links them; each linked surface of at least a sixth of
  * those pixels that reaches the outer end becomes a blade along the medial axis of the blade's lower part and
  * that surface (its median depth, metres, to `surfaceDepths`). Returns nothing when fewer than two surfaces
- * reach it (one blade, however its depth runs), or when `outerShare` reaches no lower than the middle.
+ * reach it (one blade, however its depth runs), when their median depths spread by more than
+ * kSplitDepthSpread, or when `outerShare` reaches no lower than the middle.
  */
 std::vector<CapturedBlade> depthParts(Context& c, const Cluster& cluster, const cv::Mat& clusterMask,
                                       int clusterIndex, const CapturedBlade& blade,
@@ -1846,6 +1859,13 @@ std::vector<CapturedBlade> depthParts(Context& c, const Cluster& cluster, const 
     std::nth_element(zs[k].begin(), zs[k].begin() + static_cast<std::ptrdiff_t>(zs[k].size() / 2),
                      zs[k].end());
     median[k] = zs[k][zs[k].size() / 2];
+  }
+  // Surfaces farther apart in depth than kSplitDepthSpread of their distance are not blades of one tuft (the
+  // leaves of the Middlebury Aloe, whose depth is nominal, part by 40 %; the sweep's neighbours by 1–8 cm at
+  // 0.55–0.9 m).
+  if (const auto [lo, hi] = std::minmax_element(median.begin(), median.end());
+      *hi - *lo > kSplitDepthSpread * *lo) {
+    return {};
   }
   for (std::size_t k = 0; k < reaching.size(); ++k) {
     const std::size_t root = reaching[k];

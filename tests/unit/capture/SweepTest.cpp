@@ -63,32 +63,34 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   // narrow blades (1.4x the lower quartile of its widths), junctions at notches between tips and the split of
   // blades whose outer halves part in depth, short pointed tips as blades, blades broken in two by a nearer
   // one joined, widths where a nearer blade hides an edge taken from where both show, a 4 % coverage margin
-  // for partitions with fewer blades, and the depth split's second look over a blade's outer 35 % (captured
-  // as the PNG holds the depth): 200 clusters 85.5 % exact (occluded 93.3 %, crossing 82.5 %, dense 65.2 %),
-  // widths within 10 % on 89.0 % of 1,460 blades; 1,000 clusters (SYLVA_FULL=1) 85.3 % (occluded 97.3 %,
-  // crossing 77.1 %, dense 66.9 %) and 90.4 % of 7,224 (occluded 95.1 %). Without the second look: 200
-  // clusters 83.5 % and 88.6 %, 1,000 83.8 % and 90.1 %. With the 2 % margin as well: 83.3 %. Without the
+  // for partitions with fewer blades, the depth split's second look over a blade's outer 35 %, and
+  // elongation judged beyond a blade's lowest tenth (captured as the PNG holds the depth): 200 clusters
+  // 87.5 % exact (occluded 95.6 %, crossing 86.0 %, dense 67.4 %), widths within 10 % on 89.1 % of 1,460
+  // blades; 1,000 clusters (SYLVA_FULL=1) 86.7 % (fan 100 %, occluded 97.6 %, crossing 78.7 %, dense
+  // 70.2 %) and 90.3 % of 7,224 (occluded 95.2 %). Elongation by the widest point: 200 clusters 85.5 % and
+  // 89.0 %, 1,000 85.3 % and 90.4 %. Without the second look as well: 200 clusters 83.5 % and 88.6 %, 1,000
+  // 83.8 % and 90.1 %. With the 2 % margin as well: 83.3 %. Without the
   // join and the occluded widths as well (1,000):
   // 82.3 % and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the depth
   // split: 80.0 % and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 %
   // and 83.1 %. Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 %
   // (occluded 0 %) and 78.3 %.
   const SweepTally& occluded = report.byLayout[1];
-  EXPECT_GE(occluded.exactShare(), 0.90) << "a blade in front of its neighbour is its own depth layer";
+  EXPECT_GE(occluded.exactShare(), 0.93) << "a blade in front of its neighbour is its own depth layer";
   EXPECT_GE(occluded.widthShare(), 0.91);
   const SweepTally& crossing = report.byLayout[2];
-  EXPECT_GE(crossing.exactShare(), 0.75)
+  EXPECT_GE(crossing.exactShare(), 0.80)
       << "blades of two fans merged up to tips that part in depth are split, broken ones joined";
   const SweepTally& dense = report.byLayout[3];
-  EXPECT_GE(dense.exactShare(), 0.63) << "neighbouring tips part at notches, or in depth";
+  EXPECT_GE(dense.exactShare(), 0.65) << "neighbouring tips part at notches, or in depth";
   EXPECT_GE(dense.widthShare(), 0.84);
-  EXPECT_GE(report.all.exactShare(), 0.84);
+  EXPECT_GE(report.all.exactShare(), 0.86);
   EXPECT_GE(report.all.widthShare(), 0.88);
   // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
   // picture, or by a depth step of 5 mm); 200 clusters 94.5 %, 1,000 96.1 %. On those the count is exact on
-  // 88.9 % (1,000: 87.8 %): what is missing is the extractor's, not the frame's.
+  // 91.0 % (1,000: 89.3 %): what is missing is the extractor's, not the frame's.
   EXPECT_GE(report.all.tipsFreeShare(), 0.92);
-  EXPECT_GE(report.all.tipsFreeExactShare(), 0.87);
+  EXPECT_GE(report.all.tipsFreeExactShare(), 0.89);
 #endif
 }
 
@@ -337,6 +339,26 @@ TEST(CaptureDepthSplit, BladesWhoseNeighboursHideAllButTheirEndsPartInDepthOverT
   }
 }
 
+TEST(CaptureElongation, ABladeWhoseBaseWidensWhereItMeetsItsNeighboursIsStillABlade) {
+  // A plain fan (399) and crossing fans (130, 178, 566) where a blade's segment, closed across its base
+  // between junctions far apart, is wide only at that base: judged by its widest point it was "not
+  // elongated" (167 px long, 72 px wide in 399) and the blade was lost. Judged beyond its lowest tenth,
+  // every cluster counts exactly, and no segment of them is rejected for its elongation.
+  for (const std::uint64_t seed : {399u, 130u, 178u, 566u}) {
+    SCOPED_TRACE("sweep cluster " + std::to_string(seed));
+    const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
+    EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
+    EXPECT_EQ(countMessages(result, &Cluster::rejected, "not elongated"), 0u);
+  }
+  // The test still rejects: asked for an elongation of 40, more than any of the fan's blades has beyond its
+  // base, it rejects all five as not elongated.
+  ExtractOptions strict;
+  strict.minElongation = 40.0;
+  const ExtractResult none = captureSweepCluster(399, strict).first;
+  EXPECT_TRUE(none.blades.empty());
+  EXPECT_GE(countMessages(none, &Cluster::rejected, "not elongated"), 5u);
+}
+
 TEST(CaptureDepthLayers, DroppedPartsNameThePixelsTheyHold) {
   // Crossing fans whose nearer layer leaves single pixels beside the farther one: each dropped part is named
   // with the pixels it holds (a part one pixel thin encloses no area within its outline, and was once
@@ -372,7 +394,7 @@ TEST(CaptureNotches, TipsThatPartOnlyNearTheirEndsAreJunctions) {
   // each cluster comes out short.
   ExtractOptions without;
   without.notchProminence = 0.0;
-  for (const std::uint64_t seed : {68u, 291u, 373u}) {
+  for (const std::uint64_t seed : {68u, 373u, 526u}) {
     SCOPED_TRACE("sweep cluster " + std::to_string(seed));
     const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
     EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
