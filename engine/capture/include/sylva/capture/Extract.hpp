@@ -96,7 +96,10 @@ struct ExtractOptions {
    * 80 % of the way down from the tip, the outline is at most 0.7 times as wide as the tip is high.
    */
   double pointedTipFraction = 0.6;
-  /** ...and it is at least this many times longer than wide (rejects pots, ground, the cluster's base). */
+  /**
+   * ...and it is at least this many times longer (from the centre) than wide (beyond its lowest tenth, as its
+   * base, closed between two junctions, is wider than the blade): rejects pots, ground, the cluster's base.
+   */
   double minElongation = 2.5;
   /** Knots of the captured skeleton before refining. */
   int knots = 128;
