@@ -69,11 +69,10 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   // blades; 1,000 clusters (SYLVA_FULL=1) 86.7 % (fan 100 %, occluded 97.6 %, crossing 78.7 %, dense
   // 70.2 %) and 90.3 % of 7,224 (occluded 95.2 %). Elongation by the widest point: 200 clusters 85.5 % and
   // 89.0 %, 1,000 85.3 % and 90.4 %. Without the second look as well: 200 clusters 83.5 % and 88.6 %, 1,000
-  // 83.8 % and 90.1 %. With the 2 % margin as well: 83.3 %. Without the
-  // join and the occluded widths as well (1,000):
-  // 82.3 % and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the depth
-  // split: 80.0 % and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 %
-  // and 83.1 %. Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 %
+  // 83.8 % and 90.1 %. With the 2 % margin as well: 83.3 %. Without the join and the occluded widths as well
+  // (1,000): 82.3 % and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the
+  // depth split: 80.0 % and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference:
+  // 78.5 % and 83.1 %. Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 %
   // (occluded 0 %) and 78.3 %.
   const SweepTally& occluded = report.byLayout[1];
   EXPECT_GE(occluded.exactShare(), 0.93) << "a blade in front of its neighbour is its own depth layer";
