@@ -207,12 +207,14 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   const test::RunResult recaptured = runSylva(dir, "capture " + at(dir, "c10.png") + " --no-colour");
   ASSERT_EQ(recaptured.status, 0) << recaptured.err;
   EXPECT_THAT(recaptured.out, testing::HasSubstr(": " + found + " blades in")) << evaluated.out;
-  // A dense fan with a short pointed tip beyond its overlapping neighbours: a blade, unless --pointed-tip 1.
+  // A dense fan with a short pointed tip beyond its overlapping neighbours: a blade, unless --pointed-tip 1
+  // (and --tip-surfaces 0, which would find it by its surface instead).
   ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 488 -o " + at(dir, "p.png")).status, 0);
   const test::RunResult pointed = runSylva(dir, "capture " + at(dir, "p.png") + " --no-colour");
   ASSERT_EQ(pointed.status, 0) << pointed.err;
   EXPECT_THAT(pointed.out, testing::HasSubstr("13 blades in"));
-  const test::RunResult blunt = runSylva(dir, "capture " + at(dir, "p.png") + " --no-colour --pointed-tip 1");
+  const test::RunResult blunt =
+      runSylva(dir, "capture " + at(dir, "p.png") + " --no-colour --pointed-tip 1 --tip-surfaces 0");
   ASSERT_EQ(blunt.status, 0) << blunt.err;
   EXPECT_THAT(blunt.out, testing::HasSubstr("12 blades in"));
   EXPECT_NE(runSylva(dir, "capture " + at(dir, "p.png") + " --pointed-tip 0").status, 0);
@@ -229,6 +231,20 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
   EXPECT_THAT(inner.out, testing::HasSubstr("11 blades in"));
   EXPECT_EQ(countOf(inner.out, "over the outer"), 0u);
   EXPECT_NE(runSylva(dir, "capture " + at(dir, "o.png") + " --depth-split-outer 1").status, 0);
+  // A dense fan where two blades show only their ends, with no junction in the outline: each end is a depth
+  // surface of its own ending in a free tip where no captured blade ends, which --explain names;
+  // --tip-surfaces 0 leaves them out.
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 81 -o " + at(dir, "t.png")).status, 0);
+  const test::RunResult tips = runSylva(dir, "capture " + at(dir, "t.png") + " --no-colour --explain");
+  ASSERT_EQ(tips.status, 0) << tips.err;
+  EXPECT_THAT(tips.out, testing::HasSubstr("11 blades in"));
+  EXPECT_EQ(countOf(tips.out, "where no blade ends: one blade more"), 2u) << tips.out;
+  const test::RunResult noTips =
+      runSylva(dir, "capture " + at(dir, "t.png") + " --no-colour --explain --tip-surfaces 0");
+  ASSERT_EQ(noTips.status, 0) << noTips.err;
+  EXPECT_THAT(noTips.out, testing::HasSubstr("9 blades in"));
+  EXPECT_EQ(countOf(noTips.out, "where no blade ends"), 0u);
+  EXPECT_NE(runSylva(dir, "capture " + at(dir, "t.png") + " --tip-surfaces 1").status, 0);
   // Crossing fans where the front blade crosses a back one at a shallow angle and breaks it in two depth
   // layers: --explain says it was joined; --no-join keeps the broken-off part as a blade.
   ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 331 -o " + at(dir, "j.png")).status, 0);

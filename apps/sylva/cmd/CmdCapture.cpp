@@ -68,6 +68,7 @@ struct CaptureOptions {
   double pointedTip = ExtractOptions{}.pointedTipFraction;
   bool noDepthSplit = false;
   double depthSplitOuter = ExtractOptions{}.depthSplitOuterShare;
+  double tipSurfaces = ExtractOptions{}.tipSurfacesOuterShare;
   bool noOccludedWidths = false;
   bool noJoin = false;
   double smooth = ExtractOptions{}.smoothSigmaPx;
@@ -153,6 +154,7 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
   e.pointedTipFraction = o.pointedTip;
   e.depthSplit = !o.noDepthSplit;
   e.depthSplitOuterShare = o.depthSplitOuter;
+  e.tipSurfacesOuterShare = o.tipSurfaces;
   e.occludedWidths = !o.noOccludedWidths;
   e.joinBroken = !o.noJoin;
   e.smoothSigmaPx = o.smooth;
@@ -556,6 +558,13 @@ void registerCapture(CLI::App& app) {
       ->add_option("--depth-split-outer", o->depthSplitOuter,
                    "Where a blade's visible end holds one surface, look for surfaces parting in depth over "
                    "this share of its length from the tip (0: off)")
+      ->check(finiteRange(0.0, 0.99))
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--tip-surfaces", o->tipSurfaces,
+          "Over this outer share of the cluster, a depth surface ending in a free tip where no blade "
+          "ends is one blade more (0: off)")
       ->check(finiteRange(0.0, 0.99))
       ->capture_default_str();
   command->add_flag("--no-occluded-widths", o->noOccludedWidths,

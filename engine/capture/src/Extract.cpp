@@ -68,6 +68,9 @@ void validate(const ExtractOptions& o) {
   if (!finite(o.depthSplitOuterShare) || o.depthSplitOuterShare < 0.0 || o.depthSplitOuterShare >= 1.0) {
     fail("--depth-split-outer: {} outside [0, 1)", o.depthSplitOuterShare);
   }
+  if (!finite(o.tipSurfacesOuterShare) || o.tipSurfacesOuterShare < 0.0 || o.tipSurfacesOuterShare >= 1.0) {
+    fail("--tip-surfaces: {} outside [0, 1)", o.tipSurfacesOuterShare);
+  }
   if (!finite(o.minBladeLengthPx) || o.minBladeLengthPx < 0.0 || !finite(o.minElongation) ||
       o.minElongation < 0.0) {
     fail("--min-length / --min-elongation: must be finite and ≥ 0");
@@ -1959,6 +1962,251 @@ void splitByDepth(Context& c, Partition& p, const cv::Mat& clusterMask, int clus
   std::iota(p.cluster.blades.begin(), p.cluster.blades.end(), 0);
 }
 
+/** Pixels a surface of a cluster's outer band needs to be taken as the end of a blade of its own. */
+constexpr int kTipSurfaceMinPx = 30;
+/** A captured blade whose tip lies within this many pixels of a surface's far end is that surface's blade. */
+constexpr float kTipSurfaceGapPx = 5.0f;
+/**
+ * Around a surface's far end, within this many pixels and outwards from the centre (a cone of ±45°, cosine
+ * kTipOccluderCone), a nearer surface means the surface runs on behind it: cut short, not a tip.
+ */
+constexpr int kTipOccluderReachPx = 3;
+constexpr float kTipOccluderCone = 0.7f;
+/** Pixels beyond a surface's far end, straight out from the centre, that must lie outside the cluster. */
+constexpr int kTipClearancePx = 8;
+/** Radial bins (pixels) a blade found from its surface is traced through. */
+constexpr float kTipSurfaceBinPx = 3.0f;
+
+/** One surface of a cluster's outer band (tipSurfaces): frame pixels. */
+struct BandSurface {
+  int size = 0;
+  float low = std::numeric_limits<float>::max(); ///< nearest distance from the centre, pixels
+  float reach = 0.0f;                            ///< farthest distance from the centre, pixels
+  cv::Point end;                                 ///< the farthest pixel
+  float depthMetres = 0.0f;                      ///< median depth
+  bool claimed = false;                          ///< a captured blade's tip lies on it
+  std::vector<cv::Point> pixels;
+};
+
+/**
+ * Whether the far end of `s` is a blade's tip: the cluster ends beyond it, not the frame (or the region of
+ * interest), and nothing nearer cuts it off.
+ */
+bool freeTip(const Context& c, const cv::Mat& clusterMask, const glm::vec2& centre, const BandSurface& s) {
+  const std::array<int, 4> roi = c.options.roi != std::array<int, 4>{0, 0, 0, 0}
+                                     ? c.options.roi
+                                     : std::array<int, 4>{0, 0, c.frame.width, c.frame.height};
+  if (s.end.x <= roi[0] + 2 || s.end.y <= roi[1] + 2 || s.end.x >= roi[2] - 3 || s.end.y >= roi[3] - 3) {
+    return false;
+  }
+  const glm::vec2 end(static_cast<float>(s.end.x), static_cast<float>(s.end.y));
+  const glm::vec2 out = glm::normalize(end - centre);
+  for (int k = 3; k <= kTipClearancePx; ++k) {
+    if (insideMask(clusterMask, end + out * static_cast<float>(k))) {
+      return false;
+    }
+  }
+  const float z = c.depth.at<float>(s.end);
+  const float step = layerStepMetres(z, 0.0f);
+  for (int dy = -kTipOccluderReachPx; dy <= kTipOccluderReachPx; ++dy) {
+    for (int dx = -kTipOccluderReachPx; dx <= kTipOccluderReachPx; ++dx) {
+      const int x = s.end.x + dx;
+      const int y = s.end.y + dy;
+      if ((dx == 0 && dy == 0) || x < 0 || y < 0 || x >= c.depth.cols || y >= c.depth.rows ||
+          glm::dot(glm::normalize(glm::vec2(dx, dy)), out) < kTipOccluderCone) {
+        continue;
+      }
+      const float zq = c.depth.at<float>(y, x);
+      if (inBladeRange(c, zq) && zq < z - step) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+/**
+ * The surfaces of a cluster's outer band: its own pixels with depth beyond `rCut` pixels from the centre,
+ * linked as depthLayers links them; each surface on which a captured blade's tip (`tips`) lies is claimed.
+ */
+std::vector<BandSurface> bandSurfaces(const Context& c, const cv::Mat& clusterMask, const glm::vec2& centre,
+                                      float rCut, const std::vector<glm::vec2>& tips) {
+  const cv::Rect box = cv::boundingRect(clusterMask);
+  const int w = box.width;
+  const int h = box.height;
+  const auto at = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
+  const auto radius = [&](int x, int y) { return glm::length(glm::vec2(x + box.x, y + box.y) - centre); };
+  const cv::Mat depth = c.depth(box);
+  std::vector<int> parent(static_cast<std::size_t>(w) * h, -1);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (c.ownMask.at<std::uint8_t>(box.y + y, box.x + x) != 0 && inBladeRange(c, depth.at<float>(y, x)) &&
+          radius(x, y) >= rCut) {
+        parent[at(x, y)] = static_cast<int>(at(x, y));
+      }
+    }
+  }
+  const auto hasDepth = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && parent[at(x, y)] >= 0;
+  };
+  const auto find = [&](std::size_t i) {
+    while (parent[i] != static_cast<int>(i)) {
+      parent[i] = parent[static_cast<std::size_t>(parent[i])];
+      i = static_cast<std::size_t>(parent[i]);
+    }
+    return i;
+  };
+  linkSurfaces(depth, depthQuantum(depth, hasDepth), hasDepth, [&](std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) {
+      parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
+    }
+  });
+  std::vector<int> index(parent.size(), -1);
+  std::vector<BandSurface> surfaces;
+  std::vector<std::vector<float>> zs;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!hasDepth(x, y)) {
+        continue;
+      }
+      int& k = index[find(at(x, y))];
+      if (k < 0) {
+        k = static_cast<int>(surfaces.size());
+        surfaces.emplace_back();
+        zs.emplace_back();
+      }
+      BandSurface& s = surfaces[static_cast<std::size_t>(k)];
+      const float r = radius(x, y);
+      ++s.size;
+      s.low = std::min(s.low, r);
+      if (r > s.reach) {
+        s.reach = r;
+        s.end = cv::Point(x + box.x, y + box.y);
+      }
+      s.pixels.emplace_back(x + box.x, y + box.y);
+      zs[static_cast<std::size_t>(k)].push_back(depth.at<float>(y, x));
+    }
+  }
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    std::nth_element(zs[k].begin(), zs[k].begin() + static_cast<std::ptrdiff_t>(zs[k].size() / 2),
+                     zs[k].end());
+    surfaces[k].depthMetres = zs[k][zs[k].size() / 2];
+  }
+  // A tip lies on the surface of the band pixel nearest to it (within 4 px).
+  for (const glm::vec2& t : tips) {
+    float best = 5.0f;
+    int which = -1;
+    for (int dy = -4; dy <= 4; ++dy) {
+      for (int dx = -4; dx <= 4; ++dx) {
+        const int x = static_cast<int>(std::lround(t.x)) - box.x + dx;
+        const int y = static_cast<int>(std::lround(t.y)) - box.y + dy;
+        const float d = std::hypot(static_cast<float>(dx), static_cast<float>(dy));
+        if (hasDepth(x, y) && d < best) {
+          best = d;
+          which = index[find(at(x, y))];
+        }
+      }
+    }
+    if (which >= 0) {
+      surfaces[static_cast<std::size_t>(which)].claimed = true;
+    }
+  }
+  return surfaces;
+}
+
+/**
+ * Fourth pass over a cluster's blades: blades whose neighbours hide all but their outer end, found by the
+ * surface that end lies on. Over the cluster's outer band (beyond 1 − tipSurfacesOuterShare of the median
+ * distance from the centre to the captured tips) its own pixels are linked into surfaces; a surface of at
+ * least kTipSurfaceMinPx pixels, running at least half the minimum blade length outwards, that no captured
+ * tip lies on or ends near, and whose far end is a free tip (freeTip), is a blade: traced through radial bins
+ * of its pixels (their mean, and their count over the bin as its visible width), then finished as any blade.
+ * `--explain` lists each such blade with the captured split blades.
+ */
+void addTipSurfaces(Context& c, Partition& p, const cv::Mat& clusterMask, int clusterIndex) {
+  const auto share = static_cast<float>(c.options.tipSurfacesOuterShare);
+  if (share <= 0.0f || p.blades.empty()) {
+    return;
+  }
+  const glm::vec2 centre = p.cluster.centre;
+  std::vector<glm::vec2> tips;
+  std::vector<float> tipRadii;
+  for (const CapturedBlade& blade : p.blades) {
+    tips.push_back(blade.outline[static_cast<std::size_t>(blade.tip)]);
+    tipRadii.push_back(glm::length(tips.back() - centre));
+  }
+  std::nth_element(tipRadii.begin(), tipRadii.begin() + static_cast<std::ptrdiff_t>(tipRadii.size() / 2),
+                   tipRadii.end());
+  const float rCut = (1.0f - share) * tipRadii[tipRadii.size() / 2];
+  const std::vector<BandSurface> surfaces = bandSurfaces(c, clusterMask, centre, rCut, tips);
+  std::vector<CapturedBlade> added;
+  for (const BandSurface& s : surfaces) {
+    const glm::vec2 end(static_cast<float>(s.end.x), static_cast<float>(s.end.y));
+    std::size_t host = 0;
+    for (std::size_t b = 1; b < tips.size(); ++b) {
+      host = glm::length(tips[b] - end) < glm::length(tips[host] - end) ? b : host;
+    }
+    const float gap = glm::length(tips[host] - end);
+    if (s.claimed || s.size < kTipSurfaceMinPx ||
+        s.reach - s.low < 0.5f * static_cast<float>(c.options.minBladeLengthPx) || gap < kTipSurfaceGapPx ||
+        !freeTip(c, clusterMask, centre, s)) {
+      continue;
+    }
+    // The mean of the surface's pixels in each radial bin, out to its far end.
+    const int bins = static_cast<int>((s.reach - s.low) / kTipSurfaceBinPx) + 1;
+    std::vector<glm::vec2> sum(static_cast<std::size_t>(bins), glm::vec2(0.0f));
+    std::vector<int> count(static_cast<std::size_t>(bins), 0);
+    for (const cv::Point& q : s.pixels) {
+      const glm::vec2 v(static_cast<float>(q.x), static_cast<float>(q.y));
+      const auto k = static_cast<std::size_t>(
+          std::min(bins - 1, static_cast<int>((glm::length(v - centre) - s.low) / kTipSurfaceBinPx)));
+      sum[k] += v;
+      ++count[k];
+    }
+    std::vector<glm::vec2> axis;
+    std::vector<float> axisWidths;
+    for (std::size_t k = 0; k < sum.size(); ++k) {
+      if (count[k] > 0) {
+        axis.push_back(sum[k] / static_cast<float>(count[k]));
+        axisWidths.push_back(static_cast<float>(count[k]) / kTipSurfaceBinPx);
+      }
+    }
+    axis.push_back(end);
+    axisWidths.push_back(0.0f);
+    if (axis.size() < 3) {
+      continue;
+    }
+    std::vector<float> widths;
+    std::vector<glm::vec2> line = smoothOpen(resample(axis, kMatchSamples, &axisWidths, &widths), 2.0, true);
+    CapturedBlade blade;
+    blade.cluster = clusterIndex;
+    blade.outline = p.blades[host].outline;
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < blade.outline.size(); ++i) {
+      nearest = glm::length(blade.outline[i] - end) < glm::length(blade.outline[nearest] - end) ? i : nearest;
+    }
+    blade.tip = static_cast<int>(nearest);
+    blade.medialAxis = true;
+    blade.sideRatio = p.blades[host].sideRatio;
+    std::string reason;
+    const float maxWidth = *std::max_element(widths.begin(), widths.end());
+    if (finishBlade(c, p.cluster, clusterMask, std::move(line), std::move(widths), maxWidth, std::move(blade),
+                    added, reason)) {
+      p.cluster.split.push_back(fmt::format(
+          "a surface at {:.3f} m ends in a free tip at ({}, {}), {:.0f} px from the nearest captured tip, "
+          "where no blade ends: one blade more ({} px of it show in the cluster's outer {:.0f} %)",
+          s.depthMetres, s.end.x, s.end.y, gap, s.size, 100.0f * share));
+    }
+  }
+  for (CapturedBlade& blade : added) {
+    p.blades.push_back(std::move(blade));
+  }
+  p.cluster.blades.resize(p.blades.size());
+  std::iota(p.cluster.blades.begin(), p.cluster.blades.end(), 0);
+}
+
 /** The first knot of a blade beyond its extension to the centre (where it was seen). */
 std::size_t firstSeenKnot(const CapturedBlade& blade) {
   float along = 0.0f;
@@ -2127,6 +2375,7 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
   Partition& p = *best;
   if (c.options.depthSplit) {
     splitByDepth(c, p, clusterMask, clusterIndex);
+    addTipSurfaces(c, p, clusterMask, clusterIndex);
   }
   flagMerges(p);
   if (c.options.occludedWidths) {

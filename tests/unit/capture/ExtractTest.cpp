@@ -321,6 +321,9 @@ TEST(Extract, InvalidOptionsNameTheOption) {
   o = {};
   o.depthSplitOuterShare = 1.0;
   EXPECT_NE(message(o).find("--depth-split-outer"), std::string::npos);
+  o = {};
+  o.tipSurfacesOuterShare = -0.25;
+  EXPECT_NE(message(o).find("--tip-surfaces"), std::string::npos);
 }
 
 TEST(Extract, MetresFollowTheIntrinsics) {

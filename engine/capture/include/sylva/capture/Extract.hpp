@@ -134,6 +134,13 @@ struct ExtractOptions {
    */
   double depthSplitOuterShare = 0.35;
   /**
+   * After the depth split, look for blades whose neighbours hide all but their outer end: over the
+   * cluster's outer band (beyond 1 − this share of the median distance from the centre to the captured
+   * tips), a depth surface whose far end is a free tip on which no captured blade ends is one blade more
+   * (0 turns this off; below 1). Needs `depthSplit`.
+   */
+  double tipSurfacesOuterShare = 0.25;
+  /**
    * Where a nearer surface hides one edge of a blade (a blade in front of it), take the blade's width there
    * from the samples on either side where both its edges show, instead of the narrower part that shows.
    */
@@ -182,7 +189,8 @@ struct Cluster {
   std::vector<std::string> merged;
   /**
    * Blades split between their tips because they were much wider than the cluster's narrow blades, and blades
-   * split into the surfaces that part in depth towards their tips (`--explain`).
+   * split into the surfaces that part in depth towards their tips, and blades found by the depth surface
+   * their free tip ends on where no captured blade ends (`--explain`).
    */
   std::vector<std::string> split;
   /**
