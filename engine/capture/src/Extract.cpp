@@ -1972,7 +1972,7 @@ constexpr float kTipSurfaceGapPx = 5.0f;
  */
 constexpr int kTipOccluderReachPx = 3;
 constexpr float kTipOccluderCone = 0.7f;
-/** Pixels beyond a surface's far end, straight out from the centre, that must lie outside the cluster. */
+/** Pixels beyond a surface's far end, outwards from the centre (±30°), that must lie outside the cluster. */
 constexpr int kTipClearancePx = 8;
 /** Radial bins (pixels) a blade found from its surface is traced through. */
 constexpr float kTipSurfaceBinPx = 3.0f;
@@ -1985,14 +1985,185 @@ struct BandSurface {
   cv::Point end;                                 ///< the farthest pixel
   float depthMetres = 0.0f;                      ///< median depth
   bool claimed = false;                          ///< a captured blade's tip lies on it
-  std::vector<cv::Point> pixels;
+  std::vector<cv::Point> pixels;                 ///< frame pixels
+  std::vector<glm::vec2> tipsOn;                 ///< the captured tips that lie on it
 };
 
+/** Wraps an angle to [-π, π), radians. */
+float wrapAngle(float a) {
+  constexpr float kPi = 3.14159265f;
+  while (a >= kPi) {
+    a -= 2.0f * kPi;
+  }
+  while (a < -kPi) {
+    a += 2.0f * kPi;
+  }
+  return a;
+}
+
 /**
- * Whether the far end of `s` is a blade's tip: the cluster ends beyond it, not the frame (or the region of
- * interest), and nothing nearer cuts it off.
+ * Splits a band surface into its branches: where two blades' ends link into one surface (they touch at the
+ * same depth lower down), its farthest distance from the centre, over the direction from the centre (bins 2
+ * px wide at its far end), has a peak at each tip. Peaks at least `prominencePx` above the dip between them
+ * and the next higher peak are branches; the surface is cut at the lowest point between neighbouring ones.
+ * A captured tip on the surface claims the branch its direction falls in. Returns the surface itself when
+ * it has one branch.
  */
-bool freeTip(const Context& c, const cv::Mat& clusterMask, const glm::vec2& centre, const BandSurface& s) {
+std::vector<BandSurface> branches(const Context& c, const BandSurface& s, const glm::vec2& centre,
+                                  float prominencePx) {
+  glm::vec2 mean(0.0f);
+  for (const cv::Point& q : s.pixels) {
+    mean += glm::vec2(static_cast<float>(q.x), static_cast<float>(q.y)) - centre;
+  }
+  const float a0 = std::atan2(mean.y, mean.x);
+  const auto angleOf = [&](const glm::vec2& v) {
+    return wrapAngle(std::atan2(v.y - centre.y, v.x - centre.x) - a0);
+  };
+  float lo = std::numeric_limits<float>::max();
+  float hi = std::numeric_limits<float>::lowest();
+  for (const cv::Point& q : s.pixels) {
+    const float a = angleOf(glm::vec2(q.x, q.y));
+    lo = std::min(lo, a);
+    hi = std::max(hi, a);
+  }
+  const float binRadians = 2.0f / std::max(s.reach, 1.0f);
+  const int bins = static_cast<int>((hi - lo) / binRadians) + 1;
+  if (bins < 3) {
+    return {s};
+  }
+  const auto binOf = [&](const glm::vec2& v) {
+    return std::clamp(static_cast<int>((angleOf(v) - lo) / binRadians), 0, bins - 1);
+  };
+  std::vector<float> profile(static_cast<std::size_t>(bins), s.low);
+  for (const cv::Point& q : s.pixels) {
+    const glm::vec2 v(q.x, q.y);
+    float& r = profile[static_cast<std::size_t>(binOf(v))];
+    r = std::max(r, glm::length(v - centre));
+  }
+  const auto at = [&profile](int b) { return profile[static_cast<std::size_t>(b)]; };
+  // Each peak's prominence: its height over the higher of the lowest points between it and the nearest
+  // higher peak on either side (over the surface's nearest point where none is higher).
+  std::vector<int> peaks;
+  for (int b = 0; b < bins; ++b) {
+    const float h = at(b);
+    if ((b > 0 && at(b - 1) >= h) || (b + 1 < bins && at(b + 1) > h)) {
+      continue;
+    }
+    std::array<float, 2> dip{h, h};
+    std::array<bool, 2> higher{false, false};
+    for (std::size_t side = 0; side < 2; ++side) {
+      const int dir = side == 0 ? -1 : 1;
+      for (int k = b + dir; k >= 0 && k < bins && !higher[side]; k += dir) {
+        dip[side] = std::min(dip[side], at(k));
+        higher[side] = at(k) > h;
+      }
+    }
+    float base = s.low;
+    if (higher[0] && higher[1]) {
+      base = std::max(dip[0], dip[1]);
+    } else if (higher[0] || higher[1]) {
+      base = higher[0] ? dip[0] : dip[1];
+    }
+    if (h - base >= prominencePx) {
+      peaks.push_back(b);
+    }
+  }
+  if (peaks.size() < 2) {
+    return {s};
+  }
+  // Branch i holds the bins from cuts[i] up to cuts[i + 1].
+  std::vector<int> cuts{0};
+  for (std::size_t i = 0; i + 1 < peaks.size(); ++i) {
+    int lowest = peaks[i];
+    for (int k = peaks[i]; k <= peaks[i + 1]; ++k) {
+      lowest = at(k) < at(lowest) ? k : lowest;
+    }
+    cuts.push_back(lowest);
+  }
+  const auto branchOf = [&](const glm::vec2& v) {
+    const int b = binOf(v);
+    std::size_t i = 0;
+    while (i + 1 < peaks.size() && b >= cuts[i + 1]) {
+      ++i;
+    }
+    return i;
+  };
+  std::vector<BandSurface> parts(peaks.size());
+  std::vector<std::vector<float>> zs(peaks.size());
+  for (const cv::Point& q : s.pixels) {
+    const glm::vec2 v(q.x, q.y);
+    const std::size_t i = branchOf(v);
+    BandSurface& part = parts[i];
+    const float r = glm::length(v - centre);
+    ++part.size;
+    part.low = std::min(part.low, r);
+    if (r > part.reach) {
+      part.reach = r;
+      part.end = q;
+    }
+    part.pixels.push_back(q);
+    zs[i].push_back(c.depth.at<float>(q));
+  }
+  for (const glm::vec2& t : s.tipsOn) {
+    parts[branchOf(t)].claimed = true;
+  }
+  std::vector<BandSurface> kept;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (parts[i].size > 0) {
+      std::nth_element(zs[i].begin(), zs[i].begin() + static_cast<std::ptrdiff_t>(zs[i].size() / 2),
+                       zs[i].end());
+      parts[i].depthMetres = zs[i][zs[i].size() / 2];
+      kept.push_back(std::move(parts[i]));
+    }
+  }
+  return kept;
+}
+
+/** Contour points on either side over which a free tip's distance signal is highest (freeTip). */
+constexpr int kTipPeakPoints = 3;
+
+/**
+ * Whether the outline turns back at `end`: the raw distance signal peaks (is highest within kTipPeakPoints
+ * on either side) at the contour point nearest to it (within 4 px) or at one of the two on either side. Along
+ * a blade's side the distance rises towards its tip, where a jag of a jittered edge or a pixel lost to a
+ * dropout can leave a surface's farthest pixel.
+ */
+bool outlineTurns(const Cluster& cluster, const cv::Point& end) {
+  const int n = static_cast<int>(cluster.contour.size());
+  int nearest = -1;
+  float nearestDistance = 4.0f;
+  for (int i = 0; i < n; ++i) {
+    const float d = glm::length(cluster.contour[static_cast<std::size_t>(i)] - glm::vec2(end.x, end.y));
+    if (d < nearestDistance) {
+      nearestDistance = d;
+      nearest = i;
+    }
+  }
+  if (nearest < 0) {
+    return false;
+  }
+  const auto signal = [&](int i) { return cluster.signal[static_cast<std::size_t>(((i % n) + n) % n)]; };
+  for (int j = nearest - 2; j <= nearest + 2; ++j) {
+    bool peak = true;
+    for (int k = -kTipPeakPoints; k <= kTipPeakPoints && peak; ++k) {
+      peak = signal(j + k) <= signal(j) + 0.01f;
+    }
+    if (peak) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/**
+ * Whether the far end of `s` is a blade's tip: the outline of `cluster` turns back at it (outlineTurns), the
+ * cluster ends beyond it, not the frame (or the region of interest), and nothing nearer cuts it off.
+ */
+bool freeTip(const Context& c, const Cluster& cluster, const cv::Mat& clusterMask, const BandSurface& s) {
+  if (!outlineTurns(cluster, s.end)) {
+    return false;
+  }
+  const glm::vec2 centre = cluster.centre;
   const std::array<int, 4> roi = c.options.roi != std::array<int, 4>{0, 0, 0, 0}
                                      ? c.options.roi
                                      : std::array<int, 4>{0, 0, c.frame.width, c.frame.height};
@@ -2001,9 +2172,14 @@ bool freeTip(const Context& c, const cv::Mat& clusterMask, const glm::vec2& cent
   }
   const glm::vec2 end(static_cast<float>(s.end.x), static_cast<float>(s.end.y));
   const glm::vec2 out = glm::normalize(end - centre);
-  for (int k = 3; k <= kTipClearancePx; ++k) {
-    if (insideMask(clusterMask, end + out * static_cast<float>(k))) {
-      return false;
+  // Over ±30° (a ray straight out misses a thin blade that runs on past a break in its depth).
+  for (const float degrees : {0.0f, -15.0f, 15.0f, -30.0f, 30.0f}) {
+    const float a = degrees * 3.14159265f / 180.0f;
+    const glm::vec2 dir(out.x * std::cos(a) - out.y * std::sin(a), out.x * std::sin(a) + out.y * std::cos(a));
+    for (int k = 3; k <= kTipClearancePx; ++k) {
+      if (insideMask(clusterMask, end + dir * static_cast<float>(k))) {
+        return false;
+      }
     }
   }
   const float z = c.depth.at<float>(s.end);
@@ -2027,7 +2203,9 @@ bool freeTip(const Context& c, const cv::Mat& clusterMask, const glm::vec2& cent
 
 /**
  * The surfaces of a cluster's outer band: its own pixels with depth beyond `rCut` pixels from the centre,
- * linked as depthLayers links them; each surface on which a captured blade's tip (`tips`) lies is claimed.
+ * linked as depthLayers links them, each of kTipSurfaceMinPx pixels or more split into its branches (one per
+ * tip, `--notch-min` pixels above the dip between them); a branch on which a captured blade's tip (`tips`)
+ * lies is claimed.
  */
 std::vector<BandSurface> bandSurfaces(const Context& c, const cv::Mat& clusterMask, const glm::vec2& centre,
                                       float rCut, const std::vector<glm::vec2>& tips) {
@@ -2111,17 +2289,28 @@ std::vector<BandSurface> bandSurfaces(const Context& c, const cv::Mat& clusterMa
     }
     if (which >= 0) {
       surfaces[static_cast<std::size_t>(which)].claimed = true;
+      surfaces[static_cast<std::size_t>(which)].tipsOn.push_back(t);
     }
   }
-  return surfaces;
+  // Two blades whose ends link into one surface: its branches, each a surface of its own.
+  std::vector<BandSurface> split;
+  for (const BandSurface& s : surfaces) {
+    if (s.size >= kTipSurfaceMinPx) {
+      for (BandSurface& branch : branches(c, s, centre, static_cast<float>(c.options.notchMinPx))) {
+        split.push_back(std::move(branch));
+      }
+    }
+  }
+  return split;
 }
 
 /**
  * Fourth pass over a cluster's blades: blades whose neighbours hide all but their outer end, found by the
  * surface that end lies on. Over the cluster's outer band (beyond 1 − tipSurfacesOuterShare of the median
- * distance from the centre to the captured tips) its own pixels are linked into surfaces; a surface of at
- * least kTipSurfaceMinPx pixels, running at least half the minimum blade length outwards, that no captured
- * tip lies on or ends near, and whose far end is a free tip (freeTip), is a blade: traced through radial bins
+ * distance from the centre to the captured tips) its own pixels are linked into surfaces, split into their
+ * branches (bandSurfaces); a branch of at least kTipSurfaceMinPx pixels, running at least half the minimum
+ * blade length outwards, that no captured tip lies on or ends near, and whose far end is a free tip
+ * (freeTip), is a blade: traced through radial bins
  * of its pixels (their mean, and their count over the bin as its visible width), then finished as any blade.
  * `--explain` lists each such blade with the captured split blades.
  */
@@ -2151,7 +2340,7 @@ void addTipSurfaces(Context& c, Partition& p, const cv::Mat& clusterMask, int cl
     const float gap = glm::length(tips[host] - end);
     if (s.claimed || s.size < kTipSurfaceMinPx ||
         s.reach - s.low < 0.5f * static_cast<float>(c.options.minBladeLengthPx) || gap < kTipSurfaceGapPx ||
-        !freeTip(c, clusterMask, centre, s)) {
+        !freeTip(c, p.cluster, clusterMask, s)) {
       continue;
     }
     // The mean of the surface's pixels in each radial bin, out to its far end.

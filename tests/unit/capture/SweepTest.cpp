@@ -64,34 +64,34 @@ TEST(CaptureSweep, RandomClustersOfEveryClass) {
   // blades whose outer halves part in depth, short pointed tips as blades, blades broken in two by a nearer
   // one joined, widths where a nearer blade hides an edge taken from where both show, a 4 % coverage margin
   // for partitions with fewer blades, the depth split's second look over a blade's outer 35 %, elongation
-  // judged beyond a blade's lowest tenth, and blades found by the surface their free tip ends on over the
-  // cluster's outer quarter (captured as the PNG holds the depth): 200 clusters 90.0 % exact (occluded
-  // 95.6 %, crossing 86.0 %, dense 78.3 %), widths within 10 % on 90.0 % of 1,460 blades; 1,000 clusters
-  // (SYLVA_FULL=1) 88.5 % (fan 100 %, occluded 97.6 %, crossing 81.4 %, dense 74.7 %) and 90.9 % of 7,224
-  // (occluded 95.2 %). Without the tip surfaces as well: 200 clusters 87.5 % and 89.1 %, 1,000 86.7 % and
-  // 90.3 %. Elongation by the widest point: 200 clusters 85.5 % and
-  // 89.0 %, 1,000 85.3 % and 90.4 %. Without the second look as well: 200 clusters 83.5 % and 88.6 %, 1,000
-  // 83.8 % and 90.1 %. With the 2 % margin as well: 83.3 %. Without the join and the occluded widths as well
-  // (1,000): 82.3 % and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the
-  // depth split: 80.0 % and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference:
-  // 78.5 % and 83.1 %. Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 %
-  // (occluded 0 %) and 78.3 %.
+  // judged beyond a blade's lowest tenth, and blades found by the surface (or the branch of one) their free
+  // tip ends on over the cluster's outer quarter (captured as the PNG holds the depth): 200 clusters 91.5 %
+  // exact (occluded 95.6 %, crossing 87.7 %, dense 82.6 %), widths within 10 % on 90.3 % of 1,460 blades;
+  // 1,000 clusters (SYLVA_FULL=1) 89.9 % (fan 100 %, occluded 97.6 %, crossing 82.6 %, dense 79.2 %) and
+  // 91.1 % of 7,224 (occluded 95.3 %). Without the tip surfaces as well: 200 clusters 87.5 % and 89.1 %,
+  // 1,000 86.7 % and 90.3 %. Elongation by the widest point: 200 clusters 85.5 % and 89.0 %, 1,000 85.3 %
+  // and 90.4 %. Without the second look as well: 200 clusters 83.5 % and 88.6 %, 1,000 83.8 % and 90.1 %.
+  // With the 2 % margin as well: 83.3 %. Without the join and the occluded widths as well (1,000): 82.3 %
+  // and 89.4 %. Without pointed tips as well: 81.8 % and 88.8 %. Without notches and the depth split: 80.0 %
+  // and 84.3 %; 1,000: 79.0 % and 85.6 %. With 1.6x the median as the split's reference: 78.5 % and 83.1 %.
+  // Without the split: 75.5 % (dense 43.5 %) and 80.5 %. Before the depth layers: 49.5 % (occluded 0 %)
+  // and 78.3 %.
   const SweepTally& occluded = report.byLayout[1];
   EXPECT_GE(occluded.exactShare(), 0.93) << "a blade in front of its neighbour is its own depth layer";
   EXPECT_GE(occluded.widthShare(), 0.91);
   const SweepTally& crossing = report.byLayout[2];
-  EXPECT_GE(crossing.exactShare(), 0.80)
+  EXPECT_GE(crossing.exactShare(), 0.81)
       << "blades of two fans merged up to tips that part in depth are split, broken ones joined";
   const SweepTally& dense = report.byLayout[3];
-  EXPECT_GE(dense.exactShare(), 0.72) << "neighbouring tips part at notches, or in depth";
+  EXPECT_GE(dense.exactShare(), 0.76) << "neighbouring tips part at notches, or in depth";
   EXPECT_GE(dense.widthShare(), 0.84);
-  EXPECT_GE(report.all.exactShare(), 0.88);
-  EXPECT_GE(report.all.widthShare(), 0.89);
+  EXPECT_GE(report.all.exactShare(), 0.89);
+  EXPECT_GE(report.all.widthShare(), 0.90);
   // The targets are within reach of one frame: nearly every cluster shows each blade's tip on its own (in the
   // picture, or by a depth step of 5 mm); 200 clusters 94.5 %, 1,000 96.1 %. On those the count is exact on
-  // 93.1 % (1,000: 90.9 %): what is missing is the extractor's, not the frame's.
+  // 94.7 % (1,000: 91.7 %): what is missing is the extractor's, not the frame's.
   EXPECT_GE(report.all.tipsFreeShare(), 0.92);
-  EXPECT_GE(report.all.tipsFreeExactShare(), 0.90);
+  EXPECT_GE(report.all.tipsFreeExactShare(), 0.91);
 #endif
 }
 
@@ -367,7 +367,7 @@ TEST(CaptureTipSurfaces, BladesWhoseNeighboursHideAllButTheirEndsAreFoundByTheSu
   // that ends in a free tip where no captured blade ends. Without the pass (share 0) each comes out short.
   ExtractOptions without;
   without.tipSurfacesOuterShare = 0.0;
-  for (const std::uint64_t seed : {81u, 299u, 493u, 612u}) {
+  for (const std::uint64_t seed : {124u, 299u, 493u, 612u}) {
     SCOPED_TRACE("sweep cluster " + std::to_string(seed));
     const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
     EXPECT_EQ(static_cast<int>(result.blades.size()), expected);
@@ -375,6 +375,21 @@ TEST(CaptureTipSurfaces, BladesWhoseNeighboursHideAllButTheirEndsAreFoundByTheSu
     const ExtractResult short_ = captureSweepCluster(seed, without).first;
     EXPECT_LT(static_cast<int>(short_.blades.size()), expected);
     EXPECT_EQ(countMessages(short_, &Cluster::split, "where no blade ends"), 0u);
+  }
+  // Plain clusters of every shape whose edges jitter by 1.5 px (three times the sensor model's default) and
+  // lose 40 % of their pixels to dropouts: a jag of an edge, or the end of a piece cut off by a break in a
+  // thin blade's depth, is no free tip (without the outline's turn at the tip, 7 of these 50 gain a blade).
+  for (const BladeShape shape : kBladeShapes) {
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+      SCOPED_TRACE(std::string(bladeShapeName(shape)) + " cluster " + std::to_string(seed));
+      SyntheticScene scene = makeCluster(shape, 3 + static_cast<int>(seed % 5), 0.3f, 0.0f, seed);
+      scene.lateralNoisePx = 1.5f;
+      scene.edgeDropout = 0.4f;
+      const SyntheticFrame frame = renderScene(scene);
+      const ExtractResult result = extractBlades(frame.frame);
+      EXPECT_EQ(result.blades.size(), frame.truth.centrelinePx.size());
+      EXPECT_EQ(countMessages(result, &Cluster::split, "where no blade ends"), 0u);
+    }
   }
   // Plain fans, occluded ones, crossing and dense ones whose every tip is captured gain nothing from it.
   for (const std::uint64_t seed : {1u, 2u, 3u, 4u, 6u, 8u, 12u}) {
@@ -420,6 +435,7 @@ TEST(CaptureNotches, TipsThatPartOnlyNearTheirEndsAreJunctions) {
   // each cluster comes out short.
   ExtractOptions without;
   without.notchProminence = 0.0;
+  without.tipSurfacesOuterShare = 0.0; // which would find them by their surfaces instead
   for (const std::uint64_t seed : {68u, 373u, 526u}) {
     SCOPED_TRACE("sweep cluster " + std::to_string(seed));
     const auto [result, expected] = captureSweepCluster(seed, ExtractOptions{});
