@@ -2171,6 +2171,9 @@ bool freeTip(const Context& c, const Cluster& cluster, const cv::Mat& clusterMas
     return false;
   }
   const glm::vec2 end(static_cast<float>(s.end.x), static_cast<float>(s.end.y));
+  if (glm::length(end - centre) < 1.0f) {
+    return false;
+  }
   const glm::vec2 out = glm::normalize(end - centre);
   // Over ±30° (a ray straight out misses a thin blade that runs on past a break in its depth).
   for (const float degrees : {0.0f, -15.0f, 15.0f, -30.0f, 30.0f}) {
