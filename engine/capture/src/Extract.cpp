@@ -1545,6 +1545,34 @@ void linkSurfaces(const cv::Mat& depth, float quantum, const HasDepth& hasDepth,
   }
 }
 
+/** The root of pixel `i`'s set in a union-find over pixels (`parent`; -1: a pixel that takes no part). */
+std::size_t findRoot(std::vector<int>& parent, std::size_t i) {
+  while (parent[i] != static_cast<int>(i)) {
+    parent[i] = parent[static_cast<std::size_t>(parent[i])];
+    i = static_cast<std::size_t>(parent[i]);
+  }
+  return i;
+}
+
+/**
+ * Links the pixels of a box that take part (`parent` row-major over `depth`, CV_32F metres: ≥ 0 for a pixel
+ * that takes part, each its own set at first) into the surfaces linkSurfaces finds.
+ */
+void linkBoxSurfaces(const cv::Mat& depth, std::vector<int>& parent) {
+  const int w = depth.cols;
+  const int h = depth.rows;
+  const auto hasDepth = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && parent[static_cast<std::size_t>(y) * w + x] >= 0;
+  };
+  linkSurfaces(depth, depthQuantum(depth, hasDepth), hasDepth, [&](std::size_t a, std::size_t b) {
+    a = findRoot(parent, a);
+    b = findRoot(parent, b);
+    if (a != b) {
+      parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
+    }
+  });
+}
+
 /**
  * Splits one cluster into depth layers. Pixels join when their depths differ by less than layerStepMetres
  * over a short distance (the same surface), and across a nearer occluder when the depth on its far side
@@ -1798,20 +1826,8 @@ std::vector<CapturedBlade> depthParts(Context& c, const Cluster& cluster, const 
   const auto hasDepth = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < w && y < h && parent[at(x, y)] >= 0;
   };
-  const auto find = [&](std::size_t i) {
-    while (parent[i] != static_cast<int>(i)) {
-      parent[i] = parent[static_cast<std::size_t>(parent[i])];
-      i = static_cast<std::size_t>(parent[i]);
-    }
-    return i;
-  };
-  linkSurfaces(depth, depthQuantum(depth, hasDepth), hasDepth, [&](std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) {
-      parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
-    }
-  });
+  const auto find = [&](std::size_t i) { return findRoot(parent, i); };
+  linkBoxSurfaces(depth, parent);
   struct Surface {
     int size = 0;
     float reach = 0.0f;
@@ -2230,20 +2246,8 @@ std::vector<BandSurface> bandSurfaces(const Context& c, const cv::Mat& clusterMa
   const auto hasDepth = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < w && y < h && parent[at(x, y)] >= 0;
   };
-  const auto find = [&](std::size_t i) {
-    while (parent[i] != static_cast<int>(i)) {
-      parent[i] = parent[static_cast<std::size_t>(parent[i])];
-      i = static_cast<std::size_t>(parent[i]);
-    }
-    return i;
-  };
-  linkSurfaces(depth, depthQuantum(depth, hasDepth), hasDepth, [&](std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) {
-      parent[std::max(a, b)] = static_cast<int>(std::min(a, b));
-    }
-  });
+  const auto find = [&](std::size_t i) { return findRoot(parent, i); };
+  linkBoxSurfaces(depth, parent);
   std::vector<int> index(parent.size(), -1);
   std::vector<BandSurface> surfaces;
   std::vector<std::vector<float>> zs;
