@@ -1993,7 +1993,7 @@ constexpr int kTipClearancePx = 8;
 /** Radial bins (pixels) a blade found from its surface is traced through. */
 constexpr float kTipSurfaceBinPx = 3.0f;
 
-/** One surface of a cluster's outer band (tipSurfaces): frame pixels. */
+/** One surface of a cluster's outer band (bandSurfaces), or a branch of one; positions are frame pixels. */
 struct BandSurface {
   int size = 0;
   float low = std::numeric_limits<float>::max(); ///< nearest distance from the centre, pixels
