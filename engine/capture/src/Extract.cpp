@@ -2416,7 +2416,9 @@ std::size_t firstSeenKnot(const CapturedBlade& blade) {
 
 /**
  * Widens the samples of a blade's axis where one of its edges is the edge of a nearer surface (a blade in
- * front hides that side, so the visible width falls short): over each run of such samples the width is at
+ * front hides that side, so the visible width falls short; where it hides the blade across its whole width,
+ * so that no depth of the blade's own lies on the axis, the sample is judged at the depth of the nearest
+ * sample that has one): over each run of such samples the width is at
  * least what the samples on both sides of the run measure (interpolated; only the root's side of a run that
  * reaches the tip, as a blade narrows to its tip). `line` and `widths` are pixels, root end first. Returns
  * whether a width changed.
@@ -2426,14 +2428,35 @@ bool widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vect
   const int count = static_cast<int>(line.size());
   std::vector<char> occluded(line.size(), 0);
   bool any = false;
+  // The blade's own depth at each sample; a sample with none near it takes the nearest seen sample's.
+  std::vector<float> seen(line.size(), 0.0f);
+  for (int k = 0; k < count; ++k) {
+    seen[static_cast<std::size_t>(k)] = depthAround(c, line[k], 1);
+  }
+  std::vector<float> own = seen;
+  for (int k = 0; k < count; ++k) {
+    if (own[static_cast<std::size_t>(k)] > 0.0f) {
+      continue;
+    }
+    for (int d = 1; d < count; ++d) {
+      if (k - d >= 0 && seen[static_cast<std::size_t>(k - d)] > 0.0f) {
+        own[static_cast<std::size_t>(k)] = seen[static_cast<std::size_t>(k - d)];
+        break;
+      }
+      if (k + d < count && seen[static_cast<std::size_t>(k + d)] > 0.0f) {
+        own[static_cast<std::size_t>(k)] = seen[static_cast<std::size_t>(k + d)];
+        break;
+      }
+    }
+  }
   for (int k = 0; k < count; ++k) {
     const glm::vec2 t = line[std::min(k + 2, count - 1)] - line[std::max(k - 2, 0)];
-    const float z = depthAround(c, line[k], 1);
+    const float z = own[static_cast<std::size_t>(k)];
     if (glm::length(t) <= 0.0f || z <= 0.0f) {
       continue;
     }
-    const glm::vec2 normal = glm::normalize(glm::vec2(-t.y, t.x));
     const float step = layerStepMetres(z, 0.0f);
+    const glm::vec2 normal = glm::normalize(glm::vec2(-t.y, t.x));
     for (const float sign : {-1.0f, 1.0f}) {
       float d = 0.0f;
       while (d < 200.0f && insideMask(clusterMask, line[k] + normal * (sign * d))) {
