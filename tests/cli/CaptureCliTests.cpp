@@ -271,6 +271,17 @@ TEST(CaptureCli, SyntheticLayoutsAndTheSweep) {
                 .status,
             0);
   EXPECT_NE(test::readAll(dir / "wide.json"), test::readAll(dir / "shown.json"));
+  // A dense fan whose blades overlap: those found on a medial axis are measured over their own depth surface,
+  // unless --no-surface-widths (then as wide as the region they share).
+  ASSERT_EQ(runSylva(dir, "capture synth --sweep-cluster 787 -o " + at(dir, "d.png")).status, 0);
+  const test::RunResult own = runSylva(dir, "capture " + at(dir, "d.png") + " --no-colour");
+  const test::RunResult shared =
+      runSylva(dir, "capture " + at(dir, "d.png") + " --no-colour --no-surface-widths");
+  ASSERT_EQ(own.status, 0) << own.err;
+  ASSERT_EQ(shared.status, 0) << shared.err;
+  EXPECT_THAT(own.out, testing::HasSubstr("13 blades in"));
+  EXPECT_THAT(shared.out, testing::HasSubstr("13 blades in"));
+  EXPECT_NE(own.out, shared.out) << "the medial-axis blades' widths differ";
   const test::RunResult both = runSylva(dir, "capture synth --sweep 4 --sweep-cluster 8");
   EXPECT_NE(both.status, 0);
   const test::RunResult one =

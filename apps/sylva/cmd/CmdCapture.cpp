@@ -70,6 +70,7 @@ struct CaptureOptions {
   double depthSplitOuter = ExtractOptions{}.depthSplitOuterShare;
   double tipSurfaces = ExtractOptions{}.tipSurfacesOuterShare;
   bool noOccludedWidths = false;
+  bool noSurfaceWidths = false;
   bool noJoin = false;
   double smooth = ExtractOptions{}.smoothSigmaPx;
   double minLength = ExtractOptions{}.minBladeLengthPx;
@@ -156,6 +157,7 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
   e.depthSplitOuterShare = o.depthSplitOuter;
   e.tipSurfacesOuterShare = o.tipSurfaces;
   e.occludedWidths = !o.noOccludedWidths;
+  e.surfaceWidths = !o.noSurfaceWidths;
   e.joinBroken = !o.noJoin;
   e.smoothSigmaPx = o.smooth;
   e.minBladeLengthPx = o.minLength;
@@ -569,6 +571,9 @@ void registerCapture(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--no-occluded-widths", o->noOccludedWidths,
                     "Measure a blade only as wide as it shows where a nearer blade hides one of its edges");
+  command->add_flag("--no-surface-widths", o->noSurfaceWidths,
+                    "Measure a blade found on a medial axis across its whole region, not over its own depth "
+                    "surface (blades in front of a neighbour then measure as wide as both)");
   command->add_flag("--no-join", o->noJoin,
                     "Keep the outer part of a blade that a nearer blade crosses as a blade of its own");
   command->add_option("--smooth", o->smooth, "Smoothing of the distance signal, sigma in pixels")

@@ -2509,6 +2509,99 @@ bool widenOccluded(const Context& c, const cv::Mat& clusterMask, const std::vect
   return changed;
 }
 
+/** A scan across a blade stops at a farther surface this many pixels wide (its edge's jitter is narrower). */
+constexpr float kFartherRunPx = 1.0f;
+/** A blade takes its own surface's widths when they are narrower at its median knot by this ratio. */
+constexpr float kSurfaceWidthRatio = 1.05f;
+
+/**
+ * Width across a blade at `at` (pixels; `normal` a unit vector across it) over its own depth surface: from
+ * depth `z` (metres) outwards on both sides until the cluster's silhouette ends or a surface farther by more
+ * than a layer step begins (the blade lies in front of it: there its edge is). A nearer surface hides the
+ * blade and does not end it; pixels without depth do not either.
+ */
+float surfaceWidthAt(const Context& c, const cv::Mat& clusterMask, const glm::vec2& at,
+                     const glm::vec2& normal, float z) {
+  constexpr float kStep = 0.5f;
+  const auto runSamples = static_cast<int>(kFartherRunPx / kStep) + 1;
+  float across = 0.0f;
+  for (const float sign : {-1.0f, 1.0f}) {
+    float d = 0.0f;
+    float zs = z;
+    int farther = 0;
+    while (d < 200.0f) {
+      const glm::vec2 q = at + normal * (sign * (d + kStep));
+      if (!insideMask(clusterMask, q)) {
+        break;
+      }
+      const float zq =
+          c.depth.at<float>(static_cast<int>(std::lround(q.y)), static_cast<int>(std::lround(q.x)));
+      const float step = layerStepMetres(zs, 0.0f);
+      if (inBladeRange(c, zq)) {
+        if (zq - zs > step) {
+          if (++farther >= runSamples) {
+            d -= kStep * static_cast<float>(runSamples - 1);
+            break;
+          }
+        } else {
+          farther = 0;
+          if (zq >= zs - step) {
+            zs = zq; // follows the blade's own surface as it tilts
+          }
+        }
+      }
+      d += kStep;
+    }
+    across += d + 0.5f * kStep;
+  }
+  return across;
+}
+
+/**
+ * Blades found on a medial axis (their outline did not pair into two edges of their own: a split of merged
+ * blades, a depth part, a tip surface) measure their widths across a region that other blades may share: a
+ * blade in front of its neighbour at nearly the same place measures as wide as both. Such a blade takes the
+ * widths of its own depth surface (surfaceWidthAt) at its seen knots, when they are narrower at its median
+ * knot by kSurfaceWidthRatio or more (sporadic cuts by a neighbour's jittered edge are not a merge).
+ */
+void surfaceWidths(Context& c, Partition& p, const cv::Mat& clusterMask) {
+  for (CapturedBlade& blade : p.blades) {
+    if (!blade.medialAxis) {
+      continue;
+    }
+    const int count = static_cast<int>(blade.skeletonPx.size());
+    std::vector<float> surface(blade.widthsPx.size(), 0.0f);
+    std::vector<float> ratios;
+    for (int k = static_cast<int>(firstSeenKnot(blade)); k + 1 < count; ++k) {
+      const glm::vec2 at = blade.skeletonPx[static_cast<std::size_t>(k)];
+      const float z = depthAround(c, at, 1);
+      const glm::vec2 t = blade.skeletonPx[static_cast<std::size_t>(std::min(k + 2, count - 1))] -
+                          blade.skeletonPx[static_cast<std::size_t>(std::max(k - 2, 0))];
+      if (z <= 0.0f || glm::length(t) <= 0.0f) {
+        continue;
+      }
+      const float across = surfaceWidthAt(c, clusterMask, at, glm::normalize(glm::vec2(-t.y, t.x)), z);
+      const float width = blade.widthsPx[static_cast<std::size_t>(k)];
+      surface[static_cast<std::size_t>(k)] = std::min(across, width);
+      ratios.push_back(across < width ? width / std::max(across, 0.5f) : 1.0f);
+    }
+    if (ratios.empty()) {
+      continue;
+    }
+    std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2),
+                     ratios.end());
+    if (ratios[ratios.size() / 2] < kSurfaceWidthRatio) {
+      continue;
+    }
+    for (std::size_t k = 0; k < surface.size(); ++k) {
+      if (surface[k] > 0.0f) {
+        blade.widthsPx[k] = surface[k];
+      }
+    }
+    toMetres(c, blade);
+  }
+}
+
 /** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
 constexpr double kCoverageMargin = 0.04;
 
@@ -2597,6 +2690,9 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
     addTipSurfaces(c, p, clusterMask, clusterIndex);
   }
   flagMerges(p);
+  if (c.options.surfaceWidths) {
+    surfaceWidths(c, p, clusterMask);
+  }
   if (c.options.occludedWidths) {
     for (CapturedBlade& blade : p.blades) {
       // The captured part only: the extension to the centre is drawn, not seen.

@@ -146,6 +146,12 @@ struct ExtractOptions {
    */
   bool occludedWidths = true;
   /**
+   * A blade found on a medial axis (its outline did not pair into two edges of its own) measures its widths
+   * over its own depth surface, up to where a farther surface begins, when that is narrower along most of
+   * it: blades in front of a neighbour no longer measure as wide as both.
+   */
+  bool surfaceWidths = true;
+  /**
    * Join a blade's outer part that broke off into a depth layer of its own (where a nearer blade crosses it
    * at a shallow angle) to the blade whose tip points at it.
    */
