@@ -2689,10 +2689,10 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
     splitByDepth(c, p, clusterMask, clusterIndex);
     addTipSurfaces(c, p, clusterMask, clusterIndex);
   }
-  flagMerges(p);
   if (c.options.surfaceWidths) {
     surfaceWidths(c, p, clusterMask);
   }
+  flagMerges(p); // on the widths each blade's own surface gives
   if (c.options.occludedWidths) {
     for (CapturedBlade& blade : p.blades) {
       // The captured part only: the extension to the centre is drawn, not seen.
