@@ -71,6 +71,7 @@ struct CaptureOptions {
   double tipSurfaces = ExtractOptions{}.tipSurfacesOuterShare;
   bool noOccludedWidths = false;
   bool noSurfaceWidths = false;
+  double widthSmooth = ExtractOptions{}.widthSmoothKnots;
   bool noJoin = false;
   double smooth = ExtractOptions{}.smoothSigmaPx;
   double minLength = ExtractOptions{}.minBladeLengthPx;
@@ -158,6 +159,7 @@ ExtractOptions extractOptions(const CaptureOptions& o) {
   e.tipSurfacesOuterShare = o.tipSurfaces;
   e.occludedWidths = !o.noOccludedWidths;
   e.surfaceWidths = !o.noSurfaceWidths;
+  e.widthSmoothKnots = o.widthSmooth;
   e.joinBroken = !o.noJoin;
   e.smoothSigmaPx = o.smooth;
   e.minBladeLengthPx = o.minLength;
@@ -571,6 +573,13 @@ void registerCapture(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--no-occluded-widths", o->noOccludedWidths,
                     "Measure a blade only as wide as it shows where a nearer blade hides one of its edges");
+  command
+      ->add_option(
+          "--width-smooth", o->widthSmooth,
+          "Smoothing of each blade's final widths along it: a running median over +/- this many knots of "
+          "a 128-knot line, then a Gaussian of 0.3 times that (0: none)")
+      ->check(finiteRange(0.0, 64.0))
+      ->capture_default_str();
   command->add_flag("--no-surface-widths", o->noSurfaceWidths,
                     "Measure a blade found on a medial axis across its whole region, not over its own depth "
                     "surface (blades in front of a neighbour then measure as wide as both)");

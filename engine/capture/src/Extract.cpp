@@ -81,6 +81,9 @@ void validate(const ExtractOptions& o) {
   if (!finite(o.skeletonSmoothKnots) || o.skeletonSmoothKnots < 0.0 || o.skeletonSmoothKnots > 64.0) {
     fail("--skeleton-smooth: {} outside 0..64", o.skeletonSmoothKnots);
   }
+  if (!finite(o.widthSmoothKnots) || o.widthSmoothKnots < 0.0 || o.widthSmoothKnots > 64.0) {
+    fail("--width-smooth: {} outside 0..64", o.widthSmoothKnots);
+  }
   if (!finite(o.symmetryRatio) || o.symmetryRatio < 1.0) {
     fail("--symmetry: ratio {} must be ≥ 1", o.symmetryRatio);
   }
@@ -2602,6 +2605,27 @@ void surfaceWidths(Context& c, Partition& p, const cv::Mat& clusterMask) {
   }
 }
 
+/** The Gaussian after the running median of a blade's widths: sigma as this share of the median's
+ * half-window. */
+constexpr double kWidthSmoothShare = 0.3;
+
+/**
+ * A running median of `values` over ±`half` samples; near the ends the window shrinks to stay centred, so the
+ * first and last values stay.
+ */
+std::vector<float> runningMedian(const std::vector<float>& values, int half) {
+  std::vector<float> out = values;
+  const int n = static_cast<int>(values.size());
+  std::vector<float> window;
+  for (int k = 1; k + 1 < n; ++k) {
+    const int r = std::min({half, k, n - 1 - k});
+    window.assign(values.begin() + (k - r), values.begin() + (k + r + 1));
+    std::nth_element(window.begin(), window.begin() + r, window.end());
+    out[static_cast<std::size_t>(k)] = window[static_cast<std::size_t>(r)];
+  }
+  return out;
+}
+
 /** Coverage (IoU) a partition with fewer blades may lose and still win over one with more. */
 constexpr double kCoverageMargin = 0.04;
 
@@ -2693,18 +2717,25 @@ void processCluster(Context& c, const std::vector<cv::Point>& contourPts, const 
     surfaceWidths(c, p, clusterMask);
   }
   flagMerges(p); // on the widths each blade's own surface gives
-  if (c.options.occludedWidths) {
-    for (CapturedBlade& blade : p.blades) {
-      // The captured part only: the extension to the centre is drawn, not seen.
-      const std::size_t first = firstSeenKnot(blade);
-      const std::vector<glm::vec2> line(blade.skeletonPx.begin() + static_cast<std::ptrdiff_t>(first),
-                                        blade.skeletonPx.end());
-      std::vector<float> widths(blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first),
-                                blade.widthsPx.end());
-      if (widenOccluded(c, clusterMask, line, widths)) {
-        std::copy(widths.begin(), widths.end(), blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first));
-        toMetres(c, blade);
-      }
+  for (CapturedBlade& blade : p.blades) {
+    // The captured part only: the extension to the centre is drawn, not seen.
+    const std::size_t first = firstSeenKnot(blade);
+    const std::vector<glm::vec2> line(blade.skeletonPx.begin() + static_cast<std::ptrdiff_t>(first),
+                                      blade.skeletonPx.end());
+    std::vector<float> widths(blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first),
+                              blade.widthsPx.end());
+    bool changed = c.options.occludedWidths && widenOccluded(c, clusterMask, line, widths);
+    if (c.options.widthSmoothKnots > 0.0 && widths.size() > 2) {
+      // A sensor's edges jitter from knot to knot; the median keeps a lobe's rise and fall, the Gaussian
+      // rounds its plateaus. Ends pinned: the first seen knot meets the extension, the tip stays 0.
+      const double half = c.options.widthSmoothKnots * c.options.knots / 128.0;
+      widths = smoothOpen(runningMedian(widths, static_cast<int>(std::lround(half))),
+                          kWidthSmoothShare * half, true);
+      changed = true;
+    }
+    if (changed) {
+      std::copy(widths.begin(), widths.end(), blade.widthsPx.begin() + static_cast<std::ptrdiff_t>(first));
+      toMetres(c, blade);
     }
   }
   p.cluster.layer = c.layer;

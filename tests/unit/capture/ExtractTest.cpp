@@ -324,6 +324,11 @@ TEST(Extract, InvalidOptionsNameTheOption) {
   o = {};
   o.tipSurfacesOuterShare = -0.25;
   EXPECT_NE(message(o).find("--tip-surfaces"), std::string::npos);
+  o = {};
+  o.widthSmoothKnots = 65.0;
+  EXPECT_NE(message(o).find("--width-smooth"), std::string::npos);
+  o.widthSmoothKnots = std::nan("");
+  EXPECT_NE(message(o).find("--width-smooth"), std::string::npos);
 }
 
 TEST(Extract, MetresFollowTheIntrinsics) {

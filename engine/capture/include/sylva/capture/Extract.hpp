@@ -152,6 +152,13 @@ struct ExtractOptions {
    */
   bool surfaceWidths = true;
   /**
+   * Smoothing of each blade's final widths along its seen part (after the hidden-edge and surface widths,
+   * which correct knots one by one): a running median over ± this many knots of the 128-knot line, then a
+   * Gaussian of 0.3 times that; 0: none. A sensor's edges jitter by a pixel or two from knot to knot; the
+   * median keeps a lobe's rise and fall.
+   */
+  double widthSmoothKnots = 5.0;
+  /**
    * Join a blade's outer part that broke off into a depth layer of its own (where a nearer blade crosses it
    * at a shallow angle) to the blade whose tip points at it.
    */
