@@ -37,6 +37,7 @@
 #include <fstream>
 #include <optional>
 #include <stdexcept>
+#include <system_error>
 
 /**
  * LeakSanitizer's built-in suppressions for every harness binary (libFuzzer targets and the ASan replay).
@@ -155,8 +156,18 @@ void tilePyramid(std::span<const std::uint8_t> bytes) {
     return dir;
   }();
   const fs::path dir = scratch() / "pyramid";
-  fs::remove_all(dir);
-  fs::copy(good, dir, fs::copy_options::recursive);
+  // libFuzzer's timer signals can interrupt the kernel copy (EINTR, seen once in CI's smoke run): retry it.
+  for (int attempt = 0;; ++attempt) {
+    fs::remove_all(dir);
+    std::error_code error;
+    fs::copy(good, dir, fs::copy_options::recursive, error);
+    if (!error) {
+      break;
+    }
+    if (error != std::errc::interrupted || attempt >= 8) {
+      throw fs::filesystem_error("cannot copy the fuzz pyramid", good, dir, error);
+    }
+  }
   const bool asTile = !bytes.empty() && (bytes[0] & 1) == 0;
   const auto rest = bytes.empty() ? bytes : bytes.subspan(1);
   if (asTile) {
